@@ -1,0 +1,13 @@
+/* base/: what every layer needs — status codes, the one-line diagnostic,
+ * the allocator, parameter tables, strict parsing and the clock. */
+#ifndef CX_BASE_H
+#define CX_BASE_H
+
+#include "base/status.h"
+#include "base/diag.h"
+#include "base/alloc.h"
+#include "base/param.h"
+#include "base/parse.h"
+#include "base/clock.h"
+
+#endif

@@ -1,0 +1,8 @@
+/* Wall-clock time for timing steps and phases. */
+#ifndef CX_CLOCK_H
+#define CX_CLOCK_H
+
+/* Seconds from an arbitrary fixed origin (monotonic clock). */
+double cx_clock_now(void);
+
+#endif

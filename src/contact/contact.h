@@ -1,0 +1,72 @@
+/* contact/: contact constraints from a mesh and an obstacle, without K.
+ * A contact set holds m contact points and, in the all-dof numbering of
+ * fem/ (node k, component c -> dim k + c), the sparse rows
+ *     N (m x nall):         (N u)_i = normal displacement of point i towards
+ *                            the obstacle (closing the gap is positive),
+ *     T (m(dim-1) x nall):  tangential displacements (one tangent in 2D, an
+ *                            orthonormal pair in 3D, rows 2i and 2i+1),
+ * and the initial gap g (m), so that non-penetration reads N u - g <= 0.
+ * Rows are general sparse rows, so that two-body node-to-segment rows and
+ * multibody node-to-node rows fit the same structure. An initial
+ * penetration is an error (CX_EINVAL with the point), never clipped. */
+#ifndef CX_CONTACT_H
+#define CX_CONTACT_H
+
+#include "base/base.h"
+#include "linalg/linalg.h"
+#include "mesh/mesh.h"
+
+typedef enum cx_obstacle_kind {
+    CX_OBST_PLANE,    /* half-space {x : (x - point) . normal <= 0}; normal points out of the obstacle */
+    CX_OBST_DISC,     /* 2D disc (centre, radius): the body is outside it */
+    CX_OBST_CYLINDER, /* 3D cylinder (centre, axis, radius): the body is outside */
+    CX_OBST_SPHERE    /* 3D ball (centre, radius): the body is outside; a half-ball uses the same surface */
+} cx_obstacle_kind;
+
+typedef struct cx_obstacle {
+    cx_obstacle_kind kind;
+    double point[3];   /* PLANE: a point of the plane; DISC/CYLINDER/SPHERE: the centre */
+    double normal[3];  /* PLANE: unit normal out of the obstacle; CYLINDER: unit axis */
+    double radius;
+    /* If set (unit vector), gaps and normals are measured along this fixed
+     * direction (the body moves along it towards the obstacle), as in paper
+     * 002's half-ball where the gap is measured along z. Zero: along the
+     * closest-point normal. */
+    double direction[3];
+} cx_obstacle;
+
+const char *cx_obstacle_name(cx_obstacle_kind k);   /* "plane", "disc", "cylinder", "sphere" */
+int cx_obstacle_from_name(const char *name);        /* -1 if unknown */
+
+typedef struct cx_contact_set {
+    int dim;
+    int m;               /* contact points */
+    int nall;            /* columns of N and T */
+    int *node;           /* m: mesh node of the point (the slave node) */
+    double *x;           /* dim * m: its position */
+    double *weight;      /* m: lumped length (2D) / area (3D) of the contact boundary */
+    double *normal;      /* dim * m: unit normal towards the obstacle */
+    double *tangent;     /* dim * (dim-1) * m: unit tangents (2D: normal rotated by +90 deg) */
+    double *gap;         /* m: initial gap >= 0 */
+    cx_triplet N;        /* m x nall */
+    cx_triplet T;        /* m(dim-1) x nall */
+} cx_contact_set;
+
+/* Contact points at the nodes of boundary b against obstacle ob, ordered
+ * along the boundary (by arc length from the first facet's first node in
+ * 2D; by coordinates in 3D). cs must be zeroed or cleared. An initial
+ * penetration deeper than 1e-12 times the body size is CX_EINVAL with a
+ * message naming the point; smaller ones are rounding and set to 0. */
+int cx_contact_from_obstacle(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *b,
+                             const cx_obstacle *ob, cx_diag *d);
+void cx_contact_clear(cx_contact_set *cs);
+
+/* Signed distance-like gap and unit normal (towards the obstacle) of one
+ * point x against ob; the gap is negative inside the obstacle. */
+int cx_obstacle_gap(const cx_obstacle *ob, int dim, const double *x, double *gap, double *normal);
+
+/* An orthonormal tangent basis of a unit normal: 2D one tangent (normal
+ * rotated +90 deg), 3D two (t1 x t2 = n). */
+void cx_tangent_basis(int dim, const double *n, double *t);
+
+#endif

@@ -1,0 +1,103 @@
+/* fem/: linear elasticity by finite elements. Element kernels (pure
+ * functions of element coordinates and material) apart from the global
+ * assembly; Dirichlet elimination as a separate step with expansion back;
+ * nodal stresses computed only when asked. Dof numbering of the full
+ * ("all") system: node k, component c -> dim * k + c. */
+#ifndef CX_FEM_H
+#define CX_FEM_H
+
+#include "base/base.h"
+#include "linalg/linalg.h"
+#include "mesh/mesh.h"
+
+typedef enum cx_model {
+    CX_PLANE_STRAIN,
+    CX_PLANE_STRESS,
+    CX_SOLID        /* 3D */
+} cx_model;
+
+typedef struct cx_material {
+    double E, nu;     /* Young's modulus, Poisson's ratio (nu < 0.5) */
+    cx_model model;
+} cx_material;
+
+/* Number of stress components: 3 in 2D (xx, yy, xy) [4 with zz for plane
+ * strain is not stored], 6 in 3D (xx, yy, zz, yz, xz, xy) — Voigt order. */
+int cx_fem_nstress(int dim);
+
+/* The elasticity matrix D (nstress x nstress, row-major) of a material. */
+void cx_fem_elasticity(const cx_material *mat, double *D);
+
+/* ---- element kernels -------------------------------------------------- */
+
+/* Ke = int_e B' D B dx (ndof = dim * npe, row-major, dof order node-major:
+ * (node 0 x, node 0 y, node 1 x, ...)). xe: dim * npe coordinates.
+ * CX_ENUMERIC if the element is degenerate or inverted. */
+int cx_fem_element_stiffness(cx_elem_type t, const double *xe, const double *D, double *Ke);
+
+/* fe = int_e N' b dx for a constant body force b (dim values per volume). */
+int cx_fem_element_body_force(cx_elem_type t, const double *xe, const double *b, double *fe);
+
+/* An affine surface traction t(x) = t0 + G x (force per area/length),
+ * G row-major dim x dim: t_i = t0_i + sum_k G[i*dim+k] x_k. */
+typedef struct cx_traction {
+    double t0[3];
+    double G[9];
+} cx_traction;
+
+/* fe = int_facet N' t(x) ds for a boundary facet with npf nodes (2D: 2 or 3
+ * nodes; 3D: 3 or 4). Exact for the affine traction on straight facets. */
+int cx_fem_facet_traction(int dim, int npf, const double *xf, const cx_traction *t, double *fe);
+
+/* Lumped facet measure: weights w[a] (npf values) with sum = facet
+ * length/area, w[a] = int N_a ds (Simpson-like for P2 edges). */
+void cx_fem_facet_lumped(int dim, int npf, const double *xf, double *w);
+
+/* ---- assembly ---------------------------------------------------------- */
+
+/* K over all dim * nnodes dofs, symmetric, full storage. mats: one per body
+ * (mesh->nbodies entries). */
+int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc *K, cx_diag *d);
+/* f += traction on the facets of boundary b. */
+int cx_fem_add_traction(const cx_mesh *m, const cx_boundary *b, const cx_traction *t, double *f);
+/* f += body force b (dim values) over all elements. */
+int cx_fem_add_body_force(const cx_mesh *m, const double *b, double *f);
+
+/* ---- Dirichlet elimination --------------------------------------------- */
+
+/* Which dofs are prescribed, and to what. */
+typedef struct cx_dofmap {
+    int nall;          /* dim * nnodes */
+    int nfree;
+    int *free_of;      /* nall: free index of an all-dof, or -1 if prescribed */
+    int *all_of;       /* nfree: the all-dof of a free index */
+    double *value;     /* nall: prescribed value (0 for free dofs) */
+} cx_dofmap;
+
+/* All dofs free. */
+int cx_dofmap_init(cx_dofmap *map, int nall);
+void cx_dofmap_clear(cx_dofmap *map);
+/* Prescribe component c (0..dim-1) of every node of boundary b to value
+ * (a whole node: call once per component; a symmetry line: one component). */
+int cx_dofmap_fix(cx_dofmap *map, const cx_mesh *m, const cx_boundary *b, int c, double value);
+/* Renumber the free dofs after the last fix (ascending all-dof order). */
+int cx_dofmap_finish(cx_dofmap *map);
+
+/* K = Kall(free, free), f = fall(free) - Kall(free, fixed) * value.
+ * K must be empty; f has nfree entries. */
+int cx_fem_reduce(const cx_csc *Kall, const double *fall, const cx_dofmap *map,
+                  cx_csc *K, double *f);
+/* uall = u on free dofs and the prescribed values elsewhere. */
+void cx_fem_expand(const cx_dofmap *map, const double *u, double *uall);
+
+/* ---- stresses ------------------------------------------------------------ */
+
+/* Nodal stresses: element stresses at the nodes (P1: the constant; others:
+ * at the node's reference position), averaged over the elements of each
+ * node. sig: nstress * nnodes, node-major. uall: dim * nnodes. */
+int cx_fem_nodal_stress(const cx_mesh *m, const cx_material *mats, const double *uall, double *sig);
+/* Von Mises stress of one Voigt stress vector (plane strain includes
+ * szz = nu (sxx + syy); plane stress szz = 0). */
+double cx_fem_von_mises(const cx_material *mat, const double *sig);
+
+#endif

@@ -1,0 +1,164 @@
+/* linalg/: sparse and dense linear algebra, the only layer that includes a
+ * SuiteSparse header. Triplet and CSC matrices (int indices, double values),
+ * a factorisation object over CHOLMOD (symmetric positive definite) and
+ * UMFPACK (unsymmetric) that keeps the symbolic analysis for reuse, the
+ * static condensation of a symmetric matrix onto a subset of its dofs taken
+ * from one Cholesky factorisation, dense kernels over LAPACK, and PCG.
+ * Work counters (cx_counters) are incremented here, where the work is done.
+ * Failures return a cx_status and leave one line in a cx_diag; a
+ * non-positive pivot is CX_ENUMERIC naming the column, never a NaN. */
+#ifndef CX_LINALG_H
+#define CX_LINALG_H
+
+#include "base/base.h"
+
+#include <stddef.h>
+
+/* ---- counters ------------------------------------------------------- */
+
+typedef struct cx_counters {
+    long factorizations;   /* numeric factorisations (sparse or dense of size > 0) */
+    long solves;           /* solves with a factor (forward + backward = 1) */
+    long matvecs;          /* products with the stiffness matrix K */
+    long dual_products;    /* products with a dual operator B K^-1 B' */
+} cx_counters;
+
+/* ---- triplet / CSC --------------------------------------------------- */
+
+typedef struct cx_triplet {
+    int nrow, ncol;
+    size_t nnz, cap;
+    int *i, *j;
+    double *x;
+} cx_triplet;
+
+/* Empty nrow x ncol triplet with room for cap entries (grows as needed). */
+int cx_triplet_init(cx_triplet *t, int nrow, int ncol, size_t cap);
+/* Append (i, j, x); duplicates are summed on conversion. CX_ENOMEM. */
+int cx_triplet_add(cx_triplet *t, int i, int j, double x);
+void cx_triplet_clear(cx_triplet *t);
+
+/* Compressed sparse column: column j holds rows i[p[j] .. p[j+1]-1],
+ * sorted ascending, no duplicates. Symmetric matrices are stored in full
+ * (both triangles). */
+typedef struct cx_csc {
+    int nrow, ncol;
+    int *p;        /* ncol + 1 */
+    int *i;        /* p[ncol] */
+    double *x;     /* p[ncol] */
+} cx_csc;
+
+/* A from T (duplicates summed, explicit zeros kept: the pattern is what was
+ * added). A must be empty or cleared; on failure A is left empty. */
+int cx_csc_from_triplet(cx_csc *A, const cx_triplet *T);
+int cx_csc_copy(cx_csc *dst, const cx_csc *src);
+int cx_csc_transpose(cx_csc *At, const cx_csc *A);
+void cx_csc_clear(cx_csc *A);             /* frees, leaves a 0x0 matrix */
+static inline size_t cx_csc_nnz(const cx_csc *A) { return A->p ? (size_t)A->p[A->ncol] : 0; }
+
+/* y = alpha A x + beta y  (beta = 0 ignores the old y, even if NaN). */
+void cx_csc_gemv(const cx_csc *A, double alpha, const double *x, double beta, double *y);
+/* y = alpha A' x + beta y */
+void cx_csc_gemv_t(const cx_csc *A, double alpha, const double *x, double beta, double *y);
+/* A(i, j), 0 if not stored (binary search). */
+double cx_csc_get(const cx_csc *A, int i, int j);
+/* Largest |A(i,j) - A(j,i)| over the stored entries. */
+double cx_csc_asymmetry(const cx_csc *A);
+
+/* ---- sparse factorisation ------------------------------------------- */
+
+typedef enum cx_fact_kind {
+    CX_FACT_CHOLESKY,   /* CHOLMOD, A symmetric positive definite (full storage given) */
+    CX_FACT_LU          /* UMFPACK, A square */
+} cx_fact_kind;
+
+typedef struct cx_fact cx_fact;   /* opaque */
+
+/* A new factorisation object; cnt (may be NULL) receives the counts and is
+ * borrowed: it must outlive the object. */
+int cx_fact_create(cx_fact **F, cx_fact_kind kind, cx_counters *cnt, cx_diag *d);
+void cx_fact_destroy(cx_fact **F);
+
+/* Symbolic analysis of the pattern of A (fill-reducing ordering), kept for
+ * every later cx_fact_factorize with the same pattern. */
+int cx_fact_analyze(cx_fact *F, const cx_csc *A, cx_diag *d);
+/* Numeric factorisation of A (same pattern as analysed). A non-positive
+ * pivot (Cholesky) or a singular matrix (LU) is CX_ENUMERIC with the column
+ * in the message. */
+int cx_fact_factorize(cx_fact *F, const cx_csc *A, cx_diag *d);
+/* x = A^-1 b (x and b may alias). Counts one solve. */
+int cx_fact_solve(cx_fact *F, const double *b, double *x, cx_diag *d);
+/* Number of non-zeros of the factor(s), 0 before factorize. */
+double cx_fact_nnz(const cx_fact *F);
+
+/* ---- static condensation onto a subset of dofs ---------------------- */
+
+/* For A symmetric positive semi-definite of order n, split into dofs c
+ * (given) and the rest i, with A_ii positive definite:
+ *     S = A_cc - A_ci A_ii^-1 A_ic          (the Schur complement)
+ * obtained from ONE sparse Cholesky of A + D, D = diag(A_cc) on the c dofs
+ * (so that the factorisation exists even when A is singular), ordered with
+ * the c dofs last (constrained ordering): the trailing block L22 of the
+ * factor gives S = L22 L22' - D. A may be singular in directions that
+ * involve the c dofs (a floating body held only by contact). */
+typedef struct cx_schur cx_schur;
+
+/* c: nc distinct dof indices (copied). cnt borrowed, may be NULL. Counts one
+ * factorisation. */
+int cx_schur_create(cx_schur **S, const cx_csc *A, const int *c, int nc,
+                    cx_counters *cnt, cx_diag *d);
+void cx_schur_destroy(cx_schur **S);
+int cx_schur_size(const cx_schur *S);                 /* nc */
+/* S as a dense nc x nc column-major symmetric matrix, rows and columns in
+ * the order of c as given to create. Borrowed, valid until destroy. */
+const double *cx_schur_matrix(const cx_schur *S);
+/* fc = f_c - A_ci A_ii^-1 f_i  (nc values in the order of c). One solve. */
+int cx_schur_condense(cx_schur *S, const double *f, double *fc);
+/* The full vector u with u_c = uc and u_i = A_ii^-1 (f_i - A_ic u_c).
+ * One solve. */
+int cx_schur_expand(cx_schur *S, const double *f, const double *uc, double *u);
+/* Factor non-zeros (for reports). */
+double cx_schur_factor_nnz(const cx_schur *S);
+
+/* ---- dense kernels (column-major, LAPACK) --------------------------- */
+
+/* Solve the symmetric (possibly indefinite) system A x = b in place
+ * (b <- x) with Bunch-Kaufman (dsysv). A (n x n, lda = n) is overwritten.
+ * ipiv: n ints; work: lwork doubles (lwork >= n; 64 n is better).
+ * CX_ENUMERIC if A is singular. Counts one factorisation when cnt given. */
+int cx_dense_sym_solve(int n, double *A, double *b, int *ipiv,
+                       double *work, int lwork, cx_counters *cnt);
+/* Cholesky A = L L' in place (lower); CX_ENUMERIC if not positive definite. */
+int cx_dense_cholesky(int n, double *A, cx_counters *cnt);
+/* Solve with the Cholesky factor from cx_dense_cholesky: b <- A^-1 b (nrhs columns). */
+void cx_dense_cholesky_solve(int n, const double *L, double *b, int nrhs);
+/* General LU solve (dgesv), b <- A^-1 b; A overwritten. CX_ENUMERIC if singular. */
+int cx_dense_lu_solve(int n, double *A, double *b, int *ipiv, cx_counters *cnt);
+/* y = alpha A x + beta y for dense m x n A (dgemv). */
+void cx_dense_gemv(int m, int n, double alpha, const double *A, const double *x,
+                   double beta, double *y);
+
+/* ---- vectors --------------------------------------------------------- */
+
+double cx_vec_dot(int n, const double *x, const double *y);
+double cx_vec_norm2(int n, const double *x);
+double cx_vec_norminf(int n, const double *x);
+/* y = a x + y */
+void cx_vec_axpy(int n, double a, const double *x, double *y);
+/* 1 if every entry is finite */
+int cx_vec_finite(int n, const double *x);
+
+/* ---- preconditioned conjugate gradients ------------------------------ */
+
+/* y = A x for an SPD operator */
+typedef void (*cx_apply_fn)(void *ctx, const double *x, double *y);
+
+/* Solve A x = b from the initial x with Jacobi preconditioner inv_diag (may
+ * be NULL: none) until ||r|| <= rtol ||b||. work: 4 n doubles. Returns
+ * CX_OK, or CX_ENUMERIC on breakdown (p'Ap <= 0) or when maxit is reached
+ * (message says which); *iters receives the iteration count. */
+int cx_pcg(int n, cx_apply_fn apply, void *ctx, const double *inv_diag,
+           const double *b, double *x, double rtol, int maxit, int *iters,
+           double *work, cx_diag *d);
+
+#endif

@@ -1,0 +1,78 @@
+/* mesh/: meshes and their generators, one generator per geometry. A mesh is
+ * nodes, elements of one type, an optional body id per element, and named
+ * boundaries (lists of boundary facets). It knows nothing of elasticity.
+ * Generators return a new mesh the caller owns (cx_mesh_destroy). */
+#ifndef CX_MESH_H
+#define CX_MESH_H
+
+#include "base/base.h"
+
+typedef enum cx_elem_type {
+    CX_EL_TRI3,   /* P1 triangle, 3 nodes counter-clockwise */
+    CX_EL_TRI6,   /* P2 triangle: vertices 0,1,2 ccw, then mid-edges 01, 12, 20 */
+    CX_EL_QUAD4,  /* Q1 quadrilateral, 4 nodes counter-clockwise */
+    CX_EL_HEX8,   /* Q1 hexahedron: bottom face 0-3 ccw seen from +z, top 4-7 above them */
+    CX_EL_TET4    /* P1 tetrahedron with positive volume */
+} cx_elem_type;
+
+/* Facets of the boundary: 2D edges (2 nodes, or 3 for P2: ends then middle),
+ * 3D faces (4 nodes of a hex face, or 3 of a tet face), ordered so that the
+ * outward normal follows the right-hand rule in 3D and lies to the right of
+ * the edge direction in 2D (the body is on the left). */
+typedef struct cx_boundary {
+    char name[24];
+    int nfacets;
+    int npf;          /* nodes per facet */
+    int *facets;      /* npf * nfacets node ids */
+} cx_boundary;
+
+typedef struct cx_mesh {
+    int dim;                  /* 2 or 3 */
+    int nnodes;
+    double *x;                /* dim * nnodes coordinates */
+    cx_elem_type etype;
+    int npe;                  /* nodes per element */
+    int nelems;
+    int *conn;                /* npe * nelems */
+    int nbodies;              /* >= 1 */
+    int *body;                /* nelems body ids in [0, nbodies), or NULL if one body */
+    int nbounds;
+    cx_boundary *bounds;      /* nbounds named boundaries */
+} cx_mesh;
+
+/* Nodes per element of a type, and the space dimension of a type. */
+int cx_elem_npe(cx_elem_type t);
+int cx_elem_dim(cx_elem_type t);
+const char *cx_elem_name(cx_elem_type t);      /* "tri3", "tri6", "quad4", "hex8", "tet4" */
+int cx_elem_from_name(const char *name);       /* -1 if unknown */
+
+void cx_mesh_destroy(cx_mesh **m);
+
+/* The boundary called name, or NULL. */
+const cx_boundary *cx_mesh_boundary(const cx_mesh *m, const char *name);
+
+/* The distinct nodes of a boundary, ascending; *nodes is allocated
+ * (cx_free), *count set. */
+int cx_boundary_nodes(const cx_boundary *b, int **nodes, int *count);
+
+/* Rectangle [x0,x1] x [y0,y1] with nx x ny cells: TRI3 (two triangles per
+ * cell), TRI6 (two P2 triangles per cell) or QUAD4. Boundaries "left",
+ * "right", "bottom", "top". */
+int cx_mesh_rectangle(cx_mesh **m, double x0, double y0, double x1, double y1,
+                      int nx, int ny, cx_elem_type t, cx_diag *d);
+
+/* The Hertz quarter disc of radius R (centre (0, R)), level N: the unit
+ * square (u, v) = (i/N, j/N) mapped by x = R u sqrt(1 - v^2/2),
+ * y = R - R v sqrt(1 - u^2/2), two TRI3 per cell (or TRI6 / QUAD4).
+ * Boundaries "top" (v = 0, the cut y = R), "axis" (u = 0, x = 0),
+ * "arc" (v = 1, the lower arc from the origin to 45 degrees: the contact
+ * candidates) and "side" (u = 1, the arc from 45 degrees up to (R, R)). */
+int cx_mesh_hertz(cx_mesh **m, double R, int N, cx_elem_type t, cx_diag *d);
+
+/* Brick [x0,x1] x [y0,y1] x [z0,z1] with nx x ny x nz cells: HEX8, or TET4
+ * (each cell split into 6 tetrahedra, conforming across cells).
+ * Boundaries "xmin", "xmax", "ymin", "ymax", "zmin", "zmax". */
+int cx_mesh_brick(cx_mesh **m, const double lo[3], const double hi[3],
+                  int nx, int ny, int nz, cx_elem_type t, cx_diag *d);
+
+#endif

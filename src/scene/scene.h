@@ -1,0 +1,104 @@
+/* scene/: scene files (scenes/*.ini, read with inih) and the building of a
+ * problem from a scene at a mesh level. Every key is checked against a table
+ * of the section's keys; errors are one line "file:line: key 'E': expected a
+ * positive number" (CX_EINVAL). Unknown sections and keys are errors.
+ *
+ * Scene ids are file names without ".ini" found in the scene directories:
+ * $SIGNORINI_SCENES, then the source tree's scenes/, then the installed
+ * share/signorini/scenes. */
+#ifndef CX_SCENE_H
+#define CX_SCENE_H
+
+#include "base/base.h"
+#include "mesh/mesh.h"
+#include "fem/fem.h"
+#include "contact/contact.h"
+#include "solve/solve.h"
+
+#define CX_SCENE_MAX_LOADS 8
+#define CX_SCENE_MAX_METHODS 16
+#define CX_SCENE_NAMELEN 32
+
+typedef struct cx_scene_traction {
+    char boundary[CX_SCENE_NAMELEN];
+    cx_traction t;
+} cx_scene_traction;
+
+typedef struct cx_scene_support {
+    char boundary[CX_SCENE_NAMELEN];
+    unsigned comps;        /* bit c set: component c prescribed */
+    double value[3];       /* prescribed displacement per component */
+} cx_scene_support;
+
+typedef enum cx_scene_generator {
+    CX_GEN_RECTANGLE,
+    CX_GEN_HERTZ,
+    CX_GEN_BRICK
+} cx_scene_generator;
+
+typedef struct cx_scene {
+    char path[512];
+    char id[CX_SCENE_NAMELEN];
+    char title[128];
+    int dim;
+
+    /* [mesh] */
+    cx_scene_generator generator;
+    cx_elem_type element;
+    double lo[3], hi[3];          /* rectangle / brick extents */
+    double radius;                /* hertz */
+    int cells[3];                 /* cells per level step along x, y, z */
+    int level;                    /* default level */
+    int level_max;                /* largest level allowed */
+
+    /* [material] */
+    cx_material mat;
+    double body_force[3];
+
+    /* [traction NAME] and [support NAME] sections */
+    int ntractions;
+    cx_scene_traction tractions[CX_SCENE_MAX_LOADS];
+    int nsupports;
+    cx_scene_support supports[CX_SCENE_MAX_LOADS];
+
+    /* [contact] */
+    char contact_boundary[CX_SCENE_NAMELEN];
+    cx_obstacle obstacle;
+    cx_friction friction;         /* default law */
+    double slip_bound;            /* Tresca bound (traction) */
+    double F;                     /* Coulomb coefficient */
+
+    /* [methods] */
+    int nmethods;
+    char methods[CX_SCENE_MAX_METHODS][CX_SCENE_NAMELEN];  /* suited, first = default */
+
+    /* [hertz] analytical reference (2D): load per unit length P, radius R */
+    int has_hertz;
+    double hertz_P, hertz_R;
+} cx_scene;
+
+/* Read and check a scene file. CX_EIO if it cannot be read, CX_EINVAL with
+ * "file:line: ..." for any bad content. */
+int cx_scene_load(cx_scene *s, const char *path, cx_diag *d);
+
+/* Resolve a scene id (or a path to an .ini) to a path; CX_EINVAL
+ * "unknown scene 'x' (see 'signorini list')". */
+int cx_scene_resolve(const char *id_or_path, char *path, size_t len, cx_diag *d);
+
+/* The ids of all scenes found (sorted, distinct); *ids is an array of
+ * CX_SCENE_NAMELEN strings (cx_free). */
+int cx_scene_list(char (**ids)[CX_SCENE_NAMELEN], int *count, cx_diag *d);
+
+/* Mesh cell counts of a level (level 1 = cells, level L = L * cells). */
+void cx_scene_cells(const cx_scene *s, int level, int cells[3]);
+
+/* Generate the mesh, assemble, apply supports and loads, build contact:
+ * the problem at a level (level <= 0: the scene's default). */
+int cx_scene_build(const cx_scene *s, int level, cx_problem **p, cx_diag *d);
+
+/* Hertz pressure p(x) = 2P/(pi b^2) sqrt(b^2 - x^2) of the scene (0 if
+ * none) and the half-width b. */
+double cx_scene_hertz_halfwidth(const cx_scene *s);
+double cx_scene_hertz_pressure(const cx_scene *s, double x);
+
+#endif

@@ -1,0 +1,98 @@
+/* The discrete contact problem in the one convention of DESIGN.md §2:
+ *     K u - f + N' lN + T' lT = 0
+ *     N u - g <= 0,  lN >= 0,  lN_i (N u - g)_i = 0
+ *     |lT_i| <= s_i, |lT_i| < s_i => (T u)_i = 0, |lT_i| = s_i => (T u)_i = c lT_i
+ * over the n free dofs (Dirichlet dofs eliminated) and m contact points.
+ * s_i is the Tresca slip bound (a nodal force) or F_i lN_i for Coulomb.
+ * The problem also keeps the geometry it came from (mesh, dof map, contact
+ * points) for output. It owns everything it points to. */
+#ifndef CX_PROBLEM_H
+#define CX_PROBLEM_H
+
+#include "base/base.h"
+#include "linalg/linalg.h"
+#include "mesh/mesh.h"
+#include "fem/fem.h"
+#include "contact/contact.h"
+
+typedef enum cx_friction {
+    CX_FRICTION_NONE,
+    CX_FRICTION_TRESCA,
+    CX_FRICTION_COULOMB
+} cx_friction;
+
+const char *cx_friction_name(cx_friction f);   /* "none", "tresca", "coulomb" */
+int cx_friction_from_name(const char *name);    /* -1 if unknown */
+
+typedef struct cx_problem {
+    int dim;
+    int n;              /* free dofs */
+    int m;              /* contact points */
+    int nt;             /* tangential rows: m (dim - 1) */
+    cx_csc K;           /* n x n, symmetric, full storage */
+    double *f;          /* n */
+    cx_csc N;           /* m x n */
+    cx_csc T;           /* nt x n */
+    double *g;          /* m, initial gap (prescribed dofs folded in) */
+    int nc;             /* dofs touched by N or T */
+    int *cdofs;         /* nc ascending free-dof indices */
+
+    cx_friction friction;
+    double slip_bound;  /* Tresca bound as a traction (force / area) */
+    double F;           /* Coulomb coefficient */
+    double *s;          /* m: Tresca slip bound per point (nodal force) = slip_bound * weight */
+    double *Fi;         /* m: Coulomb coefficient per point */
+
+    double kscale;      /* max diagonal entry of K: the stiffness scale */
+
+    /* geometry, for output */
+    cx_mesh *mesh;
+    cx_material *mats;  /* mesh->nbodies */
+    cx_dofmap map;
+    cx_contact_set contact;
+    double f_applied[3];/* resultant of the applied loads (tractions + body forces) */
+} cx_problem;
+
+/* Build the problem from an assembled system over all dofs: takes ownership
+ * of mesh, mats (cx_malloc'ed array), map and cs (their contents move in and
+ * the arguments are zeroed); Kall and fall are only read. CX_ENOMEM,
+ * CX_EINVAL (e.g. a contact point whose every dof is prescribed). */
+int cx_problem_create(cx_problem **p, cx_mesh **mesh, cx_material **mats,
+                      cx_dofmap *map, cx_contact_set *cs,
+                      const cx_csc *Kall, const double *fall, cx_diag *d);
+void cx_problem_destroy(cx_problem **p);
+
+/* Change the friction law and its value (Tresca: slip bound as a traction;
+ * Coulomb: F). Nothing is reassembled. CX_EINVAL for a negative value. */
+int cx_problem_set_friction(cx_problem *p, cx_friction law, double value, cx_diag *d);
+
+/* DESIGN.md §3: the solver-independent, dimensionless error, the largest of
+ * the relative equilibrium residual and the natural-map residuals of the
+ * contact and friction conditions. Zero exactly at a solution; +inf if an
+ * input is not finite. work: at least n + m + nt doubles. Counts one
+ * product with K in cnt (may be NULL). */
+typedef struct cx_kkt {
+    double total;         /* the max of the three */
+    double equilibrium;
+    double contact;
+    double friction;
+} cx_kkt;
+double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, const double *lT,
+                    double *work, cx_counters *cnt, cx_kkt *parts);
+
+/* The scales used by cx_kkt_error, exposed for methods that need a
+ * consistent rho: multiplier scale, displacement scale, rho = mult / disp. */
+void cx_kkt_scales(const cx_problem *p, const double *u, const double *lN, const double *lT,
+                   double *mult, double *disp);
+
+/* Slip bound of point i at the current normal multiplier. */
+static inline double cx_problem_slip_bound(const cx_problem *p, int i, double lNi)
+{
+    if (p->friction == CX_FRICTION_TRESCA)
+        return p->s[i];
+    if (p->friction == CX_FRICTION_COULOMB)
+        return p->Fi[i] * (lNi > 0 ? lNi : 0);
+    return 0;
+}
+
+#endif

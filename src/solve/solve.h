@@ -1,0 +1,174 @@
+/* solve/: the session (a problem, its cache of shared operators, the current
+ * method and its history) and the generic stepping of DESIGN.md §4.
+ *
+ * A method is a constant descriptor (cx_method) in the one registry table
+ * (registry.c). cx_solver_step() calls the method's step and then, in one
+ * place, computes the kkt error, the contact status and its changes, times
+ * the step, detects NaN/Inf, stalls and limits, and sets the reason.
+ * Switching method, tolerance, parameters or friction keeps the operator
+ * cache: nothing is reassembled or refactorised.
+ *
+ * Ownership: a session owns its problem (given at create). Iterates are
+ * owned by the session; pointers into them are valid until the next step,
+ * reset or method change. Errors: CX_ENOMEM, CX_EINVAL, CX_EUNSUPPORTED
+ * (method refused at init, with the reason in the diag), CX_ENUMERIC. */
+#ifndef CX_SOLVE_H
+#define CX_SOLVE_H
+
+#include "solve/problem.h"
+
+/* ---- outcomes -------------------------------------------------------- */
+
+#define CX_REASON_LIST(X)                                                         \
+    X(CX_ITERATING, 0, "iterating")                                               \
+    X(CX_CONVERGED_KKT, 1, "converged: kkt error below tolerance")                \
+    X(CX_CONVERGED_OWN, 2, "converged: the method's own criterion")               \
+    X(CX_DIVERGED_MAXIT, -1, "not converged: iteration limit reached")            \
+    X(CX_DIVERGED_NAN, -2, "diverged: NaN or Inf in the iterate")                 \
+    X(CX_DIVERGED_STALL, -3, "stalled: kkt error no longer decreases")            \
+    X(CX_DIVERGED_BREAKDOWN, -4, "breakdown: the method cannot continue")         \
+    X(CX_DIVERGED_TIME, -5, "not converged: time limit reached")
+
+typedef enum cx_reason {
+#define CX_REASON_ENUM_(name, value, text) name = value,
+    CX_REASON_LIST(CX_REASON_ENUM_)
+#undef CX_REASON_ENUM_
+} cx_reason;
+
+const char *cx_reason_str(int reason);    /* the text above */
+const char *cx_reason_id(int reason);     /* "converged_kkt", "diverged_maxit", ... */
+
+/* Per-point contact status. */
+typedef enum cx_point_status {
+    CX_PT_FREE = 0,    /* not in contact */
+    CX_PT_CONTACT,     /* in contact, frictionless */
+    CX_PT_STICK,       /* in contact, sticking */
+    CX_PT_SLIP_POS,    /* slipping, lT along +t (2D), or 3D slip */
+    CX_PT_SLIP_NEG     /* slipping along -t (2D) */
+} cx_point_status;
+
+/* ---- options ---------------------------------------------------------- */
+
+typedef struct cx_options {
+    double tol;          /* stop when kkt <= tol (default 1e-10) */
+    int max_iter;        /* default 500 */
+    int own_stop;        /* also stop on the method's own criterion (default 1) */
+    int stall_window;    /* stalled if kkt has not fallen below 0.5 x its best
+                            for this many iterations (default 50) */
+    double time_limit;   /* seconds, 0 = none */
+} cx_options;
+
+void cx_options_default(cx_options *o);
+
+/* ---- the iterate --------------------------------------------------------- */
+
+typedef struct cx_iterate {
+    int iter;            /* outer iterations done */
+    int reason;          /* cx_reason */
+    double kkt;          /* DESIGN.md §3 error */
+    cx_kkt kkt_parts;
+    double own;          /* the method's own criterion (NaN if none) */
+    int own_done;        /* set by the method when its own criterion is met */
+    double *u;           /* n */
+    double *lN;          /* m */
+    double *lT;          /* nt */
+    unsigned char *status;    /* m, cx_point_status */
+    unsigned char *changed;   /* m, 1 if the status changed in the last step */
+    int nfree, ncontact, nstick, nslip, nchanged;
+    long inner;          /* inner iterations in the last step (method's own count) */
+    long inner_total;
+    cx_counters counters;/* work done by this run (since reset/set_method) */
+    double step_time;    /* seconds of the last step */
+    double time;         /* seconds of all steps of this run (init included) */
+    double init_time;    /* seconds of the method's init (setup) */
+} cx_iterate;
+
+/* ---- methods ------------------------------------------------------------ */
+
+/* What a method supports (cx_method.supports). */
+#define CX_FRICTIONLESS 0x01u
+#define CX_TRESCA       0x02u
+#define CX_COULOMB      0x04u
+#define CX_2D           0x08u
+#define CX_3D           0x10u
+#define CX_MULTIBODY    0x20u
+
+typedef struct cx_session cx_session;
+
+typedef struct cx_method {
+    const char *id;          /* "ssn-tresca" */
+    const char *name;        /* "Semismooth Newton / active set (Tresca)" */
+    const char *source;      /* "000 §4.2" */
+    const char *summary;     /* one line: what it does and how */
+    unsigned supports;       /* CX_FRICTIONLESS | ... */
+    size_t state_size;       /* bytes of private state, zeroed before init */
+    const cx_param *params;  /* NULL-key terminated, may be NULL */
+    /* Check the problem and allocate workspace; take shared operators from
+     * the session's cache. Refuse with CX_EUNSUPPORTED and a reason. */
+    int (*init)(void *state, cx_session *s, const cx_param_values *params, cx_diag *d);
+    /* One outer iteration: update it->u, it->lN, it->lT (and it->own,
+     * it->own_done, it->inner). No printing, no kkt. A non-zero status or
+     * CX_DIVERGED_BREAKDOWN in it->reason ends the run. */
+    int (*step)(void *state, cx_session *s, cx_iterate *it, cx_diag *d);
+    void (*destroy)(void *state);
+} cx_method;
+
+/* The registry (registry.c). */
+int cx_method_count(void);
+const cx_method *cx_method_at(int i);
+const cx_method *cx_method_find(const char *id);    /* NULL if unknown */
+/* CX_OK if m supports p (law, dimension, bodies), else CX_EUNSUPPORTED with
+ * the reason ("method 'x' does not support Coulomb friction"). */
+int cx_method_check(const cx_method *m, const cx_problem *p, cx_diag *d);
+
+/* ---- the session --------------------------------------------------------- */
+
+/* Takes ownership of *p (set to NULL). */
+int cx_session_create(cx_session **s, cx_problem **p, cx_diag *d);
+void cx_session_destroy(cx_session **s);
+
+const cx_problem *cx_session_problem(const cx_session *s);
+/* Change friction law/value: keeps the operator cache, resets the run. */
+int cx_session_set_friction(cx_session *s, cx_friction law, double value, cx_diag *d);
+/* Counters of the operator cache (factorisations done for the session). */
+const cx_counters *cx_session_cache_counters(const cx_session *s);
+
+/* Operator cache (lazy, built once per session, shared by every method):
+ * the static condensation of K onto the contact dofs p->cdofs. Its work is
+ * counted in the cache counters and, when built during a run, in the run's
+ * counters too. */
+int cx_session_schur(cx_session *s, cx_schur **S, cx_diag *d);
+/* The work counters methods pass to linalg (the current run's). */
+cx_counters *cx_session_counters(cx_session *s);
+
+/* Select method m with parameters (NULL: its defaults) and options (NULL:
+ * keep). Destroys the previous method's state only; calls m->init. */
+int cx_session_set_method(cx_session *s, const cx_method *m, const cx_param_values *params,
+                          const cx_options *opt, cx_diag *d);
+const cx_method *cx_session_method(const cx_session *s);
+const cx_param_values *cx_session_params(const cx_session *s);
+const cx_options *cx_session_options(const cx_session *s);
+void cx_session_set_options(cx_session *s, const cx_options *opt);
+
+/* Restart the current method from its initial guess (re-init). */
+int cx_session_reset(cx_session *s, cx_diag *d);
+
+/* One step of the current method plus the generic bookkeeping. Returns a
+ * status (CX_OK unless something failed outright); the outcome is in
+ * cx_session_iterate(s)->reason. A step after the run ended does nothing. */
+int cx_solver_step(cx_session *s, cx_diag *d);
+
+/* Observer called after every step; return non-zero to stop early. */
+typedef int (*cx_observer)(void *ctx, const cx_session *s, const cx_iterate *it);
+
+/* Step until the reason is non-zero (or the observer stops it). */
+int cx_solver_solve(cx_session *s, cx_observer obs, void *ctx, cx_diag *d);
+
+const cx_iterate *cx_session_iterate(const cx_session *s);
+
+/* The baseline of DESIGN.md §5: analyse + factorise + solve K (with springs
+ * diag(K) on the contact dofs when K alone is singular, as every contact
+ * method effectively does), CHOLMOD's default ordering, timed. */
+int cx_problem_baseline(const cx_problem *p, double *seconds, cx_diag *d);
+
+#endif
