@@ -12,7 +12,7 @@ void *cx_realloc(void *p, size_t size);
 void cx_free(void *p);                        /* NULL is fine */
 
 /* Allocate count elements of type T; NULL on failure. */
-#define CX_NEW(T, count) ((T *)cx_calloc((size_t)(count) ? (size_t)(count) : 1, sizeof(T)))
+#define CX_NEW(T, count) ((T *)cx_calloc((size_t)(count), sizeof(T)))
 
 /* Test hooks: make every allocation after the next n succeed... fail
  * (n < 0 turns failures off), and the number of live blocks. */

@@ -10,4 +10,6 @@
 #include "base/parse.h"
 #include "base/clock.h"
 
+#define CX_PI 3.14159265358979323846
+
 #endif

@@ -1,4 +1,4 @@
-/* scene/: scene files (scenes/*.ini, read with inih) and the building of a
+/* scene/: scene files (scenes/NAME.ini, read with inih) and the building of a
  * problem from a scene at a mesh level. Every key is checked against a table
  * of the section's keys; errors are one line "file:line: key 'E': expected a
  * positive number" (CX_EINVAL). Unknown sections and keys are errors.
@@ -100,5 +100,11 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **p, cx_diag *d);
  * none) and the half-width b. */
 double cx_scene_hertz_halfwidth(const cx_scene *s);
 double cx_scene_hertz_pressure(const cx_scene *s, double x);
+
+/* L2 error on the x axis of the contact pressure (nodal force lN over
+ * lumped length) against Hertz's, absolute and relative to ||p||.
+ * CX_EUNSUPPORTED if the scene has no [hertz] section. */
+int cx_scene_pressure_error(const cx_scene *s, const cx_problem *p, const double *lN,
+                            double *abs_err, double *rel_err);
 
 #endif

@@ -165,6 +165,8 @@ typedef int (*cx_observer)(void *ctx, const cx_session *s, const cx_iterate *it)
 int cx_solver_solve(cx_session *s, cx_observer obs, void *ctx, cx_diag *d);
 
 const cx_iterate *cx_session_iterate(const cx_session *s);
+/* Why the run broke down (the method's message), or "" . */
+const char *cx_session_reason_msg(const cx_session *s);
 
 /* The baseline of DESIGN.md §5: analyse + factorise + solve K (with springs
  * diag(K) on the contact dofs when K alone is singular, as every contact

@@ -1,0 +1,30 @@
+#!/bin/sh
+# Install what signorini needs on Debian 12 (when missing), then configure
+# and build it in ./build. Safe to run again: it only does what is missing.
+set -eu
+cd "$(dirname "$0")/.."
+
+packages="build-essential meson ninja-build pkg-config python3 \
+libsuitesparse-dev libopenblas0 liblapack-dev libinih-dev \
+libncurses-dev libosmesa6-dev libpng-dev libcairo2-dev tmux"
+
+missing=""
+for p in $packages; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+    if [ "$(id -u)" != 0 ]; then
+        echo "bootstrap: missing Debian packages:$missing (run as root, or apt-get install them)" >&2
+        exit 1
+    fi
+    echo "bootstrap: installing$missing" >&2
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -q >&2
+    apt-get install -y -q --no-install-recommends $missing >&2
+fi
+
+builddir=${BUILDDIR:-build}
+if [ ! -f "$builddir/build.ninja" ]; then
+    meson setup "$builddir" ${MESON_ARGS:-} >&2
+fi
+ninja -C "$builddir" >&2

@@ -1,0 +1,36 @@
+/* signorini: elastic contact problems with and without friction. */
+#include "cli/cli.h"
+#include "cx_config.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static const char usage[] =
+    "usage: signorini <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  list [--json]            scenes and methods, with what each supports and its parameters\n"
+    "  solve SCENE [options]    solve a scene and print a summary (or --json)\n"
+    "  version                  print the version\n"
+    "\n"
+    "'signorini <command> --help' describes a command's options.\n";
+
+int main(int argc, char **argv)
+{
+    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
+        strcmp(argv[1], "help") == 0) {
+        fputs(usage, stdout);
+        return CLI_EXIT_OK;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "list") == 0)
+        return cli_list(argc - 1, argv + 1);
+    if (strcmp(cmd, "solve") == 0)
+        return cli_solve(argc - 1, argv + 1);
+    if (strcmp(cmd, "version") == 0 || strcmp(cmd, "--version") == 0) {
+        printf("signorini %s\n", CX_VERSION);
+        return CLI_EXIT_OK;
+    }
+    fprintf(stderr, "signorini: unknown command '%s' (see 'signorini --help')\n", cmd);
+    return CLI_EXIT_ERROR;
+}

@@ -1,0 +1,42 @@
+/* Preconditioned conjugate gradients (Jacobi). */
+#include "linalg/linalg.h"
+
+#include <math.h>
+#include <string.h>
+
+int cx_pcg(int n, cx_apply_fn apply, void *ctx, const double *inv_diag, const double *b, double *x,
+           double rtol, int maxit, int *iters, double *work, cx_diag *d)
+{
+    double *r = work, *z = work + n, *p = work + 2 * n, *q = work + 3 * n;
+    apply(ctx, x, q);
+    for (int i = 0; i < n; i++)
+        r[i] = b[i] - q[i];
+    double nb = cx_vec_norm2(n, b), target = rtol * (nb > 0 ? nb : 1);
+    for (int i = 0; i < n; i++)
+        z[i] = inv_diag ? inv_diag[i] * r[i] : r[i];
+    memcpy(p, z, sizeof(double) * (size_t)n);
+    double rz = cx_vec_dot(n, r, z);
+    int k = 0;
+    for (; k < maxit && cx_vec_norm2(n, r) > target; k++) {
+        apply(ctx, p, q);
+        double pq = cx_vec_dot(n, p, q);
+        if (!(pq > 0)) {
+            *iters = k;
+            return cx_diag_set(d, CX_ENUMERIC, "pcg: breakdown at iteration %d (p'Ap = %g)", k, pq);
+        }
+        double alpha = rz / pq;
+        cx_vec_axpy(n, alpha, p, x);
+        cx_vec_axpy(n, -alpha, q, r);
+        for (int i = 0; i < n; i++)
+            z[i] = inv_diag ? inv_diag[i] * r[i] : r[i];
+        double rz1 = cx_vec_dot(n, r, z), beta = rz1 / rz;
+        rz = rz1;
+        for (int i = 0; i < n; i++)
+            p[i] = z[i] + beta * p[i];
+    }
+    *iters = k;
+    if (cx_vec_norm2(n, r) > target)
+        return cx_diag_set(d, CX_ENUMERIC, "pcg: no convergence in %d iterations (residual %g of %g)", maxit,
+                           cx_vec_norm2(n, r), target);
+    return CX_OK;
+}

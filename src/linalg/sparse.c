@@ -1,0 +1,220 @@
+/* Triplet and compressed-column matrices. */
+#include "linalg/linalg.h"
+
+#include <math.h>
+#include <string.h>
+
+int cx_triplet_init(cx_triplet *t, int nrow, int ncol, size_t cap)
+{
+    memset(t, 0, sizeof *t);
+    t->nrow = nrow;
+    t->ncol = ncol;
+    t->cap = cap ? cap : 16;
+    t->i = CX_NEW(int, t->cap);
+    t->j = CX_NEW(int, t->cap);
+    t->x = CX_NEW(double, t->cap);
+    if (!t->i || !t->j || !t->x) {
+        cx_triplet_clear(t);
+        return CX_ENOMEM;
+    }
+    return CX_OK;
+}
+
+int cx_triplet_add(cx_triplet *t, int i, int j, double x)
+{
+    if (t->nnz == t->cap) {
+        size_t cap = 2 * t->cap;
+        int *ni = cx_realloc(t->i, cap * sizeof(int));
+        if (!ni)
+            return CX_ENOMEM;
+        t->i = ni;
+        int *nj = cx_realloc(t->j, cap * sizeof(int));
+        if (!nj)
+            return CX_ENOMEM;
+        t->j = nj;
+        double *nx = cx_realloc(t->x, cap * sizeof(double));
+        if (!nx)
+            return CX_ENOMEM;
+        t->x = nx;
+        t->cap = cap;
+    }
+    t->i[t->nnz] = i;
+    t->j[t->nnz] = j;
+    t->x[t->nnz] = x;
+    t->nnz++;
+    return CX_OK;
+}
+
+void cx_triplet_clear(cx_triplet *t)
+{
+    cx_free(t->i);
+    cx_free(t->j);
+    cx_free(t->x);
+    memset(t, 0, sizeof *t);
+}
+
+void cx_csc_clear(cx_csc *A)
+{
+    cx_free(A->p);
+    cx_free(A->i);
+    cx_free(A->x);
+    memset(A, 0, sizeof *A);
+}
+
+/* Allocate A for nz entries; p zeroed. */
+static int csc_alloc(cx_csc *A, int nrow, int ncol, size_t nz)
+{
+    A->nrow = nrow;
+    A->ncol = ncol;
+    A->p = CX_NEW(int, ncol + 1);
+    A->i = CX_NEW(int, nz);
+    A->x = CX_NEW(double, nz);
+    if (!A->p || !A->i || !A->x) {
+        cx_csc_clear(A);
+        return CX_ENOMEM;
+    }
+    return CX_OK;
+}
+
+int cx_csc_from_triplet(cx_csc *A, const cx_triplet *T)
+{
+    /* bucket by row (a transpose into CSR), then by column: the second pass
+     * visits rows in ascending order, so columns come out sorted; then
+     * duplicates are adjacent and summed in place. */
+    int nrow = T->nrow, ncol = T->ncol;
+    size_t nz = T->nnz;
+    int *rp = CX_NEW(int, nrow + 1), *rj = CX_NEW(int, nz);
+    double *rx = CX_NEW(double, nz);
+    int *cur = CX_NEW(int, (nrow > ncol ? nrow : ncol) + 1);
+    int st = CX_ENOMEM;
+    memset(A, 0, sizeof *A);
+    if (!rp || !rj || !rx || !cur || (st = csc_alloc(A, nrow, ncol, nz)) != CX_OK)
+        goto done;
+    for (size_t k = 0; k < nz; k++)
+        rp[T->i[k] + 1]++;
+    for (int r = 0; r < nrow; r++)
+        rp[r + 1] += rp[r];
+    memcpy(cur, rp, sizeof(int) * (size_t)nrow);
+    for (size_t k = 0; k < nz; k++) {
+        int q = cur[T->i[k]]++;
+        rj[q] = T->j[k];
+        rx[q] = T->x[k];
+    }
+    for (size_t k = 0; k < nz; k++)
+        A->p[rj[k] + 1]++;
+    for (int c = 0; c < ncol; c++)
+        A->p[c + 1] += A->p[c];
+    memcpy(cur, A->p, sizeof(int) * (size_t)ncol);
+    for (int r = 0; r < nrow; r++)
+        for (int q = rp[r]; q < rp[r + 1]; q++) {
+            int d = cur[rj[q]]++;
+            A->i[d] = r;
+            A->x[d] = rx[q];
+        }
+    /* sum duplicates, compacting each column */
+    int w = 0;
+    for (int c = 0; c < ncol; c++) {
+        int start = A->p[c], end = A->p[c + 1], first = w;
+        for (int q = start; q < end; q++) {
+            if (w > first && A->i[w - 1] == A->i[q])
+                A->x[w - 1] += A->x[q];
+            else {
+                A->i[w] = A->i[q];
+                A->x[w] = A->x[q];
+                w++;
+            }
+        }
+        A->p[c] = first;
+    }
+    A->p[ncol] = w;
+    st = CX_OK;
+done:
+    cx_free(rp);
+    cx_free(rj);
+    cx_free(rx);
+    cx_free(cur);
+    return st;
+}
+
+int cx_csc_copy(cx_csc *dst, const cx_csc *src)
+{
+    size_t nz = cx_csc_nnz(src);
+    memset(dst, 0, sizeof *dst);
+    CX_TRY(csc_alloc(dst, src->nrow, src->ncol, nz));
+    memcpy(dst->p, src->p, sizeof(int) * (size_t)(src->ncol + 1));
+    memcpy(dst->i, src->i, sizeof(int) * nz);
+    memcpy(dst->x, src->x, sizeof(double) * nz);
+    return CX_OK;
+}
+
+int cx_csc_transpose(cx_csc *At, const cx_csc *A)
+{
+    size_t nz = cx_csc_nnz(A);
+    memset(At, 0, sizeof *At);
+    CX_TRY(csc_alloc(At, A->ncol, A->nrow, nz));
+    int *cur = CX_NEW(int, A->nrow + 1);
+    if (!cur) {
+        cx_csc_clear(At);
+        return CX_ENOMEM;
+    }
+    for (size_t k = 0; k < nz; k++)
+        At->p[A->i[k] + 1]++;
+    for (int r = 0; r < A->nrow; r++)
+        At->p[r + 1] += At->p[r];
+    memcpy(cur, At->p, sizeof(int) * (size_t)A->nrow);
+    for (int c = 0; c < A->ncol; c++)
+        for (int q = A->p[c]; q < A->p[c + 1]; q++) {
+            int d = cur[A->i[q]]++;
+            At->i[d] = c;
+            At->x[d] = A->x[q];
+        }
+    cx_free(cur);
+    return CX_OK;
+}
+
+void cx_csc_gemv(const cx_csc *A, double alpha, const double *x, double beta, double *y)
+{
+    for (int r = 0; r < A->nrow; r++)
+        y[r] = beta == 0 ? 0 : beta * y[r];
+    for (int c = 0; c < A->ncol; c++) {
+        double xc = alpha * x[c];
+        if (xc == 0)
+            continue;
+        for (int q = A->p[c]; q < A->p[c + 1]; q++)
+            y[A->i[q]] += A->x[q] * xc;
+    }
+}
+
+void cx_csc_gemv_t(const cx_csc *A, double alpha, const double *x, double beta, double *y)
+{
+    for (int c = 0; c < A->ncol; c++) {
+        double s = 0;
+        for (int q = A->p[c]; q < A->p[c + 1]; q++)
+            s += A->x[q] * x[A->i[q]];
+        y[c] = (beta == 0 ? 0 : beta * y[c]) + alpha * s;
+    }
+}
+
+double cx_csc_get(const cx_csc *A, int i, int j)
+{
+    int lo = A->p[j], hi = A->p[j + 1] - 1;
+    while (lo <= hi) {
+        int mid = (lo + hi) / 2;
+        if (A->i[mid] == i)
+            return A->x[mid];
+        if (A->i[mid] < i)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    return 0;
+}
+
+double cx_csc_asymmetry(const cx_csc *A)
+{
+    double worst = 0;
+    for (int c = 0; c < A->ncol; c++)
+        for (int q = A->p[c]; q < A->p[c + 1]; q++)
+            worst = fmax(worst, fabs(A->x[q] - cx_csc_get(A, c, A->i[q])));
+    return worst;
+}

@@ -1,0 +1,112 @@
+/* From a scene to a problem at a mesh level: mesh, assembly, supports,
+ * loads and contact rows, then the problem over the free dofs. */
+#include "scene/scene.h"
+
+#include <string.h>
+
+static int build_mesh(const cx_scene *s, int level, cx_mesh **m, cx_diag *d)
+{
+    int cells[3];
+    cx_scene_cells(s, level, cells);
+    switch (s->generator) {
+    case CX_GEN_RECTANGLE:
+        return cx_mesh_rectangle(m, s->lo[0], s->lo[1], s->hi[0], s->hi[1], cells[0], cells[1],
+                                 s->element, d);
+    case CX_GEN_HERTZ:
+        return cx_mesh_hertz(m, s->radius, cells[0], s->element, d);
+    case CX_GEN_BRICK:
+        return cx_mesh_brick(m, s->lo, s->hi, cells[0], cells[1], cells[2], s->element, d);
+    }
+    return cx_diag_set(d, CX_EINVAL, "%s: unknown generator", s->path);
+}
+
+static int build_boundary(const cx_scene *s, const cx_mesh *m, const char *name,
+                          const cx_boundary **b, cx_diag *d)
+{
+    *b = cx_mesh_boundary(m, name);
+    if (!*b)
+        return cx_diag_set(d, CX_EINVAL, "%s: the mesh has no boundary '%s'", s->path, name);
+    return CX_OK;
+}
+
+int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
+{
+    cx_mesh *m = NULL;
+    cx_material *mats = NULL;
+    cx_dofmap map = {0};
+    cx_contact_set cs = {0};
+    cx_csc K = {0};
+    double *f = NULL;
+    const cx_boundary *b;
+    int st;
+
+    if (level <= 0)
+        level = s->level;
+    if (level > s->level_max)
+        return cx_diag_set(d, CX_EINVAL, "level %d: scene '%s' allows levels 1 to %d",
+                           level, s->id, s->level_max);
+    if ((st = build_mesh(s, level, &m, d)))
+        goto fail;
+    mats = CX_NEW(cx_material, m->nbodies);
+    f = CX_NEW(double, m->dim * m->nnodes);
+    if (!mats || !f) {
+        st = cx_diag_set(d, CX_ENOMEM, "out of memory");
+        goto fail;
+    }
+    for (int k = 0; k < m->nbodies; k++)
+        mats[k] = s->mat;
+    if ((st = cx_fem_assemble_stiffness(m, mats, &K, d)))
+        goto fail;
+
+    for (int k = 0; k < s->ntractions; k++) {
+        if ((st = build_boundary(s, m, s->tractions[k].boundary, &b, d)) ||
+            (st = cx_fem_add_traction(m, b, &s->tractions[k].t, f)))
+            goto fail;
+    }
+    if (s->body_force[0] != 0 || s->body_force[1] != 0 || s->body_force[2] != 0)
+        if ((st = cx_fem_add_body_force(m, s->body_force, f)))
+            goto fail;
+
+    if ((st = cx_dofmap_init(&map, m->dim * m->nnodes)))
+        goto fail;
+    for (int k = 0; k < s->nsupports; k++) {
+        if ((st = build_boundary(s, m, s->supports[k].boundary, &b, d)))
+            goto fail;
+        for (int c = 0; c < m->dim; c++)
+            if ((s->supports[k].comps >> c) & 1u)
+                if ((st = cx_dofmap_fix(&map, m, b, c, s->supports[k].value[c])))
+                    goto fail;
+    }
+    if ((st = cx_dofmap_finish(&map)))
+        goto fail;
+
+    if ((st = build_boundary(s, m, s->contact_boundary, &b, d)) ||
+        (st = cx_contact_from_obstacle(&cs, m, b, &s->obstacle, d)))
+        goto fail;
+
+    if ((st = cx_problem_create(pp, &m, &mats, &map, &cs, &K, f, d)))
+        goto fail;
+    cx_problem *p = *pp;
+    /* both friction values are kept; the law is the scene's default */
+    p->slip_bound = s->slip_bound;
+    p->F = s->F;
+    if ((st = cx_problem_set_friction(p, s->friction,
+                                      s->friction == CX_FRICTION_COULOMB ? s->F : s->slip_bound, d))) {
+        cx_problem_destroy(pp);
+        goto fail;
+    }
+    cx_csc_clear(&K);
+    cx_free(f);
+    return CX_OK;
+
+fail:
+    if (st == CX_ENOMEM)
+        cx_diag_set(d, CX_ENOMEM, "out of memory building scene '%s' at level %d", s->id, level);
+    cx_mesh_destroy(&m);
+    cx_free(mats);
+    cx_dofmap_clear(&map);
+    cx_contact_clear(&cs);
+    cx_csc_clear(&K);
+    cx_free(f);
+    return st;
+}

@@ -1,0 +1,90 @@
+/* The one error measure of DESIGN.md §3: dimensionless, solver-independent,
+ * zero exactly at a solution, and unchanged when the scene's units change
+ * (every term is a ratio of like quantities; rho = mult / disp). */
+#include "solve/problem.h"
+
+#include <math.h>
+
+static double norminf(int n, const double *x)
+{
+    double s = 0;
+    for (int i = 0; i < n; i++)
+        s = fmax(s, fabs(x[i]));
+    return s;
+}
+
+void cx_kkt_scales(const cx_problem *p, const double *u, const double *lN, const double *lT,
+                   double *mult, double *disp)
+{
+    /* multiplier scale: the largest nodal force, applied or of contact;
+     * displacement scale: the largest displacement, floored by the
+     * displacement that force would produce at the stiffest dof, so that a
+     * zero iterate still gets a finite rho. */
+    double L = norminf(p->n, p->f);
+    L = fmax(L, norminf(p->m, lN));
+    if (p->friction != CX_FRICTION_NONE)
+        L = fmax(L, norminf(p->nt, lT));
+    double k = p->kscale > 0 ? p->kscale : 1;
+    if (L == 0)
+        L = k * fmax(norminf(p->n, u), 1e-300);
+    *mult = L;
+    *disp = fmax(norminf(p->n, u), L / k);
+}
+
+double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, const double *lT,
+                    double *work, cx_counters *cnt, cx_kkt *parts)
+{
+    int n = p->n, m = p->m, nt = p->nt, dim = p->dim;
+    int fric = p->friction != CX_FRICTION_NONE;
+    cx_kkt k = {INFINITY, INFINITY, INFINITY, INFINITY};
+    if (!cx_vec_finite(n, u) || !cx_vec_finite(m, lN) || (fric && !cx_vec_finite(nt, lT))) {
+        if (parts)
+            *parts = k;
+        return INFINITY;
+    }
+    double *r = work, *Nu = work + n, *Tu = work + n + m;
+
+    /* ---- equilibrium: K u - f + N' lN + T' lT ---- */
+    cx_csc_gemv_t(&p->N, 1.0, lN, 0.0, r);
+    if (fric)
+        cx_csc_gemv_t(&p->T, 1.0, lT, 1.0, r);
+    double nB = norminf(n, r), nf = norminf(n, p->f);
+    cx_csc_gemv(&p->K, 1.0, u, 1.0, r);
+    if (cnt)
+        cnt->matvecs++;
+    cx_vec_axpy(n, -1.0, p->f, r);
+    double nr = norminf(n, r);
+    k.equilibrium = nf + nB > 0 ? nr / (nf + nB) : (nr > 0 ? 1.0 : 0.0);
+
+    /* ---- natural maps of the contact and friction conditions ---- */
+    double L, U;
+    cx_kkt_scales(p, u, lN, lT, &L, &U);
+    double rho = L / U;
+    cx_csc_gemv(&p->N, 1.0, u, 0.0, Nu);
+    double rc = 0;
+    for (int i = 0; i < m; i++)
+        rc = fmax(rc, fabs(lN[i] - fmax(0.0, lN[i] + rho * (Nu[i] - p->g[i]))));
+    k.contact = rc / L;
+
+    double rf = 0;
+    if (fric) {
+        cx_csc_gemv(&p->T, 1.0, u, 0.0, Tu);
+        int dt = dim - 1;
+        for (int i = 0; i < m; i++) {
+            double z[2], nz = 0, s = cx_problem_slip_bound(p, i, lN[i]);
+            for (int c = 0; c < dt; c++) {
+                z[c] = lT[dt * i + c] + rho * Tu[dt * i + c];
+                nz += z[c] * z[c];
+            }
+            nz = sqrt(nz);
+            double scale = nz > s ? s / nz : 1.0;
+            for (int c = 0; c < dt; c++)
+                rf = fmax(rf, fabs(lT[dt * i + c] - scale * z[c]));
+        }
+    }
+    k.friction = rf / L;
+    k.total = fmax(k.equilibrium, fmax(k.contact, k.friction));
+    if (parts)
+        *parts = k;
+    return k.total;
+}

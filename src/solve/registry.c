@@ -1,0 +1,45 @@
+/* The one list of methods. Adding a method: one file in solve/ with its
+ * const cx_method descriptor, one line here. 'signorini list', --method,
+ * the explorer and the conformance tests all read this table. */
+#include "solve/solve.h"
+
+#include <string.h>
+
+extern const cx_method cx_method_ssn_tresca;
+
+static const cx_method *const cx_methods[] = {
+    &cx_method_ssn_tresca,
+    NULL
+};
+
+int cx_method_count(void)
+{
+    return (int)(sizeof cx_methods / sizeof cx_methods[0]) - 1;
+}
+
+const cx_method *cx_method_at(int i)
+{
+    return i >= 0 && i < cx_method_count() ? cx_methods[i] : NULL;
+}
+
+const cx_method *cx_method_find(const char *id)
+{
+    for (int i = 0; cx_methods[i]; i++)
+        if (strcmp(cx_methods[i]->id, id) == 0)
+            return cx_methods[i];
+    return NULL;
+}
+
+int cx_method_check(const cx_method *m, const cx_problem *p, cx_diag *d)
+{
+    static const unsigned law_flag[] = {CX_FRICTIONLESS, CX_TRESCA, CX_COULOMB};
+    static const char *const law_text[] = {"frictionless contact", "Tresca friction", "Coulomb friction"};
+    if (!(m->supports & law_flag[p->friction]))
+        return cx_diag_set(d, CX_EUNSUPPORTED, "method '%s' does not support %s",
+                           m->id, law_text[p->friction]);
+    if (!(m->supports & (p->dim == 2 ? CX_2D : CX_3D)))
+        return cx_diag_set(d, CX_EUNSUPPORTED, "method '%s' does not support %dD problems", m->id, p->dim);
+    if (p->mesh && p->mesh->nbodies > 1 && !(m->supports & CX_MULTIBODY))
+        return cx_diag_set(d, CX_EUNSUPPORTED, "method '%s' does not support several bodies", m->id);
+    return CX_OK;
+}

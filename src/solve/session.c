@@ -1,0 +1,187 @@
+/* The session: a problem, its cache of shared operators, the current method
+ * with its private state, and the iterate. Switching method, parameters or
+ * friction keeps the cache (DESIGN.md §5: assemble and factorise once). */
+#include "solve/session_impl.h"
+
+#include <math.h>
+#include <string.h>
+
+void cx_options_default(cx_options *o)
+{
+    o->tol = 1e-10;
+    o->max_iter = 500;
+    o->own_stop = 1;
+    o->stall_window = 50;
+    o->time_limit = 0;
+}
+
+static void session_free_iterate(cx_iterate *it)
+{
+    cx_free(it->u);
+    cx_free(it->lN);
+    cx_free(it->lT);
+    cx_free(it->status);
+    cx_free(it->changed);
+}
+
+int cx_session_create(cx_session **sp, cx_problem **pp, cx_diag *d)
+{
+    cx_session *s = CX_NEW(cx_session, 1);
+    if (!s)
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    cx_problem *p = *pp;
+    s->p = p;
+    *pp = NULL;
+    cx_options_default(&s->opt);
+    s->it.u = CX_NEW(double, p->n);
+    s->it.lN = CX_NEW(double, p->m);
+    s->it.lT = CX_NEW(double, p->nt);
+    s->it.status = CX_NEW(unsigned char, p->m);
+    s->it.changed = CX_NEW(unsigned char, p->m);
+    s->work = CX_NEW(double, p->n + p->m + p->nt);
+    if (!s->it.u || !s->it.lN || !s->it.lT || !s->it.status || !s->it.changed || !s->work) {
+        cx_session_destroy(&s);
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    }
+    *sp = s;
+    return CX_OK;
+}
+
+static void session_drop_method(cx_session *s)
+{
+    if (s->method && s->state && s->method->destroy)
+        s->method->destroy(s->state);
+    cx_free(s->state);
+    s->state = NULL;
+    s->method = NULL;
+}
+
+void cx_session_destroy(cx_session **sp)
+{
+    if (!sp || !*sp)
+        return;
+    cx_session *s = *sp;
+    session_drop_method(s);
+    cx_schur_destroy(&s->schur);
+    session_free_iterate(&s->it);
+    cx_free(s->work);
+    cx_problem_destroy(&s->p);
+    cx_free(s);
+    *sp = NULL;
+}
+
+const cx_problem *cx_session_problem(const cx_session *s) { return s->p; }
+const cx_counters *cx_session_cache_counters(const cx_session *s) { return &s->cache; }
+cx_counters *cx_session_counters(cx_session *s) { return &s->run; }
+const cx_method *cx_session_method(const cx_session *s) { return s->method; }
+const cx_param_values *cx_session_params(const cx_session *s) { return &s->params; }
+const cx_options *cx_session_options(const cx_session *s) { return &s->opt; }
+const cx_iterate *cx_session_iterate(const cx_session *s) { return &s->it; }
+const char *cx_session_reason_msg(const cx_session *s) { return s->reason_msg; }
+
+void cx_session_set_options(cx_session *s, const cx_options *opt)
+{
+    s->opt = *opt;
+    /* a run stopped by a limit may go on under new options */
+    if (s->it.reason < 0 && s->it.reason != CX_DIVERGED_NAN && s->it.reason != CX_DIVERGED_BREAKDOWN)
+        s->it.reason = CX_ITERATING;
+    if (s->it.reason > 0 && s->it.kkt > s->opt.tol && !(s->opt.own_stop && s->it.own_done))
+        s->it.reason = CX_ITERATING;
+}
+
+int cx_session_schur(cx_session *s, cx_schur **S, cx_diag *d)
+{
+    if (!s->schur) {
+        cx_counters before = s->run;
+        CX_TRY(cx_schur_create(&s->schur, &s->p->K, s->p->cdofs, s->p->nc, &s->run, d));
+        s->cache.factorizations += s->run.factorizations - before.factorizations;
+    }
+    *S = s->schur;
+    return CX_OK;
+}
+
+/* Zero the iterate and the run counters for a new run. */
+static void session_clear_run(cx_session *s)
+{
+    cx_iterate *it = &s->it;
+    const cx_problem *p = s->p;
+    memset(it->u, 0, sizeof(double) * (size_t)p->n);
+    memset(it->lN, 0, sizeof(double) * (size_t)p->m);
+    memset(it->lT, 0, sizeof(double) * (size_t)p->nt);
+    memset(it->status, 0, (size_t)p->m);
+    memset(it->changed, 0, (size_t)p->m);
+    it->iter = 0;
+    it->reason = CX_ITERATING;
+    it->kkt = INFINITY;
+    it->kkt_parts = (cx_kkt){INFINITY, INFINITY, INFINITY, INFINITY};
+    it->own = NAN;
+    it->own_done = 0;
+    it->nfree = p->m;
+    it->ncontact = it->nstick = it->nslip = it->nchanged = 0;
+    it->inner = it->inner_total = 0;
+    it->step_time = it->time = it->init_time = 0;
+    memset(&s->run, 0, sizeof s->run);
+    memset(&it->counters, 0, sizeof it->counters);
+    s->best_kkt = INFINITY;
+    s->best_iter = 0;
+    s->reason_msg[0] = '\0';
+}
+
+int cx_session_set_method(cx_session *s, const cx_method *m, const cx_param_values *params,
+                          const cx_options *opt, cx_diag *d)
+{
+    CX_TRY(cx_method_check(m, s->p, d));
+    cx_param_values values;
+    if (params)
+        values = *params;
+    else
+        cx_param_default(&values, m->params);
+    session_drop_method(s);
+    session_clear_run(s);
+    if (opt)
+        s->opt = *opt;
+    s->state = cx_calloc(1, m->state_size ? m->state_size : 1);
+    if (!s->state)
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    s->method = m;
+    s->params = values;
+    double t0 = cx_clock_now();
+    int st = m->init(s->state, s, &s->params, d);
+    s->it.init_time = cx_clock_now() - t0;
+    s->it.time = s->it.init_time;
+    s->it.counters = s->run;
+    if (st != CX_OK) {
+        /* init frees what it built on failure; drop the shell */
+        cx_free(s->state);
+        s->state = NULL;
+        s->method = NULL;
+        return st;
+    }
+    return CX_OK;
+}
+
+int cx_session_reset(cx_session *s, cx_diag *d)
+{
+    if (!s->method)
+        return cx_diag_set(d, CX_EINVAL, "no method selected");
+    cx_param_values params = s->params;
+    return cx_session_set_method(s, s->method, &params, NULL, d);
+}
+
+int cx_session_set_friction(cx_session *s, cx_friction law, double value, cx_diag *d)
+{
+    cx_friction old_law = s->p->friction;
+    double old_value = old_law == CX_FRICTION_COULOMB ? s->p->F : s->p->slip_bound;
+    const cx_method *m = s->method;
+    cx_param_values params = s->params;
+    CX_TRY(cx_problem_set_friction(s->p, law, value, d));
+    if (!m)
+        return CX_OK;
+    int st = cx_session_set_method(s, m, &params, NULL, d);
+    if (st != CX_OK) {
+        /* the method refuses the new law: keep the old law and method */
+        cx_problem_set_friction(s->p, old_law, old_value, NULL);
+        cx_session_set_method(s, m, &params, NULL, NULL);
+    }
+    return st;
+}

@@ -1,0 +1,278 @@
+/* ssn-tresca — semismooth Newton / primal-dual active set on the saddle-point
+ * system, paper 000 §4.2 (Algorithm ActiveSetTresca).
+ *
+ * Solves frictionless contact and Tresca friction (2D; 3D frictionless).
+ * Each iteration predicts the active sets from the natural maps (000 (15),
+ * (18), (19)): contact where lN + rho (N u - g) > 0; stick where
+ * |lT + rho T u| <= s, slip+/slip- beyond; and solves the mixed problem
+ * with u_N = g on the contact set, u_T = 0 on the stick set, lT = +-s on the
+ * slip set and lN = 0 elsewhere. Its own criterion: the active sets repeat,
+ * which for exact solves means the iterate is the solution.
+ *
+ * Linear algebra: the saddle-point system is condensed onto the contact
+ * dofs with the session's Schur complement S of K (one sparse Cholesky for
+ * the whole session, DESIGN.md §5), so each iteration is one dense
+ * symmetric-indefinite solve of order nc + |active| (Bunch-Kaufman: S may
+ * be singular when only the contact holds the body) plus one solve with the
+ * sparse factor to expand u. The constraint rows are scaled by the
+ * stiffness scale so that both blocks have like magnitudes. The first
+ * iteration takes every point in contact and sticking (the bonded problem),
+ * which holds the body whatever K's null space. */
+#include "solve/solve.h"
+
+#include <math.h>
+#include <string.h>
+
+typedef struct {
+    cx_schur *S;          /* borrowed from the session's operator cache */
+    int nc;               /* contact dofs (order of S) */
+    int nrow;             /* constraint rows: m normal, then nt tangential (Tresca) */
+    int *rp, *rc;         /* nrow + 1 / nnz: CSR rows over contact-dof positions */
+    double *rv;           /* nnz row values */
+    double *fc;           /* nc: load condensed onto the contact dofs */
+    double *uc;           /* nc: contact-dof displacements of the iterate */
+    double *uprev;        /* n: the previous u, for the paper's criterion */
+    double *Bu;           /* nrow: rows times uc */
+    signed char *set;     /* nrow: normal 1 contact / 0 free; tangential 0 stick, +1/-1 slip */
+    signed char *prev;    /* nrow: the sets of the previous iteration */
+    int *act;             /* nrow: rows in the current system */
+    double *M;            /* (nc + nrow)^2: dense saddle-point matrix */
+    double *x;            /* nc + nrow: right-hand side, then solution */
+    int *ipiv;            /* nc + nrow */
+    double *work;         /* lwork */
+    int lwork;
+    double rho;           /* natural-map parameter (stiffness units) */
+    double kappa;         /* row scaling: the stiffness scale */
+    int tangential;       /* 1 if Tresca rows take part */
+} ssn_state;
+
+static const cx_param ssn_params[] = {
+    {"rho", CX_PARAM_REAL, 1.0, 1e-12, 1e12, NULL,
+     "active-set parameter, relative to the largest diagonal entry of K", 0},
+    {NULL, 0, 0, 0, 0, NULL, NULL, 0}
+};
+
+/* Dense systems above this order are refused rather than run for minutes. */
+#define SSN_MAX_DENSE 20000
+
+static void ssn_destroy(void *state)
+{
+    ssn_state *st = state;
+    cx_free(st->rp);
+    cx_free(st->rc);
+    cx_free(st->rv);
+    cx_free(st->fc);
+    cx_free(st->uc);
+    cx_free(st->uprev);
+    cx_free(st->Bu);
+    cx_free(st->set);
+    cx_free(st->prev);
+    cx_free(st->act);
+    cx_free(st->M);
+    cx_free(st->x);
+    cx_free(st->ipiv);
+    cx_free(st->work);
+    memset(st, 0, sizeof *st);
+}
+
+/* CSR rows of N (and T) over the positions of the contact dofs. */
+static int ssn_build_rows(ssn_state *st, const cx_problem *p)
+{
+    int *pos = CX_NEW(int, p->n);
+    if (!pos)
+        return CX_ENOMEM;
+    for (int j = 0; j < p->n; j++)
+        pos[j] = -1;
+    for (int k = 0; k < p->nc; k++)
+        pos[p->cdofs[k]] = k;
+    const cx_csc *B[2] = {&p->N, &p->T};
+    int nb = st->tangential ? 2 : 1;
+    size_t nnz = 0;
+    for (int b = 0; b < nb; b++)
+        nnz += cx_csc_nnz(B[b]);
+    st->rp = CX_NEW(int, st->nrow + 1);
+    st->rc = CX_NEW(int, nnz);
+    st->rv = CX_NEW(double, nnz);
+    if (!st->rp || !st->rc || !st->rv) {
+        cx_free(pos);
+        return CX_ENOMEM;
+    }
+    /* count per row, then fill: the CSC columns are the free dofs */
+    int off = 0;
+    for (int b = 0; b < nb; b++) {
+        for (size_t q = 0; q < cx_csc_nnz(B[b]); q++)
+            st->rp[off + B[b]->i[q] + 1]++;
+        off += B[b]->nrow;
+    }
+    for (int r = 0; r < st->nrow; r++)
+        st->rp[r + 1] += st->rp[r];
+    int *fill = st->act; /* borrowed as a cursor */
+    memcpy(fill, st->rp, sizeof(int) * (size_t)st->nrow);
+    off = 0;
+    for (int b = 0; b < nb; b++) {
+        for (int j = 0; j < B[b]->ncol; j++)
+            for (int q = B[b]->p[j]; q < B[b]->p[j + 1]; q++) {
+                int r = off + B[b]->i[q];
+                st->rc[fill[r]] = pos[j];
+                st->rv[fill[r]++] = B[b]->x[q];
+            }
+        off += B[b]->nrow;
+    }
+    cx_free(pos);
+    return CX_OK;
+}
+
+static int ssn_init(void *state, cx_session *s, const cx_param_values *params, cx_diag *d)
+{
+    ssn_state *st = state;
+    const cx_problem *p = cx_session_problem(s);
+    if (p->dim == 3 && p->friction == CX_FRICTION_TRESCA)
+        return cx_diag_set(d, CX_EUNSUPPORTED,
+                           "method 'ssn-tresca' does not support Tresca friction in 3D yet");
+    st->tangential = p->friction == CX_FRICTION_TRESCA;
+    st->nc = p->nc;
+    st->nrow = p->m + (st->tangential ? p->nt : 0);
+    int ns = st->nc + st->nrow;
+    if (ns > SSN_MAX_DENSE)
+        return cx_diag_set(d, CX_EUNSUPPORTED,
+                           "method 'ssn-tresca': the reduced system has %d unknowns (limit %d); "
+                           "use a coarser level", ns, SSN_MAX_DENSE);
+    st->kappa = p->kscale > 0 ? p->kscale : 1;
+    st->rho = cx_param_get(params, "rho") * st->kappa;
+    st->lwork = 64 * (ns > 0 ? ns : 1);
+    st->fc = CX_NEW(double, st->nc);
+    st->uc = CX_NEW(double, st->nc);
+    st->uprev = CX_NEW(double, p->n);
+    st->Bu = CX_NEW(double, st->nrow);
+    st->set = CX_NEW(signed char, st->nrow);
+    st->prev = CX_NEW(signed char, st->nrow);
+    st->act = CX_NEW(int, st->nrow);
+    st->M = CX_NEW(double, (size_t)ns * (size_t)ns);
+    st->x = CX_NEW(double, ns);
+    st->ipiv = CX_NEW(int, ns);
+    st->work = CX_NEW(double, st->lwork);
+    int status = CX_ENOMEM;
+    if (!st->fc || !st->uc || !st->uprev || !st->Bu || !st->set || !st->prev || !st->act ||
+        !st->M || !st->x || !st->ipiv || !st->work || (status = ssn_build_rows(st, p)) != CX_OK) {
+        ssn_destroy(st);
+        return cx_diag_set(d, status, "out of memory");
+    }
+    if ((status = cx_session_schur(s, &st->S, d)) != CX_OK ||
+        (status = cx_schur_condense(st->S, p->f, st->fc)) != CX_OK) {
+        ssn_destroy(st);
+        return status;
+    }
+    /* the bonded start: every point in contact and sticking */
+    for (int r = 0; r < st->nrow; r++)
+        st->set[r] = r < p->m ? 1 : 0;
+    memset(st->prev, 0x7f, (size_t)st->nrow);  /* no previous sets */
+    return CX_OK;
+}
+
+static double ssn_row_dot(const ssn_state *st, int r, const double *v)
+{
+    double sum = 0;
+    for (int q = st->rp[r]; q < st->rp[r + 1]; q++)
+        sum += st->rv[q] * v[st->rc[q]];
+    return sum;
+}
+
+/* Active sets from the iterate, by the natural maps (000 (15), (18), (19)). */
+static void ssn_predict(ssn_state *st, const cx_problem *p, const cx_iterate *it)
+{
+    for (int r = 0; r < st->nrow; r++)
+        st->Bu[r] = ssn_row_dot(st, r, st->uc);
+    for (int i = 0; i < p->m; i++)
+        st->set[i] = it->lN[i] + st->rho * (st->Bu[i] - p->g[i]) > 0;
+    for (int i = 0; st->tangential && i < p->m; i++) {
+        double z = it->lT[i] + st->rho * st->Bu[p->m + i];
+        st->set[p->m + i] = z > p->s[i] ? 1 : (z < -p->s[i] ? -1 : 0);
+    }
+}
+
+static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
+{
+    ssn_state *st = state;
+    const cx_problem *p = cx_session_problem(s);
+    int nc = st->nc, m = p->m;
+
+    if (it->iter > 0)
+        ssn_predict(st, p, it);
+    if (memcmp(st->set, st->prev, (size_t)st->nrow) == 0) {
+        /* the sets repeat: the last iterate solves the problem */
+        it->own = 0;
+        it->own_done = 1;
+        return CX_OK;
+    }
+    memcpy(st->prev, st->set, (size_t)st->nrow);
+
+    /* ---- the condensed saddle-point system on the active rows ---- */
+    int na = 0;
+    for (int r = 0; r < st->nrow; r++)
+        if ((r < m && st->set[r] == 1) || (r >= m && st->set[r] == 0))
+            st->act[na++] = r;
+    int ns = nc + na;
+    const double *S = cx_schur_matrix(st->S);
+    for (int j = 0; j < nc; j++) {
+        memcpy(st->M + (size_t)ns * j, S + (size_t)nc * j, sizeof(double) * (size_t)nc);
+        memset(st->M + (size_t)ns * j + nc, 0, sizeof(double) * (size_t)na);
+    }
+    for (int a = 0; a < na; a++) {
+        double *col = st->M + (size_t)ns * (nc + a);
+        memset(col, 0, sizeof(double) * (size_t)ns);
+        int r = st->act[a];
+        for (int q = st->rp[r]; q < st->rp[r + 1]; q++) {
+            col[st->rc[q]] += st->kappa * st->rv[q];
+            st->M[(size_t)ns * st->rc[q] + nc + a] += st->kappa * st->rv[q];
+        }
+        st->x[nc + a] = r < m ? st->kappa * p->g[r] : 0.0;
+    }
+    memcpy(st->x, st->fc, sizeof(double) * (size_t)nc);
+    for (int i = 0; st->tangential && i < m; i++) {
+        int r = m + i;
+        if (st->set[r] == 0)
+            continue;
+        double lt = st->set[r] * p->s[i];
+        for (int q = st->rp[r]; q < st->rp[r + 1]; q++)
+            st->x[st->rc[q]] -= st->rv[q] * lt;
+    }
+    int status = cx_dense_sym_solve(ns, st->M, st->x, st->ipiv, st->work, st->lwork, NULL);
+    if (status != CX_OK)
+        return cx_diag_set(d, status,
+                           "ssn-tresca: singular saddle-point system at iteration %d: the active set "
+                           "(%d rows) does not hold the body", it->iter + 1, na);
+
+    /* ---- the new iterate ---- */
+    memcpy(st->uc, st->x, sizeof(double) * (size_t)nc);
+    memset(it->lN, 0, sizeof(double) * (size_t)m);
+    for (int i = 0; st->tangential && i < m; i++)
+        it->lT[i] = st->set[m + i] * p->s[i];
+    for (int a = 0; a < na; a++) {
+        int r = st->act[a];
+        if (r < m)
+            it->lN[r] = st->kappa * st->x[nc + a];
+        else
+            it->lT[r - m] = st->kappa * st->x[nc + a];
+    }
+    memcpy(st->uprev, it->u, sizeof(double) * (size_t)p->n);
+    CX_TRY(cx_schur_expand(st->S, p->f, st->uc, it->u));
+
+    /* the paper's err = ||u^k - u^(k-1)|| / ||u^k|| */
+    cx_vec_axpy(p->n, -1.0, it->u, st->uprev);
+    double nu = cx_vec_norm2(p->n, it->u);
+    it->own = nu > 0 ? cx_vec_norm2(p->n, st->uprev) / nu : 0;
+    return CX_OK;
+}
+
+const cx_method cx_method_ssn_tresca = {
+    .id = "ssn-tresca",
+    .name = "Semismooth Newton / active set (Tresca)",
+    .source = "000 §4.2",
+    .summary = "primal-dual active set on the saddle-point system, condensed onto the contact dofs",
+    .supports = CX_FRICTIONLESS | CX_TRESCA | CX_2D | CX_3D,
+    .state_size = sizeof(ssn_state),
+    .params = ssn_params,
+    .init = ssn_init,
+    .step = ssn_step,
+    .destroy = ssn_destroy,
+};

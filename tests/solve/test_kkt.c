@@ -1,0 +1,81 @@
+/* solve/: the kkt error of DESIGN.md §3 — zero at a solution, positive off
+ * it, unchanged when the units of the scene change. */
+#include "solve_fixture.h"
+#include "check.h"
+
+#include <math.h>
+#include <string.h>
+
+static void scale_problem(cx_problem *p, double force, double length)
+{
+    /* K: force/length, f and multipliers: force, u and g: length */
+    for (size_t k = 0; k < cx_csc_nnz(&p->K); k++)
+        p->K.x[k] *= force / length;
+    for (int i = 0; i < p->n; i++)
+        p->f[i] *= force;
+    for (int i = 0; i < p->m; i++) {
+        p->g[i] *= length;
+        p->s[i] *= force;
+    }
+    p->kscale *= force / length;
+}
+
+int main(void)
+{
+    cx_scene sc;
+    cx_diag d;
+    for (int law = CX_FRICTION_NONE; law <= CX_FRICTION_TRESCA; law++) {
+        cx_session *s = fixture_session("hertz", 8, &sc);
+        CX_CHECK_OK(cx_session_set_friction(s, (cx_friction)law, 20, &d));
+        CX_CHECK_OK(cx_session_set_method(s, cx_method_find("ssn-tresca"), NULL, NULL, &d));
+        CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
+        const cx_iterate *it = cx_session_iterate(s);
+        cx_problem *p = (cx_problem *)cx_session_problem(s);
+        int n = p->n, m = p->m, nt = p->nt;
+        double *work = calloc((size_t)(n + m + nt), sizeof(double));
+        double *u = malloc(sizeof(double) * (size_t)n), *lN = malloc(sizeof(double) * (size_t)m);
+        double *lT = malloc(sizeof(double) * (size_t)(nt ? nt : 1));
+        cx_kkt parts;
+
+        /* at the solution */
+        double e0 = cx_kkt_error(p, it->u, it->lN, it->lT, work, NULL, &parts);
+        CX_CHECK_LE(e0, 1e-12);
+
+        /* off it: a 1 % change of one multiplier is seen */
+        memcpy(u, it->u, sizeof(double) * (size_t)n);
+        memcpy(lN, it->lN, sizeof(double) * (size_t)m);
+        memcpy(lT, it->lT, sizeof(double) * (size_t)nt);
+        lN[0] *= 1.01;
+        double e1 = cx_kkt_error(p, u, lN, lT, work, NULL, &parts);
+        CX_CHECK(e1 > 1e-4);
+        CX_CHECK(parts.equilibrium > 1e-4);
+        /* a penetration of 1e-3 of the largest displacement is seen */
+        lN[0] = it->lN[0];
+        for (int k = 0; k < n; k++)
+            u[k] = it->u[k] * 1.001;
+        double e2 = cx_kkt_error(p, u, lN, lT, work, NULL, &parts);
+        CX_CHECK(parts.contact > 1e-4 && e2 > 1e-4);
+
+        /* units: mm-MPa-like scaling changes nothing */
+        double force = 1e6, length = 1e-3;
+        scale_problem(p, force, length);
+        for (int k = 0; k < n; k++)
+            u[k] *= length;
+        for (int i = 0; i < m; i++)
+            lN[i] *= force;
+        for (int i = 0; i < nt; i++)
+            lT[i] *= force;
+        double e3 = cx_kkt_error(p, u, lN, lT, work, NULL, &parts);
+        CX_CHECK_NEAR(e3, e2, 1e-12, 0);
+
+        /* NaN in the iterate: +inf, never a number */
+        u[0] = NAN;
+        CX_CHECK(isinf(cx_kkt_error(p, u, lN, lT, work, NULL, NULL)));
+        free(work);
+        free(u);
+        free(lN);
+        free(lT);
+        cx_session_destroy(&s);
+    }
+    return check_finish("solve_kkt");
+}
