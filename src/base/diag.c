@@ -39,7 +39,7 @@ int cx_diag_prefix(cx_diag *d, const char *fmt, ...)
     vsnprintf(head, sizeof head, fmt, ap);
     va_end(ap);
     memcpy(old, d->msg, sizeof old);
-    snprintf(d->msg, sizeof d->msg, "%s: %s", head, old);
+    snprintf(d->msg, sizeof d->msg, "%.200s: %.300s", head, old);   /* fits: no truncation */
     return d->status;
 }
 

@@ -273,7 +273,7 @@ int cli_solve(int argc, char **argv)
     const char *mid = a.method ? a.method : (sc.nmethods > 0 ? sc.methods[0] : "ssn-tresca");
     const cx_method *m = cx_method_find(mid);
     if (!m) {
-        cx_diag_set(&d, CX_EINVAL, "--method '%s': unknown method (see 'signorini list')", mid);
+        cx_diag_set(&d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", mid);
         return cli_fail("solve", d.msg);
     }
     cx_param_values pv;

@@ -166,11 +166,14 @@ int cx_contact_from_obstacle(cx_contact_set *cs, const cx_mesh *m, const cx_boun
          * keeps a finite, far gap so that every number stays finite */
         cs->gap[i] = g < 0 ? 0 : (isfinite(g) ? g : far);
         cx_tangent_basis(dim, n, t);
+        /* exact zeros stay out of the pattern: a row that touches only a
+         * prescribed dof must come out empty, not as a zero row */
         for (int c = 0; c < dim; c++) {
-            if ((status = cx_triplet_add(&cs->N, i, dim * k + c, n[c])))
+            if (n[c] != 0 && (status = cx_triplet_add(&cs->N, i, dim * k + c, n[c])))
                 goto fail;
             for (int r = 0; r < dim - 1; r++)
-                if ((status = cx_triplet_add(&cs->T, (dim - 1) * i + r, dim * k + c, t[dim * r + c])))
+                if (t[dim * r + c] != 0 &&
+                    (status = cx_triplet_add(&cs->T, (dim - 1) * i + r, dim * k + c, t[dim * r + c])))
                     goto fail;
         }
     }

@@ -50,17 +50,22 @@ typedef struct cx_traction {
 int cx_fem_facet_traction(int dim, int npf, const double *xf, const cx_traction *t, double *fe);
 
 /* Lumped facet measure: weights w[a] (npf values) with sum = facet
- * length/area, w[a] = int N_a ds (Simpson-like for P2 edges). */
+ * length/area, w[a] = int N_a ds (Simpson-like for P2 edges: 1/6, 1/6,
+ * 4/6 in facet order). Writes nothing for an unsupported (dim, npf). */
 void cx_fem_facet_lumped(int dim, int npf, const double *xf, double *w);
 
 /* ---- assembly ---------------------------------------------------------- */
 
 /* K over all dim * nnodes dofs, symmetric, full storage. mats: one per body
- * (mesh->nbodies entries). */
+ * (mesh->nbodies entries). K must be empty and is left empty on failure:
+ * CX_EINVAL (bad material or body id), CX_ENUMERIC (names the degenerate
+ * element), CX_ENOMEM. */
 int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc *K, cx_diag *d);
-/* f += traction on the facets of boundary b. */
+/* f += traction on the facets of boundary b. CX_EINVAL for facets the
+ * kernels do not know. */
 int cx_fem_add_traction(const cx_mesh *m, const cx_boundary *b, const cx_traction *t, double *f);
-/* f += body force b (dim values) over all elements. */
+/* f += body force b (dim values) over all elements. CX_ENUMERIC for a
+ * degenerate element. */
 int cx_fem_add_body_force(const cx_mesh *m, const double *b, double *f);
 
 /* ---- Dirichlet elimination --------------------------------------------- */
@@ -78,13 +83,15 @@ typedef struct cx_dofmap {
 int cx_dofmap_init(cx_dofmap *map, int nall);
 void cx_dofmap_clear(cx_dofmap *map);
 /* Prescribe component c (0..dim-1) of every node of boundary b to value
- * (a whole node: call once per component; a symmetry line: one component). */
+ * (a whole node: call once per component; a symmetry line: one component).
+ * nfree is -1 until the next cx_dofmap_finish. CX_EINVAL for a bad c. */
 int cx_dofmap_fix(cx_dofmap *map, const cx_mesh *m, const cx_boundary *b, int c, double value);
 /* Renumber the free dofs after the last fix (ascending all-dof order). */
 int cx_dofmap_finish(cx_dofmap *map);
 
 /* K = Kall(free, free), f = fall(free) - Kall(free, fixed) * value.
- * K must be empty; f has nfree entries. */
+ * K must be empty; f has nfree entries. CX_EINVAL if the map is not
+ * finished or does not fit Kall, CX_ENOMEM (K left empty). */
 int cx_fem_reduce(const cx_csc *Kall, const double *fall, const cx_dofmap *map,
                   cx_csc *K, double *f);
 /* uall = u on free dofs and the prescribed values elsewhere. */

@@ -1,6 +1,10 @@
 /* Dense kernels over LAPACK/BLAS (column-major). The Fortran prototypes are
- * declared here rather than through LAPACKE, which Debian ships apart. */
+ * declared here rather than through LAPACKE, which Debian ships apart.
+ * LAPACK reports only exactly zero pivots; a NaN or Inf in the data goes
+ * through silently, so the results are checked to be finite as well. */
 #include "linalg/linalg.h"
+
+#include <math.h>
 
 extern void dsysv_(const char *uplo, const int *n, const int *nrhs, double *a, const int *lda,
                    int *ipiv, double *b, const int *ldb, double *work, const int *lwork, int *info);
@@ -24,7 +28,9 @@ int cx_dense_sym_solve(int n, double *A, double *b, int *ipiv, double *work, int
         cnt->factorizations++;
     if (info > 0)
         return CX_ENUMERIC;
-    return info == 0 ? CX_OK : CX_EEXTERNAL;
+    if (info < 0)
+        return CX_EEXTERNAL;
+    return cx_vec_finite(n, b) ? CX_OK : CX_ENUMERIC;
 }
 
 int cx_dense_cholesky(int n, double *A, cx_counters *cnt)
@@ -37,7 +43,12 @@ int cx_dense_cholesky(int n, double *A, cx_counters *cnt)
         cnt->factorizations++;
     if (info > 0)
         return CX_ENUMERIC;
-    return info == 0 ? CX_OK : CX_EEXTERNAL;
+    if (info < 0)
+        return CX_EEXTERNAL;
+    for (int j = 0; j < n; j++)   /* a NaN pivot passes dpotrf's test */
+        if (!isfinite(A[j + (size_t)j * (size_t)n]))
+            return CX_ENUMERIC;
+    return CX_OK;
 }
 
 void cx_dense_cholesky_solve(int n, const double *L, double *b, int nrhs)
@@ -57,7 +68,9 @@ int cx_dense_lu_solve(int n, double *A, double *b, int *ipiv, cx_counters *cnt)
         cnt->factorizations++;
     if (info > 0)
         return CX_ENUMERIC;
-    return info == 0 ? CX_OK : CX_EEXTERNAL;
+    if (info < 0)
+        return CX_EEXTERNAL;
+    return cx_vec_finite(n, b) ? CX_OK : CX_ENUMERIC;
 }
 
 void cx_dense_gemv(int m, int n, double alpha, const double *A, const double *x, double beta, double *y)

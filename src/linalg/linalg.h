@@ -34,7 +34,8 @@ typedef struct cx_triplet {
 
 /* Empty nrow x ncol triplet with room for cap entries (grows as needed). */
 int cx_triplet_init(cx_triplet *t, int nrow, int ncol, size_t cap);
-/* Append (i, j, x); duplicates are summed on conversion. CX_ENOMEM. */
+/* Append (i, j, x), 0 <= i < nrow, 0 <= j < ncol (asserted); duplicates are
+ * summed on conversion. CX_ENOMEM. */
 int cx_triplet_add(cx_triplet *t, int i, int j, double x);
 void cx_triplet_clear(cx_triplet *t);
 
@@ -82,11 +83,14 @@ void cx_fact_destroy(cx_fact **F);
 /* Symbolic analysis of the pattern of A (fill-reducing ordering), kept for
  * every later cx_fact_factorize with the same pattern. */
 int cx_fact_analyze(cx_fact *F, const cx_csc *A, cx_diag *d);
-/* Numeric factorisation of A (same pattern as analysed). A non-positive
- * pivot (Cholesky) or a singular matrix (LU) is CX_ENUMERIC with the column
- * in the message. */
+/* Numeric factorisation of A (same pattern as analysed, else CX_EINVAL).
+ * A non-positive pivot (Cholesky), a singular matrix (LU), or a pivot below
+ * 1e-14 of the largest (singular to working precision) is CX_ENUMERIC with
+ * the column, in A's numbering, in the message; the object then refuses to
+ * solve until a factorisation succeeds. */
 int cx_fact_factorize(cx_fact *F, const cx_csc *A, cx_diag *d);
-/* x = A^-1 b (x and b may alias). Counts one solve. */
+/* x = A^-1 b (x and b may alias). Counts one solve. CX_EINVAL without a
+ * successful factorisation. Allocates nothing. */
 int cx_fact_solve(cx_fact *F, const double *b, double *x, cx_diag *d);
 /* Number of non-zeros of the factor(s), 0 before factorize. */
 double cx_fact_nnz(const cx_fact *F);
@@ -103,8 +107,9 @@ double cx_fact_nnz(const cx_fact *F);
  * involve the c dofs (a floating body held only by contact). */
 typedef struct cx_schur cx_schur;
 
-/* c: nc distinct dof indices (copied). cnt borrowed, may be NULL. Counts one
- * factorisation. */
+/* c: nc distinct dof indices (copied; CX_EINVAL if repeated or out of
+ * range). cnt borrowed, may be NULL. Counts one factorisation. CX_ENUMERIC,
+ * naming a column, if A_ii is not positive definite. */
 int cx_schur_create(cx_schur **S, const cx_csc *A, const int *c, int nc,
                     cx_counters *cnt, cx_diag *d);
 void cx_schur_destroy(cx_schur **S);
@@ -125,14 +130,17 @@ double cx_schur_factor_nnz(const cx_schur *S);
 /* Solve the symmetric (possibly indefinite) system A x = b in place
  * (b <- x) with Bunch-Kaufman (dsysv). A (n x n, lda = n) is overwritten.
  * ipiv: n ints; work: lwork doubles (lwork >= n; 64 n is better).
- * CX_ENUMERIC if A is singular. Counts one factorisation when cnt given. */
+ * CX_ENUMERIC if A is singular or x not finite. Counts one factorisation
+ * when cnt given. */
 int cx_dense_sym_solve(int n, double *A, double *b, int *ipiv,
                        double *work, int lwork, cx_counters *cnt);
-/* Cholesky A = L L' in place (lower); CX_ENUMERIC if not positive definite. */
+/* Cholesky A = L L' in place (lower); CX_ENUMERIC if not positive definite
+ * (or NaN). */
 int cx_dense_cholesky(int n, double *A, cx_counters *cnt);
 /* Solve with the Cholesky factor from cx_dense_cholesky: b <- A^-1 b (nrhs columns). */
 void cx_dense_cholesky_solve(int n, const double *L, double *b, int nrhs);
-/* General LU solve (dgesv), b <- A^-1 b; A overwritten. CX_ENUMERIC if singular. */
+/* General LU solve (dgesv), b <- A^-1 b; A overwritten. CX_ENUMERIC if
+ * singular or x not finite. */
 int cx_dense_lu_solve(int n, double *A, double *b, int *ipiv, cx_counters *cnt);
 /* y = alpha A x + beta y for dense m x n A (dgemv). */
 void cx_dense_gemv(int m, int n, double alpha, const double *A, const double *x,
@@ -154,9 +162,10 @@ int cx_vec_finite(int n, const double *x);
 typedef void (*cx_apply_fn)(void *ctx, const double *x, double *y);
 
 /* Solve A x = b from the initial x with Jacobi preconditioner inv_diag (may
- * be NULL: none) until ||r|| <= rtol ||b||. work: 4 n doubles. Returns
- * CX_OK, or CX_ENUMERIC on breakdown (p'Ap <= 0) or when maxit is reached
- * (message says which); *iters receives the iteration count. */
+ * be NULL: none) until ||r|| <= rtol ||b|| (b = 0: x = 0). work: 4 n
+ * doubles. Returns CX_OK, or CX_ENUMERIC on breakdown (p'Ap <= 0 or NaN)
+ * or when maxit is reached (message says which); *iters receives the
+ * iteration count. */
 int cx_pcg(int n, cx_apply_fn apply, void *ctx, const double *inv_diag,
            const double *b, double *x, double rtol, int maxit, int *iters,
            double *work, cx_diag *d);

@@ -1,4 +1,5 @@
-/* Private to linalg/: the CHOLMOD set-up shared by fact.c and schur.c. */
+/* Private to linalg/: the CHOLMOD set-up shared by fact.c and schur.c
+ * (defined in cholmod_util.c). */
 #ifndef CX_LINALG_IMPL_H
 #define CX_LINALG_IMPL_H
 
@@ -6,19 +7,31 @@
 
 #include <cholmod.h>
 
-/* Start c with printing off and errors recorded (not printed). */
+/* A pivot below this fraction of the largest one (Cholesky: l_jj^2 against
+ * the largest diagonal of A; LU: |U_kk| against the largest |U_kk| of the
+ * scaled matrix) is taken as singular to working precision: the solves
+ * would carry at most two correct digits. */
+#define CX_PIVOT_RTOL 1e-14
+
+/* Start c with printing off and errors recorded (not printed), and every
+ * factor supernodal LL' (positivity checked at every pivot; the Schur
+ * complement reads L22 from the supernodes). */
 void cx_cholmod_start(cholmod_common *c);
-/* A read-only CHOLMOD view of A (no copy). stype 1: use the upper
- * triangle of a full-storage symmetric matrix; 0: unsymmetric. */
+/* A read-only CHOLMOD view of A (no copy: the fields point at A's arrays,
+ * CHOLMOD must never free it). stype 1: use the upper triangle of a
+ * full-storage symmetric matrix; 0: unsymmetric. */
 cholmod_sparse cx_cholmod_view(const cx_csc *A, int stype);
-/* A dense n x 1 view of x. */
+/* A dense n x 1 view of x (no copy). */
 cholmod_dense cx_cholmod_vec(double *x, int n);
 /* Turn c->status after a call into a status and a diag line. what names
- * the call; L (may be NULL) gives the failing column for NOT_POSDEF. */
+ * the call; L (may be NULL) gives the failing column for NOT_POSDEF,
+ * reported in the original numbering (through L->Perm). */
 int cx_cholmod_check(cholmod_common *c, const cholmod_factor *L, const char *what, cx_diag *d);
-
-/* CX_ENUMERIC if a pivot of the supernodal LL' factor L of A is below
- * 1e-14 of A's largest diagonal entry (numerically singular). */
+/* CX_ENUMERIC if a pivot l_jj^2 of the supernodal LL' factor L of A is
+ * below CX_PIVOT_RTOL of A's largest diagonal entry (numerically singular: CHOLMOD
+ * only refuses pivots <= 0, rounding can leave a tiny positive one). */
 int cx_cholmod_check_pivots(const cholmod_factor *L, const cx_csc *A, const char *what, cx_diag *d);
+/* The original column of position k of the permuted order of L. */
+int cx_cholmod_column(const cholmod_factor *L, int k);
 
 #endif

@@ -1,6 +1,7 @@
 /* Triplet and compressed-column matrices. */
 #include "linalg/linalg.h"
 
+#include <assert.h>
 #include <math.h>
 #include <string.h>
 
@@ -22,6 +23,7 @@ int cx_triplet_init(cx_triplet *t, int nrow, int ncol, size_t cap)
 
 int cx_triplet_add(cx_triplet *t, int i, int j, double x)
 {
+    assert(i >= 0 && i < t->nrow && j >= 0 && j < t->ncol);
     if (t->nnz == t->cap) {
         size_t cap = 2 * t->cap;
         int *ni = cx_realloc(t->i, cap * sizeof(int));
@@ -214,7 +216,13 @@ double cx_csc_asymmetry(const cx_csc *A)
 {
     double worst = 0;
     for (int c = 0; c < A->ncol; c++)
-        for (int q = A->p[c]; q < A->p[c + 1]; q++)
-            worst = fmax(worst, fabs(A->x[q] - cx_csc_get(A, c, A->i[q])));
+        for (int q = A->p[c]; q < A->p[c + 1]; q++) {
+            /* outside the square part, the mirror entry is 0 */
+            double m = A->i[q] < A->ncol && c < A->nrow ? cx_csc_get(A, c, A->i[q]) : 0;
+            double e = fabs(A->x[q] - m);
+            if (isnan(e))
+                return e;
+            worst = fmax(worst, e);
+        }
     return worst;
 }

@@ -56,22 +56,28 @@ const cx_boundary *cx_mesh_boundary(const cx_mesh *m, const char *name);
 int cx_boundary_nodes(const cx_boundary *b, int **nodes, int *count);
 
 /* Rectangle [x0,x1] x [y0,y1] with nx x ny cells: TRI3 (two triangles per
- * cell), TRI6 (two P2 triangles per cell) or QUAD4. Boundaries "left",
- * "right", "bottom", "top". */
+ * cell, diagonal (i,j)-(i+1,j+1)), TRI6 (the same, P2) or QUAD4. Node
+ * (i, j) of the (q nx + 1) x (q ny + 1) lattice (q = 2 for TRI6, else 1) is
+ * j (q nx + 1) + i. Boundaries "left", "right", "bottom", "top".
+ * CX_EINVAL (with d) for bad sizes or a non-2D element type. */
 int cx_mesh_rectangle(cx_mesh **m, double x0, double y0, double x1, double y1,
                       int nx, int ny, cx_elem_type t, cx_diag *d);
 
 /* The Hertz quarter disc of radius R (centre (0, R)), level N: the unit
  * square (u, v) = (i/N, j/N) mapped by x = R u sqrt(1 - v^2/2),
- * y = R - R v sqrt(1 - u^2/2), two TRI3 per cell (or TRI6 / QUAD4).
+ * y = R - R v sqrt(1 - u^2/2), two TRI3 per cell (or TRI6 / QUAD4; TRI6
+ * maps the 2N lattice, so its mid-edge nodes lie on the curved map). Node
+ * (i, j) is j (qN + 1) + i as for the rectangle; (0, N) is the origin.
  * Boundaries "top" (v = 0, the cut y = R), "axis" (u = 0, x = 0),
  * "arc" (v = 1, the lower arc from the origin to 45 degrees: the contact
- * candidates) and "side" (u = 1, the arc from 45 degrees up to (R, R)). */
+ * candidates) and "side" (u = 1, the arc from 45 degrees up to (R, R)).
+ * CX_EINVAL (with d) for R <= 0, N < 1 or a non-2D element type. */
 int cx_mesh_hertz(cx_mesh **m, double R, int N, cx_elem_type t, cx_diag *d);
 
 /* Brick [x0,x1] x [y0,y1] x [z0,z1] with nx x ny x nz cells: HEX8, or TET4
- * (each cell split into 6 tetrahedra, conforming across cells).
- * Boundaries "xmin", "xmax", "ymin", "ymax", "zmin", "zmax". */
+ * (each cell split into 6 tetrahedra around its main diagonal, conforming
+ * across cells). Node (i, j, k) is (k (ny+1) + j) (nx+1) + i. Boundaries
+ * "xmin", "xmax", "ymin", "ymax", "zmin", "zmax". CX_EINVAL as above. */
 int cx_mesh_brick(cx_mesh **m, const double lo[3], const double hi[3],
                   int nx, int ny, int nz, cx_elem_type t, cx_diag *d);
 

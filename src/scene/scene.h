@@ -4,8 +4,8 @@
  * positive number" (CX_EINVAL). Unknown sections and keys are errors.
  *
  * Scene ids are file names without ".ini" found in the scene directories:
- * $SIGNORINI_SCENES, then the source tree's scenes/, then the installed
- * share/signorini/scenes. */
+ * $SIGNORINI_SCENES (one directory, or several separated by ':'), then the
+ * source tree's scenes/, then the installed share/signorini/scenes. */
 #ifndef CX_SCENE_H
 #define CX_SCENE_H
 
@@ -78,7 +78,8 @@ typedef struct cx_scene {
 } cx_scene;
 
 /* Read and check a scene file. CX_EIO if it cannot be read, CX_EINVAL with
- * "file:line: ..." for any bad content. */
+ * "file:line: ..." for any bad content (the first error only). Sets inih's
+ * option globals (Debian): not to be called from two threads at once. */
 int cx_scene_load(cx_scene *s, const char *path, cx_diag *d);
 
 /* Resolve a scene id (or a path to an .ini) to a path; CX_EINVAL

@@ -1,0 +1,775 @@
+/* Reading a scene file (scene.h). inih splits the file into sections and
+ * key = value pairs; every key is checked against the key table of its
+ * section (ld_sections below) and the values fill a cx_scene.
+ *
+ * Debian's inih is built without INI_HANDLER_LINENO, so the handler gets no
+ * line numbers: ld_read, the reader given to ini_parse_stream, counts lines
+ * (inih calls the handler right after the reader returns the key's line).
+ * The reader also spots the [section] headers itself, because inih reports
+ * nothing for a header: that is how a section with no keys, a section given
+ * twice and the header line of a missing key are known.
+ *
+ * The values of a section are kept until the section ends and then checked
+ * together, since some depend on each other (generator and lo/hi, obstacle
+ * and radius); boundary names are checked once the generator is known. The
+ * first error wins and ends the stream (the reader returns EOF); inih's own
+ * syntax errors are compared by line with ours. */
+#include "scene/scene.h"
+
+#include <ini.h>
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <string.h>
+
+#define LD_MAXLINE 4096          /* ini_max_line: longest line + 3 */
+#define LD_MAXKEYS 10            /* keys of the largest section ([contact]) */
+#define LD_VALLEN 1024           /* longest value + 1 */
+#define LD_COUNT_MAX 1000000     /* largest level or cell count */
+#define LD_LEVEL_MAX_DEFAULT 4096
+
+/* The choice lists below are read as indices into these enums. */
+_Static_assert(CX_EL_TRI3 == 0 && CX_EL_TRI6 == 1 && CX_EL_QUAD4 == 2 && CX_EL_HEX8 == 3 &&
+               CX_EL_TET4 == 4, "ld_elements follows cx_elem_type");
+_Static_assert(CX_PLANE_STRAIN == 0 && CX_PLANE_STRESS == 1 && CX_SOLID == 2,
+               "ld_models follows cx_model");
+_Static_assert(CX_OBST_PLANE == 0 && CX_OBST_DISC == 1 && CX_OBST_CYLINDER == 2 &&
+               CX_OBST_SPHERE == 3, "ld_obstacles follows cx_obstacle_kind");
+_Static_assert(CX_FRICTION_NONE == 0 && CX_FRICTION_TRESCA == 1 && CX_FRICTION_COULOMB == 2,
+               "ld_frictions follows cx_friction");
+_Static_assert(CX_GEN_RECTANGLE == 0 && CX_GEN_HERTZ == 1 && CX_GEN_BRICK == 2,
+               "ld_generators follows cx_scene_generator");
+
+static const char ld_generators[] = "rectangle|hertz|brick";
+static const char *const ld_generator_name[] = {"rectangle", "hertz", "brick"};
+static const int ld_generator_dim[] = {2, 2, 3};
+/* the boundary names of each generator's mesh (mesh.h) */
+static const char *const ld_boundaries[] = {
+    "left|right|bottom|top", "top|axis|arc|side", "xmin|xmax|ymin|ymax|zmin|zmax"};
+static const char ld_elements[] = "tri3|tri6|quad4|hex8|tet4";
+static const char ld_models[] = "plane_strain|plane_stress|solid";
+static const char ld_obstacles[] = "plane|disc|cylinder|sphere";
+static const char ld_frictions[] = "none|tresca|coulomb";
+static const char ld_fixes[] = "x|y|z|xy|xz|yz|xyz|all";
+static const unsigned ld_fix_comps[] = {1, 2, 4, 3, 5, 6, 7, 7};
+
+typedef struct ld_state ld_state;
+
+typedef struct ld_key {
+    const char *name;
+    int required;               /* always required (others may be, by context) */
+} ld_key;
+
+typedef struct ld_secdef {
+    const char *name;
+    int named;                  /* [traction NAME]: several, each named */
+    int required;               /* every scene has it */
+    const ld_key *keys;         /* terminated by a NULL name */
+    int (*finish)(ld_state *L); /* check the values, fill the scene */
+} ld_secdef;
+
+/* The section being read: its values, kept until it ends. */
+typedef struct ld_section {
+    const ld_secdef *def;       /* NULL before the first header and after the last */
+    char name[CX_SCENE_NAMELEN];/* NAME of [traction NAME] */
+    int line;                   /* of the header */
+    int key_line[LD_MAXKEYS];   /* per key of def->keys: its line, 0 if absent */
+    char value[LD_MAXKEYS][LD_VALLEN];
+} ld_section;
+
+/* A boundary name given in the file, checked once the generator is known. */
+typedef struct ld_bname {
+    const char *name;           /* in the scene */
+    int line;
+} ld_bname;
+
+#define LD_NSECDEFS 8
+#define LD_NBNAMES (2 * CX_SCENE_MAX_LOADS + 1)
+
+struct ld_state {
+    cx_scene *s;
+    const char *path;
+    FILE *f;
+    int line;                   /* lines read: the line inih is working on */
+    int status;                 /* first error, CX_OK if none */
+    int order;                  /* the line by which to compare it with inih's errors */
+    char msg[CX_DIAG_LEN];
+    ld_section sec;
+    int nheaders;               /* section headers read */
+    int nseen[LD_NSECDEFS];     /* sections of each kind read */
+    char seen_name[LD_NSECDEFS][CX_SCENE_MAX_LOADS][CX_SCENE_NAMELEN];
+    int seen_line[LD_NSECDEFS][CX_SCENE_MAX_LOADS];
+    int has_generator;          /* [mesh] read: boundary names can be checked */
+    int nbnames, nbchecked;
+    ld_bname bnames[LD_NBNAMES];
+};
+
+/* ---- errors ---------------------------------------------------------------- */
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+static int ld_error(ld_state *L, int line, int order, const char *fmt, ...)
+{
+    if (L->status == CX_OK) {
+        char text[CX_DIAG_LEN];
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(text, sizeof text, fmt, ap);
+        va_end(ap);
+        snprintf(L->msg, sizeof L->msg, "%s:%d: %.*s", L->path, line, CX_DIAG_LEN / 2, text);
+        L->status = CX_EINVAL;
+        L->order = order;
+    }
+    return CX_EINVAL;
+}
+
+/* "[traction top]" or "[mesh]" */
+static const char *ld_secname(const ld_state *L, char *buf, size_t len)
+{
+    if (L->sec.name[0])
+        snprintf(buf, len, "[%s %s]", L->sec.def->name, L->sec.name);
+    else
+        snprintf(buf, len, "[%s]", L->sec.def->name);
+    return buf;
+}
+
+/* ---- the values of the current section ------------------------------------ */
+
+static int ld_index(const ld_state *L, const char *key)
+{
+    for (int i = 0; L->sec.def->keys[i].name; i++)
+        if (strcmp(L->sec.def->keys[i].name, key) == 0)
+            return i;
+    return -1;
+}
+
+static const char *ld_value(const ld_state *L, const char *key)
+{
+    int i = ld_index(L, key);
+    return i >= 0 && L->sec.key_line[i] ? L->sec.value[i] : NULL;
+}
+
+static int ld_key_line(const ld_state *L, const char *key)
+{
+    int i = ld_index(L, key);
+    return i >= 0 ? L->sec.key_line[i] : 0;
+}
+
+/* An error about a given key: "PATH:LINE: key 'E': ..." */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+static int ld_bad(ld_state *L, const char *key, const char *fmt, ...)
+{
+    char text[CX_DIAG_LEN];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    int line = ld_key_line(L, key);
+    return ld_error(L, line, line, "key '%s': %.*s", key, CX_DIAG_LEN / 2, text);
+}
+
+/* A missing key is found when its section ends (at line L->line + 1 at
+ * the latest), but is reported at the section's header. */
+static int ld_require(ld_state *L, const char *key)
+{
+    if (ld_value(L, key))
+        return CX_OK;
+    char sec[80];
+    return ld_error(L, L->sec.line, L->line + 1, "section %s: missing key '%s'",
+                    ld_secname(L, sec, sizeof sec), key);
+}
+
+static int ld_unused(ld_state *L, const char *key, const char *what)
+{
+    if (!ld_value(L, key))
+        return CX_OK;
+    return ld_bad(L, key, "not used %s", what);
+}
+
+/* A number in the interval (lo, hi) if open, else [lo, hi]. Absent keys
+ * keep *out (its default). */
+static int ld_real(ld_state *L, const char *key, double lo, double hi, int open,
+                   const char *expect, double *out)
+{
+    const char *v = ld_value(L, key);
+    double x;
+    if (!v)
+        return CX_OK;
+    if (cx_parse_double(v, &x) != 0 || (open ? !(x > lo && x < hi) : !(x >= lo && x <= hi)))
+        return ld_bad(L, key, "expected %s", expect);
+    *out = x;
+    return CX_OK;
+}
+
+static int ld_positive(ld_state *L, const char *key, double *out)
+{
+    return ld_real(L, key, 0, INFINITY, 1, "a positive number", out);
+}
+
+static int ld_nonnegative(ld_state *L, const char *key, double *out)
+{
+    return ld_real(L, key, 0, INFINITY, 0, "a number >= 0", out);
+}
+
+/* Exactly n numbers (n <= 9); what says what they are (NULL: a vector). */
+static int ld_vector(ld_state *L, const char *key, int n, const char *what, double *out)
+{
+    const char *v = ld_value(L, key);
+    double x[9];
+    if (!v)
+        return CX_OK;
+    if (cx_parse_doubles(v, x, n) != n) {
+        if (what)
+            return ld_bad(L, key, "expected %d numbers%s", n, what);
+        return ld_bad(L, key, "expected %d numbers (dim %d)", n, L->s->dim);
+    }
+    memcpy(out, x, (size_t)n * sizeof *x);
+    return CX_OK;
+}
+
+/* Exactly n integers in [min, max] (n <= 3). */
+static int ld_ints(ld_state *L, const char *key, int n, long min, long max, const char *expect,
+                   int *out)
+{
+    const char *v = ld_value(L, key);
+    int x[3], k = 0;
+    if (!v)
+        return CX_OK;
+    for (const char *p = v;;) {
+        while (isspace((unsigned char)*p))
+            p++;
+        if (!*p)
+            break;
+        size_t len = strcspn(p, " \t\r\n");
+        char word[32];
+        long w;
+        if (k == n || len >= sizeof word)
+            return ld_bad(L, key, "expected %s", expect);
+        memcpy(word, p, len);
+        word[len] = '\0';
+        if (cx_parse_int(word, min, max, &w) != 0)
+            return ld_bad(L, key, "expected %s", expect);
+        x[k++] = (int)w;
+        p += len;
+    }
+    if (k != n)
+        return ld_bad(L, key, "expected %s", expect);
+    memcpy(out, x, (size_t)n * sizeof *x);
+    return CX_OK;
+}
+
+static int ld_int(ld_state *L, const char *key, long min, long max, const char *expect, int *out)
+{
+    return ld_ints(L, key, 1, min, max, expect, out);
+}
+
+/* One word of choices whose index is in [first, last]. */
+static int ld_choice(ld_state *L, const char *key, const char *choices, int first, int last,
+                     const char *expect, int *out)
+{
+    const char *v = ld_value(L, key);
+    if (!v)
+        return CX_OK;
+    int k = cx_parse_choice(v, choices);
+    if (k < first || k > last)
+        return ld_bad(L, key, "expected %s", expect);
+    *out = k;
+    return CX_OK;
+}
+
+/* Exactly dim numbers, not all zero, scaled to unit length. */
+static int ld_direction(ld_state *L, const char *key, double *out)
+{
+    const char *v = ld_value(L, key);
+    int dim = L->s->dim;
+    double x[3] = {0, 0, 0}, n2 = 0;
+    if (!v)
+        return CX_OK;
+    if (cx_parse_doubles(v, x, dim) != dim)
+        return ld_bad(L, key, "expected %d numbers, not all zero", dim);
+    for (int k = 0; k < dim; k++)
+        n2 += x[k] * x[k];
+    if (!(n2 > 0) || !isfinite(n2))
+        return ld_bad(L, key, "expected %d numbers, not all zero", dim);
+    for (int k = 0; k < dim; k++)
+        out[k] = x[k] / sqrt(n2);
+    return CX_OK;
+}
+
+static int ld_is_word(const char *t, int lower_only)
+{
+    size_t n = 0;
+    for (; t[n]; n++) {
+        unsigned char c = (unsigned char)t[n];
+        if (!(islower(c) || isdigit(c) || c == '_' || c == '-' || (!lower_only && isupper(c))))
+            return 0;
+    }
+    return n > 0 && n < CX_SCENE_NAMELEN;
+}
+
+/* A boundary name, checked against the generator later (ld_check_boundaries). */
+static int ld_boundary(ld_state *L, char *dst)
+{
+    const char *v = ld_value(L, "boundary");
+    if (strlen(v) >= CX_SCENE_NAMELEN)
+        return ld_bad(L, "boundary", "unknown boundary '%.40s...'", v);
+    strcpy(dst, v);
+    L->bnames[L->nbnames].name = dst;
+    L->bnames[L->nbnames].line = ld_key_line(L, "boundary");
+    L->nbnames++;
+    return CX_OK;
+}
+
+static int ld_check_boundaries(ld_state *L)
+{
+    int g = L->s->generator;
+    for (; L->nbchecked < L->nbnames; L->nbchecked++) {
+        const ld_bname *b = &L->bnames[L->nbchecked];
+        if (cx_parse_choice(b->name, ld_boundaries[g]) < 0)
+            return ld_error(L, b->line, b->line,
+                            "key 'boundary': unknown boundary '%s' of generator %s (expected %s)",
+                            b->name, ld_generator_name[g], ld_boundaries[g]);
+    }
+    return CX_OK;
+}
+
+/* ---- the sections ------------------------------------------------------------ */
+
+static int ld_finish_scene(ld_state *L)
+{
+    cx_scene *s = L->s;
+    const char *id = ld_value(L, "id"), *title = ld_value(L, "title");
+    if (!ld_is_word(id, 1))
+        return ld_bad(L, "id", "expected lower-case letters, digits, '_' or '-' (at most %d)",
+                      CX_SCENE_NAMELEN - 1);
+    strcpy(s->id, id);
+    if (title) {
+        if (strlen(title) >= sizeof s->title)
+            return ld_bad(L, "title", "expected at most %d characters", (int)sizeof s->title - 1);
+        strcpy(s->title, title);
+    }
+    return ld_int(L, "dim", 2, 3, "2 or 3", &s->dim);
+}
+
+static int ld_finish_mesh(ld_state *L)
+{
+    cx_scene *s = L->s;
+    int dim = s->dim, g = 0, el = dim == 2 ? CX_EL_TRI3 : CX_EL_HEX8;
+
+    CX_TRY(ld_choice(L, "generator", ld_generators, 0, 2, ld_generators, &g));
+    if (ld_generator_dim[g] != dim)
+        return ld_bad(L, "generator", "generator '%s' needs dim %d (the scene has dim %d)",
+                      ld_generator_name[g], ld_generator_dim[g], dim);
+    s->generator = (cx_scene_generator)g;
+    CX_TRY(ld_choice(L, "element", ld_elements, dim == 2 ? 0 : 3, dim == 2 ? 2 : 4,
+                     dim == 2 ? "tri3|tri6|quad4 (dim 2)" : "hex8|tet4 (dim 3)", &el));
+    s->element = (cx_elem_type)el;
+
+    if (g == CX_GEN_HERTZ) {
+        CX_TRY(ld_require(L, "radius"));
+        CX_TRY(ld_unused(L, "lo", "by generator 'hertz' (it takes radius)"));
+        CX_TRY(ld_unused(L, "hi", "by generator 'hertz' (it takes radius)"));
+        CX_TRY(ld_positive(L, "radius", &s->radius));
+    } else {
+        CX_TRY(ld_require(L, "lo"));
+        CX_TRY(ld_require(L, "hi"));
+        CX_TRY(ld_unused(L, "radius", "by this generator (it takes lo and hi)"));
+        CX_TRY(ld_vector(L, "lo", dim, NULL, s->lo));
+        CX_TRY(ld_vector(L, "hi", dim, NULL, s->hi));
+        for (int k = 0; k < dim; k++)
+            if (!(s->hi[k] > s->lo[k]))
+                return ld_bad(L, "hi", "expected hi > lo in every component");
+    }
+
+    int ncells = g == CX_GEN_HERTZ ? 1 : dim;
+    CX_TRY(ld_ints(L, "cells", ncells, 1, LD_COUNT_MAX,
+                   ncells == 1 ? "1 positive integer (generator hertz)"
+                   : ncells == 2 ? "2 positive integers (dim 2)" : "3 positive integers (dim 3)",
+                   s->cells));
+    CX_TRY(ld_int(L, "level", 1, LD_COUNT_MAX, "a positive integer", &s->level));
+    if (ld_value(L, "level_max")) {
+        char expect[64];
+        snprintf(expect, sizeof expect, "an integer >= level (%d)", s->level);
+        CX_TRY(ld_int(L, "level_max", s->level, LD_COUNT_MAX, expect, &s->level_max));
+    } else if (s->level > s->level_max) {
+        return ld_bad(L, "level", "expected a positive integer <= level_max (%d)", s->level_max);
+    }
+    L->has_generator = 1;
+    return CX_OK;
+}
+
+static int ld_finish_material(ld_state *L)
+{
+    cx_scene *s = L->s;
+    int dim = s->dim, model = dim == 2 ? CX_PLANE_STRAIN : CX_SOLID;
+    CX_TRY(ld_choice(L, "model", ld_models, dim == 2 ? 0 : 2, dim == 2 ? 1 : 2,
+                     dim == 2 ? "plane_strain|plane_stress (dim 2)" : "solid (dim 3)", &model));
+    s->mat.model = (cx_model)model;
+    CX_TRY(ld_positive(L, "E", &s->mat.E));
+    CX_TRY(ld_real(L, "nu", -1, 0.5, 1, "a number in (-1, 0.5)", &s->mat.nu));
+    return ld_vector(L, "body_force", dim, NULL, s->body_force);
+}
+
+static int ld_finish_traction(ld_state *L)
+{
+    cx_scene *s = L->s;
+    cx_scene_traction *t = &s->tractions[s->ntractions];
+    int dim = s->dim;
+    char what[64];
+    memset(t, 0, sizeof *t);
+    CX_TRY(ld_boundary(L, t->boundary));
+    CX_TRY(ld_vector(L, "t", dim, NULL, t->t.t0));
+    snprintf(what, sizeof what, " (the %dx%d matrix G, row by row)", dim, dim);
+    CX_TRY(ld_vector(L, "gradient", dim * dim, what, t->t.G));
+    s->ntractions++;
+    return CX_OK;
+}
+
+static int ld_finish_support(ld_state *L)
+{
+    cx_scene *s = L->s;
+    cx_scene_support *sp = &s->supports[s->nsupports];
+    int dim = s->dim, fix = 0;
+    double value[3] = {0, 0, 0};
+    memset(sp, 0, sizeof *sp);
+    CX_TRY(ld_boundary(L, sp->boundary));
+    CX_TRY(ld_choice(L, "fix", ld_fixes, 0, 7, ld_fixes, &fix));
+    unsigned comps = ld_fix_comps[fix] & ((1u << dim) - 1);
+    if (comps != ld_fix_comps[fix] && fix != 7)
+        return ld_bad(L, "fix", "expected x|y|xy|all (dim 2)");
+    CX_TRY(ld_vector(L, "value", dim, NULL, value));
+    sp->comps = comps;
+    for (int c = 0; c < dim; c++)
+        if ((comps >> c) & 1u)
+            sp->value[c] = value[c];
+    s->nsupports++;
+    return CX_OK;
+}
+
+static int ld_finish_contact(ld_state *L)
+{
+    cx_scene *s = L->s;
+    cx_obstacle *ob = &s->obstacle;
+    int dim = s->dim, kind = 0, friction = CX_FRICTION_NONE;
+
+    CX_TRY(ld_boundary(L, s->contact_boundary));
+    CX_TRY(ld_choice(L, "obstacle", ld_obstacles, 0, 3,
+                     dim == 2 ? "plane|disc (dim 2)" : "plane|cylinder|sphere (dim 3)", &kind));
+    if (kind != CX_OBST_PLANE && (kind == CX_OBST_DISC) != (dim == 2))
+        return ld_bad(L, "obstacle", "expected %s",
+                      dim == 2 ? "plane|disc (dim 2)" : "plane|cylinder|sphere (dim 3)");
+    ob->kind = (cx_obstacle_kind)kind;
+    CX_TRY(ld_vector(L, "point", dim, NULL, ob->point));
+    if (kind == CX_OBST_PLANE || kind == CX_OBST_CYLINDER) {
+        CX_TRY(ld_require(L, "normal"));
+        CX_TRY(ld_direction(L, "normal", ob->normal));
+    } else {
+        CX_TRY(ld_unused(L, "normal", "by this obstacle"));
+    }
+    if (kind == CX_OBST_PLANE) {
+        CX_TRY(ld_unused(L, "radius", "by obstacle plane"));
+    } else {
+        CX_TRY(ld_require(L, "radius"));
+        CX_TRY(ld_positive(L, "radius", &ob->radius));
+    }
+    CX_TRY(ld_direction(L, "direction", ob->direction));
+    CX_TRY(ld_choice(L, "friction", ld_frictions, 0, 2, ld_frictions, &friction));
+    s->friction = (cx_friction)friction;
+    CX_TRY(ld_nonnegative(L, "slip_bound", &s->slip_bound));
+    return ld_nonnegative(L, "F", &s->F);
+}
+
+static int ld_finish_hertz(ld_state *L)
+{
+    cx_scene *s = L->s;
+    if (s->dim != 2)
+        return ld_error(L, L->sec.line, L->sec.line,
+                        "section [hertz] needs dim 2 (the reference is the 2D cylinder)");
+    CX_TRY(ld_positive(L, "P", &s->hertz_P));
+    CX_TRY(ld_positive(L, "R", &s->hertz_R));
+    s->has_hertz = 1;
+    return CX_OK;
+}
+
+static int ld_finish_methods(ld_state *L)
+{
+    cx_scene *s = L->s;
+    const char *p = ld_value(L, "list");
+    for (;;) {
+        while (isspace((unsigned char)*p))
+            p++;
+        if (!*p)
+            break;
+        size_t len = strcspn(p, " \t\r\n");
+        char id[CX_SCENE_NAMELEN];
+        if (len < sizeof id) {
+            memcpy(id, p, len);
+            id[len] = '\0';
+        }
+        if (len >= sizeof id || !cx_method_find(id))
+            return ld_bad(L, "list", "unknown method '%.*s' (see 'signorini list')",
+                          (int)(len < 64 ? len : 64), p);
+        for (int k = 0; k < s->nmethods; k++)
+            if (strcmp(s->methods[k], id) == 0)
+                return ld_bad(L, "list", "method '%s' listed twice", id);
+        if (s->nmethods == CX_SCENE_MAX_METHODS)
+            return ld_bad(L, "list", "expected at most %d methods", CX_SCENE_MAX_METHODS);
+        strcpy(s->methods[s->nmethods++], id);
+        p += len;
+    }
+    if (s->nmethods == 0)
+        return ld_bad(L, "list", "expected at least one method id (see 'signorini list')");
+    return CX_OK;
+}
+
+static const ld_key ld_scene_keys[] = {{"id", 1}, {"title", 0}, {"dim", 1}, {NULL, 0}};
+static const ld_key ld_mesh_keys[] = {
+    {"generator", 1}, {"element", 0}, {"lo", 0}, {"hi", 0}, {"radius", 0},
+    {"cells", 0}, {"level", 0}, {"level_max", 0}, {NULL, 0}};
+static const ld_key ld_material_keys[] = {
+    {"model", 0}, {"E", 1}, {"nu", 1}, {"body_force", 0}, {NULL, 0}};
+static const ld_key ld_traction_keys[] = {
+    {"boundary", 1}, {"t", 1}, {"gradient", 0}, {NULL, 0}};
+static const ld_key ld_support_keys[] = {
+    {"boundary", 1}, {"fix", 1}, {"value", 0}, {NULL, 0}};
+static const ld_key ld_contact_keys[] = {
+    {"boundary", 1}, {"obstacle", 1}, {"point", 0}, {"normal", 0}, {"radius", 0},
+    {"direction", 0}, {"friction", 0}, {"slip_bound", 0}, {"F", 0}, {NULL, 0}};
+static const ld_key ld_hertz_keys[] = {{"P", 1}, {"R", 1}, {NULL, 0}};
+static const ld_key ld_methods_keys[] = {{"list", 1}, {NULL, 0}};
+_Static_assert(sizeof ld_contact_keys / sizeof ld_contact_keys[0] - 1 <= LD_MAXKEYS &&
+               sizeof ld_mesh_keys / sizeof ld_mesh_keys[0] - 1 <= LD_MAXKEYS,
+               "LD_MAXKEYS holds the largest section");
+
+/* [scene] first: it gives dim, which the others need */
+static const ld_secdef ld_sections[LD_NSECDEFS] = {
+    {"scene", 0, 1, ld_scene_keys, ld_finish_scene},
+    {"mesh", 0, 1, ld_mesh_keys, ld_finish_mesh},
+    {"material", 0, 1, ld_material_keys, ld_finish_material},
+    {"traction", 1, 0, ld_traction_keys, ld_finish_traction},
+    {"support", 1, 0, ld_support_keys, ld_finish_support},
+    {"contact", 0, 1, ld_contact_keys, ld_finish_contact},
+    {"hertz", 0, 0, ld_hertz_keys, ld_finish_hertz},
+    {"methods", 0, 0, ld_methods_keys, ld_finish_methods},
+};
+
+/* ---- sections open and close ------------------------------------------------- */
+
+static int ld_close(ld_state *L)
+{
+    const ld_secdef *def = L->sec.def;
+    int st = CX_OK;
+    for (int i = 0; st == CX_OK && def->keys[i].name; i++)
+        if (def->keys[i].required)
+            st = ld_require(L, def->keys[i].name);
+    if (st == CX_OK)
+        st = def->finish(L);
+    if (st == CX_OK && L->has_generator)
+        st = ld_check_boundaries(L);
+    L->sec.def = NULL;
+    return st;
+}
+
+/* A header "[text]" on the current line: end the section before, check the
+ * new one's name, place and count. */
+static int ld_open(ld_state *L, const char *text, size_t len)
+{
+    char buf[128], word[3][64];
+    int nwords = 0;
+
+    if (L->sec.def)
+        CX_TRY(ld_close(L));
+    while (len > 0 && isspace((unsigned char)*text))
+        text++, len--;
+    while (len > 0 && isspace((unsigned char)text[len - 1]))
+        len--;
+    snprintf(buf, sizeof buf, "%.*s", (int)(len < 100 ? len : 100), text);
+    for (const char *p = buf; nwords < 3;) {
+        while (isspace((unsigned char)*p))
+            p++;
+        if (!*p)
+            break;
+        size_t wl = strcspn(p, " \t");
+        snprintf(word[nwords++], sizeof word[0], "%.*s", (int)(wl < 63 ? wl : 63), p);
+        p += wl;
+    }
+
+    int kind = -1;
+    for (int k = 0; nwords > 0 && k < LD_NSECDEFS; k++)
+        if (strcmp(word[0], ld_sections[k].name) == 0)
+            kind = k;
+    const ld_secdef *def = kind >= 0 ? &ld_sections[kind] : NULL;
+    if (!def || nwords > 1 + def->named)
+        return ld_error(L, L->line, L->line, "unknown section [%s]", buf);
+    if (def->named && nwords < 2)
+        return ld_error(L, L->line, L->line, "section [%s] needs a name: [%s NAME]", buf, buf);
+    if (def->named && !ld_is_word(word[1], 0))
+        return ld_error(L, L->line, L->line,
+                        "section [%s]: expected a name of letters, digits, '_' or '-' (at most %d)",
+                        buf, CX_SCENE_NAMELEN - 1);
+    if (L->nheaders == 0 && kind != 0)
+        return ld_error(L, L->line, L->line, "section [scene] must come first");
+
+    const char *name = def->named ? word[1] : "";
+    for (int k = 0; k < L->nseen[kind]; k++)
+        if (strcmp(L->seen_name[kind][k], name) == 0)
+            return ld_error(L, L->line, L->line, "section [%s] given twice (first on line %d)",
+                            buf, L->seen_line[kind][k]);
+    if (L->nseen[kind] == CX_SCENE_MAX_LOADS)
+        return ld_error(L, L->line, L->line, "too many [%s] sections (at most %d)",
+                        def->name, CX_SCENE_MAX_LOADS);
+    strcpy(L->seen_name[kind][L->nseen[kind]], name);
+    L->seen_line[kind][L->nseen[kind]] = L->line;
+    L->nseen[kind]++;
+    L->nheaders++;
+
+    memset(L->sec.key_line, 0, sizeof L->sec.key_line);
+    L->sec.def = def;
+    L->sec.line = L->line;
+    strcpy(L->sec.name, name);
+    return CX_OK;
+}
+
+/* Is this line a section header for inih? Then open it. inih's rule: skip
+ * a UTF-8 BOM on line 1 and leading blanks; the header ends at the first
+ * ']' or at an inline ';' comment (after a blank), which is its error. */
+static int ld_header(ld_state *L, const char *str)
+{
+    const unsigned char *p = (const unsigned char *)str;
+    if (L->line == 1 && p[0] == 0xEF && p[1] == 0xBB && p[2] == 0xBF)
+        p += 3;
+    while (isspace(*p))
+        p++;
+    if (*p != '[')
+        return CX_OK;
+    const unsigned char *q = p + 1;
+    while (*q && *q != ']' && !(*q == ';' && isspace(q[-1])))
+        q++;
+    if (*q != ']')
+        return CX_OK;
+    return ld_open(L, (const char *)p + 1, (size_t)(q - p - 1));
+}
+
+/* ---- inih's callbacks ------------------------------------------------------- */
+
+static char *ld_read(char *str, int num, void *stream)
+{
+    ld_state *L = stream;
+    if (L->status != CX_OK)
+        return NULL;
+    errno = 0;
+    if (!fgets(str, num, L->f)) {
+        if (ferror(L->f)) {
+            snprintf(L->msg, sizeof L->msg, "%s: cannot read: %s", L->path,
+                     strerror(errno ? errno : EIO));
+            L->status = CX_EIO;
+            L->order = L->line + 1;
+        }
+        return NULL;
+    }
+    L->line++;
+    size_t len = strlen(str);
+    if (len + 1 == (size_t)num && str[len - 1] != '\n') {
+        int c = fgetc(L->f);
+        if (c != EOF) {
+            ld_error(L, L->line, L->line, "line too long (at most %d characters)", num - 3);
+            return NULL;
+        }
+    }
+    if (ld_header(L, str) != CX_OK)
+        return NULL;
+    return str;
+}
+
+static int ld_handler(void *user, const char *section, const char *key, const char *value)
+{
+    ld_state *L = user;
+    char sec[80];
+    (void)section;   /* the reader tracks sections, with their lines */
+    if (L->status != CX_OK)
+        return 1;
+    if (!L->sec.def) {
+        ld_error(L, L->line, L->line, "key '%s' outside any section (the file starts with [scene])",
+                 key);
+        return 1;
+    }
+    int i = ld_index(L, key);
+    if (i < 0) {
+        ld_error(L, L->line, L->line, "unknown key '%s' in section %s", key,
+                 ld_secname(L, sec, sizeof sec));
+    } else if (L->sec.key_line[i]) {
+        ld_error(L, L->line, L->line, "key '%s' given twice", key);
+    } else if (strlen(value) >= LD_VALLEN) {
+        ld_error(L, L->line, L->line, "key '%s': value too long (at most %d characters)", key,
+                 LD_VALLEN - 1);
+    } else {
+        strcpy(L->sec.value[i], value);
+        L->sec.key_line[i] = L->line;
+    }
+    /* non-zero: inih's error line then means a syntax error only */
+    return 1;
+}
+
+/* ---- the whole file ---------------------------------------------------------- */
+
+static void ld_default(cx_scene *s, const char *path)
+{
+    memset(s, 0, sizeof *s);
+    snprintf(s->path, sizeof s->path, "%s", path);
+    s->cells[0] = s->cells[1] = s->cells[2] = 1;
+    s->level = 1;
+    s->level_max = LD_LEVEL_MAX_DEFAULT;
+    s->F = 0.3;
+}
+
+/* After the last line: the sections every scene needs, then the boundary
+ * names (the generator is known by then). */
+static int ld_finish(ld_state *L)
+{
+    if (L->nheaders == 0)
+        return ld_error(L, 1, 1, "empty scene file: expected sections [scene], [mesh], "
+                                 "[material], [contact]");
+    for (int k = 0; k < LD_NSECDEFS; k++)
+        if (ld_sections[k].required && L->nseen[k] == 0)
+            return ld_error(L, 1, L->line + 1, "missing section [%s]",
+                            ld_sections[k].name);
+    return ld_check_boundaries(L);
+}
+
+int cx_scene_load(cx_scene *s, const char *path, cx_diag *d)
+{
+    ld_state L;
+
+    memset(&L, 0, sizeof L);
+    ld_default(s, path);
+    L.s = s;
+    L.path = path;
+    L.f = fopen(path, "r");
+    if (!L.f)
+        return cx_diag_set(d, CX_EIO, "%s: cannot open: %s", path, strerror(errno));
+
+    /* Debian's inih: its compile-time options are globals (toolchain.md, 8) */
+    ini_max_line = LD_MAXLINE;
+    ini_allow_multiline = false;   /* an indented line is not a continuation */
+    int syntax = ini_parse_stream(ld_read, &L, ld_handler, &L);
+    fclose(L.f);
+    if (syntax < 0)
+        return cx_diag_set(d, CX_ENOMEM, "%s: out of memory", path);
+
+    if (L.status == CX_OK && L.sec.def)
+        ld_close(&L);
+    if (syntax > 0 && (L.status == CX_OK || (L.status == CX_EINVAL && syntax < L.order)))
+        return cx_diag_set(d, CX_EINVAL, "%s:%d: syntax error", path, syntax);
+    if (L.status == CX_OK)
+        ld_finish(&L);
+    if (L.status != CX_OK)
+        return cx_diag_set(d, L.status, "%s", L.msg);
+    return CX_OK;
+}
