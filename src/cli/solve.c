@@ -245,7 +245,7 @@ static void solve_write_text(const cx_scene *sc, const cx_session *s, double t_a
     printf("time:    assemble %.3f s, setup %.3f s, solve %.3f s, total %.3f s\n", t_assemble,
            it->init_time, it->time - it->init_time, t_total);
     if (baseline)
-        printf("         baseline (factorise + solve K) %.3f s; total / baseline = %.2f\n", t_base,
+        printf("         baseline (factorise + solve K) %.3f s; (setup + solve) / baseline = %.2f\n", t_base,
                t_base > 0 ? (it->time) / t_base : 0);
     printf("work:    %ld factorisations, %ld solves, %ld products with K\n", it->counters.factorizations,
            it->counters.solves, it->counters.matvecs);
