@@ -17,6 +17,17 @@ extern void dgemv_(const char *trans, const int *m, const int *n, const double *
                    const int *lda, const double *x, const int *incx, const double *beta, double *y,
                    const int *incy);
 
+/* Count a factorisation and turn LAPACK's info into a status: info > 0 is a
+ * singular (or not definite) matrix, info < 0 a bad argument. */
+static int dense_outcome(int info, cx_counters *cnt)
+{
+    if (cnt)
+        cnt->factorizations++;
+    if (info > 0)
+        return CX_ENUMERIC;
+    return info < 0 ? CX_EEXTERNAL : CX_OK;
+}
+
 int cx_dense_sym_solve(int n, double *A, double *b, int *ipiv, double *work, int lwork,
                        cx_counters *cnt)
 {
@@ -24,12 +35,7 @@ int cx_dense_sym_solve(int n, double *A, double *b, int *ipiv, double *work, int
     if (n == 0)
         return CX_OK;
     dsysv_("L", &n, &one, A, &ld, ipiv, b, &ld, work, &lwork, &info);
-    if (cnt)
-        cnt->factorizations++;
-    if (info > 0)
-        return CX_ENUMERIC;
-    if (info < 0)
-        return CX_EEXTERNAL;
+    CX_TRY(dense_outcome(info, cnt));
     return cx_vec_finite(n, b) ? CX_OK : CX_ENUMERIC;
 }
 
@@ -39,12 +45,7 @@ int cx_dense_cholesky(int n, double *A, cx_counters *cnt)
     if (n == 0)
         return CX_OK;
     dpotrf_("L", &n, A, &ld, &info);
-    if (cnt)
-        cnt->factorizations++;
-    if (info > 0)
-        return CX_ENUMERIC;
-    if (info < 0)
-        return CX_EEXTERNAL;
+    CX_TRY(dense_outcome(info, cnt));
     for (int j = 0; j < n; j++)   /* a NaN pivot passes dpotrf's test */
         if (!isfinite(A[j + (size_t)j * (size_t)n]))
             return CX_ENUMERIC;
@@ -64,12 +65,7 @@ int cx_dense_lu_solve(int n, double *A, double *b, int *ipiv, cx_counters *cnt)
     if (n == 0)
         return CX_OK;
     dgesv_(&n, &one, A, &ld, ipiv, b, &ld, &info);
-    if (cnt)
-        cnt->factorizations++;
-    if (info > 0)
-        return CX_ENUMERIC;
-    if (info < 0)
-        return CX_EEXTERNAL;
+    CX_TRY(dense_outcome(info, cnt));
     return cx_vec_finite(n, b) ? CX_OK : CX_ENUMERIC;
 }
 
