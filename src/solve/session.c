@@ -4,6 +4,7 @@
 #include "solve/session_impl.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 void cx_options_default(cx_options *o)
@@ -63,6 +64,10 @@ void cx_session_destroy(cx_session **sp)
     cx_session *s = *sp;
     session_drop_method(s);
     cx_schur_destroy(&s->schur);
+    for (int i = 0; i < s->nentries; i++)
+        if (s->entries[i].destroy)
+            s->entries[i].destroy(s->entries[i].obj);
+    cx_free(s->entries);
     session_free_iterate(&s->it);
     cx_free(s->work);
     cx_problem_destroy(&s->p);
@@ -89,15 +94,63 @@ void cx_session_set_options(cx_session *s, const cx_options *opt)
         s->it.reason = CX_ITERATING;
 }
 
+/* Add the work done since 'before' to the cache counters. */
+static void session_count_cache(cx_session *s, const cx_counters *before)
+{
+    s->cache.factorizations += s->run.factorizations - before->factorizations;
+    s->cache.solves += s->run.solves - before->solves;
+    s->cache.matvecs += s->run.matvecs - before->matvecs;
+    s->cache.dual_products += s->run.dual_products - before->dual_products;
+}
+
 int cx_session_schur(cx_session *s, cx_schur **S, cx_diag *d)
 {
     if (!s->schur) {
         cx_counters before = s->run;
-        CX_TRY(cx_schur_create(&s->schur, &s->p->K, s->p->cdofs, s->p->nc, &s->run, d));
-        s->cache.factorizations += s->run.factorizations - before.factorizations;
+        int st = cx_schur_create(&s->schur, &s->p->K, s->p->cdofs, s->p->nc, &s->run, d);
+        session_count_cache(s, &before);
+        if (st != CX_OK)
+            return st;
     }
     *S = s->schur;
     return CX_OK;
+}
+
+int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build,
+                         const void *arg, cx_cache_destroy_fn destroy, void **obj, cx_diag *d)
+{
+    if (strlen(key) >= CX_CACHE_KEYLEN)
+        return cx_diag_set(d, CX_EINVAL, "operator cache key too long: '%s'", key);
+    for (int i = 0; i < s->nentries; i++)
+        if (strcmp(s->entries[i].key, key) == 0) {
+            *obj = s->entries[i].obj;
+            return CX_OK;
+        }
+    if (s->nentries == s->centries) {
+        int cap = s->centries ? 2 * s->centries : 4;
+        cx_cache_entry *e = cx_realloc(s->entries, sizeof *e * (size_t)cap);
+        if (!e)
+            return cx_diag_set(d, CX_ENOMEM, "out of memory");
+        s->entries = e;
+        s->centries = cap;
+    }
+    cx_counters before = s->run;
+    void *made = NULL;
+    int st = build(&made, s->p, arg, &s->run, d);
+    session_count_cache(s, &before);
+    if (st != CX_OK)
+        return st;
+    cx_cache_entry *e = &s->entries[s->nentries++];
+    snprintf(e->key, sizeof e->key, "%s", key);
+    e->obj = made;
+    e->destroy = destroy;
+    *obj = made;
+    return CX_OK;
+}
+
+int cx_session_cache_size(const cx_session *s)
+{
+    return s->nentries + (s->schur != NULL);
 }
 
 /* Zero the iterate and the run counters for a new run. */

@@ -5,9 +5,17 @@
 
 #include "solve/solve.h"
 
+typedef struct cx_cache_entry {
+    char key[CX_CACHE_KEYLEN];
+    void *obj;
+    cx_cache_destroy_fn destroy;
+} cx_cache_entry;
+
 struct cx_session {
     cx_problem *p;               /* owned */
     cx_schur *schur;             /* operator cache: K condensed onto p->cdofs, lazy */
+    cx_cache_entry *entries;     /* operator cache: everything else, by key */
+    int nentries, centries;
     cx_counters cache;           /* work of building the cache, all runs */
     cx_counters run;             /* work of the current run (linalg writes here) */
     const cx_method *method;     /* current method, or NULL */

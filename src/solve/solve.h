@@ -138,6 +138,21 @@ const cx_counters *cx_session_cache_counters(const cx_session *s);
  * counted in the cache counters and, when built during a run, in the run's
  * counters too. */
 int cx_session_schur(cx_session *s, cx_schur **S, cx_diag *d);
+/* Any other shared operator (a factorisation of K + r M, the dual operator,
+ * a regularised K, ...), built lazily once per session under a key that
+ * names it and every value it depends on ("ubr:K+rM r=2.2e+02"). The first
+ * call builds it with build(obj, problem, arg, counters, d), counting its
+ * work in the cache counters and the current run's; later calls with the
+ * same key return it without work. destroy frees it with the session.
+ * Keys are at most CX_CACHE_KEYLEN - 1 characters (longer: CX_EINVAL). */
+#define CX_CACHE_KEYLEN 96
+typedef int (*cx_cache_build_fn)(void **obj, const cx_problem *p, const void *arg,
+                                 cx_counters *cnt, cx_diag *d);
+typedef void (*cx_cache_destroy_fn)(void *obj);
+int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build,
+                         const void *arg, cx_cache_destroy_fn destroy, void **obj, cx_diag *d);
+/* Number of operators in the cache (the Schur complement included). */
+int cx_session_cache_size(const cx_session *s);
 /* The work counters methods pass to linalg (the current run's). */
 cx_counters *cx_session_counters(cx_session *s);
 
