@@ -1,0 +1,61 @@
+/* signorini bench: the benchmarks. Each kind is a row of the table below;
+ * the papers' tables are rows of bench_papers[]. A benchmark prints its
+ * tables on stdout; timings live here, never in the test suite. */
+#include "cli/cli.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static const char bench_usage[] =
+    "usage: signorini bench <kind> [options]\n"
+    "\n"
+    "kinds:\n"
+    "  paper NNN [options]    reproduce the tables of paper NNN (see below)\n"
+    "\n"
+    "papers:\n";
+
+typedef struct bench_paper {
+    const char *id;                      /* "002" */
+    const char *what;                    /* one line */
+    int (*run)(int argc, char **argv);   /* argv[0] is the paper id */
+} bench_paper;
+
+/* One line per paper: the id, what it reproduces, its entry point
+ * (cli/paper_NNN.c). */
+static const bench_paper bench_papers[] = {
+    {NULL, NULL, NULL}
+};
+
+static void bench_print_usage(FILE *out)
+{
+    fputs(bench_usage, out);
+    for (int k = 0; bench_papers[k].id; k++)
+        fprintf(out, "  %s  %s\n", bench_papers[k].id, bench_papers[k].what);
+    if (!bench_papers[0].id)
+        fputs("  (none yet)\n", out);
+}
+
+static int bench_paper_run(int argc, char **argv)
+{
+    if (argc < 2)
+        return cli_fail("bench paper", "which paper? (see 'signorini bench --help')");
+    for (int k = 0; bench_papers[k].id; k++)
+        if (strcmp(bench_papers[k].id, argv[1]) == 0)
+            return bench_papers[k].run(argc - 1, argv + 1);
+    char msg[128];
+    snprintf(msg, sizeof msg, "unknown paper '%s' (see 'signorini bench --help')", argv[1]);
+    return cli_fail("bench paper", msg);
+}
+
+int cli_bench(int argc, char **argv)
+{
+    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        bench_print_usage(stdout);
+        return argc < 2 ? CLI_EXIT_ERROR : CLI_EXIT_OK;
+    }
+    if (strcmp(argv[1], "paper") == 0)
+        return bench_paper_run(argc - 1, argv + 1);
+    char msg[128];
+    snprintf(msg, sizeof msg, "unknown kind '%s' (see 'signorini bench --help')", argv[1]);
+    return cli_fail("bench", msg);
+}
