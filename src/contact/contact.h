@@ -15,6 +15,7 @@
 #include "base/base.h"
 #include "linalg/linalg.h"
 #include "mesh/mesh.h"
+#include "fem/fem.h"
 
 typedef enum cx_obstacle_kind {
     CX_OBST_PLANE,    /* half-space {x : (x - point) . normal <= 0}; normal points out of the obstacle */
@@ -60,6 +61,17 @@ typedef struct cx_contact_set {
 int cx_contact_from_obstacle(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *b,
                              const cx_obstacle *ob, cx_diag *d);
 void cx_contact_clear(cx_contact_set *cs);
+
+/* Two-body node-to-segment rows (paper 000 §3, 2D, 2-node edges): one
+ * contact point per node of the slave boundary that has a free dof in map
+ * (map may be NULL: every node), ordered by x then y, paired with its
+ * closest point chi on the master boundary's segments [x_p, x_q]; rows
+ * N = (nu, -(1-delta) nu, -delta nu) and T likewise with t over the dofs
+ * of (x, x_p, x_q), gap |chi - x|, nu = (chi - x)/gap or the slave's
+ * outward normal where the gap is 0. CX_EINVAL if a node penetrates the
+ * master; CX_EUNSUPPORTED for 3D or curved (3-node) edges. */
+int cx_contact_node_to_segment(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *slave,
+                               const cx_boundary *master, const cx_dofmap *map, cx_diag *d);
 
 /* Signed distance-like gap and unit normal (towards the obstacle) of one
  * point x against ob; the gap is negative inside the obstacle. */

@@ -81,4 +81,16 @@ int cx_mesh_hertz(cx_mesh **m, double R, int N, cx_elem_type t, cx_diag *d);
 int cx_mesh_brick(cx_mesh **m, const double lo[3], const double hi[3],
                   int nx, int ny, int nz, cx_elem_type t, cx_diag *d);
 
+/* Two blocks stacked along y as one mesh of two bodies (paper 000 §7):
+ * body 0 (Omega^1) is the rectangle [x0,x1] x [ym,y1] with cells_upper
+ * (x, y) cells, body 1 (Omega^2) is [x0,x1] x [y0,ym] with cells_lower
+ * cells; the counts may differ (non-matching interface). Nodes of body 0
+ * come first, with the rectangle's numbering; the interface nodes exist
+ * once per body. Boundaries "left1", "right1", "bottom1", "top1" of body 0
+ * and "left2", ..., "top2" of body 1 (bottom1 and top2 face each other).
+ * CX_EINVAL (with d) unless y0 < ym < y1, or as cx_mesh_rectangle. */
+int cx_mesh_twoblocks(cx_mesh **m, double x0, double y0, double ym, double x1, double y1,
+                      const int cells_upper[2], const int cells_lower[2], cx_elem_type t,
+                      cx_diag *d);
+
 #endif

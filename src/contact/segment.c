@@ -1,0 +1,181 @@
+/* Two-body node-to-segment contact rows (paper 000 §3), 2D.
+ *
+ * Every node x of the slave boundary (body 1 in the paper) that has a free
+ * dof (000 §3: the contact nodes lie on Gamma_c minus Gamma_u) is paired
+ * with chi(x), its closest point on the master boundary (body 2), which
+ * lies on a master segment [x_p, x_q] at delta = |chi - x_p| / |x_q - x_p|.
+ * The gap is d = |chi(x) - x|, the critical direction nu = (chi - x) / d,
+ * or the slave's outward normal n^1 where d = 0, and t is nu turned by
+ * +90 degrees. With u^1 - u^2(chi) the relative displacement,
+ *     N row:  nu at x's dofs, -(1 - delta) nu at x_p's, -delta nu at x_q's,
+ *     T row:  the same with t,
+ * at most 2 + 4 non-zeros (exact zeros, e.g. delta = 0 on matching meshes,
+ * stay out of the pattern). Closing the gap is positive: N u - d <= 0. */
+#include "contact/contact.h"
+#include "fem/fem.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double *seg_sort_x_;
+
+/* Slave nodes by x, then y: along a straight or gently curved interface. */
+static int seg_cmp(const void *a, const void *b)
+{
+    const double *xa = seg_sort_x_ + 2 * *(const int *)a, *xb = seg_sort_x_ + 2 * *(const int *)b;
+    if (xa[0] != xb[0])
+        return xa[0] < xb[0] ? -1 : 1;
+    return (xa[1] > xb[1]) - (xa[1] < xb[1]);
+}
+
+/* The outward unit normal of the slave boundary at node k: the mean of the
+ * normals of its facets (each to the right of the facet's direction). */
+static void seg_slave_normal(const cx_mesh *m, const cx_boundary *b, int k, double *n)
+{
+    n[0] = n[1] = 0;
+    for (int f = 0; f < b->nfacets; f++) {
+        const int *fn = b->facets + b->npf * f;
+        if (fn[0] != k && fn[1] != k)
+            continue;
+        double tx = m->x[2 * fn[1]] - m->x[2 * fn[0]], ty = m->x[2 * fn[1] + 1] - m->x[2 * fn[0] + 1];
+        double l = hypot(tx, ty);
+        n[0] += ty / l;
+        n[1] -= tx / l;
+    }
+    double l = hypot(n[0], n[1]);
+    n[0] /= l;
+    n[1] /= l;
+}
+
+/* The closest point of the master segments to x: facet index, delta and
+ * the squared distance. */
+static int seg_closest(const cx_mesh *m, const cx_boundary *b, const double *x, double *delta,
+                       double *chi)
+{
+    int best = -1;
+    double bd = INFINITY;
+    for (int f = 0; f < b->nfacets; f++) {
+        const double *a = m->x + 2 * b->facets[b->npf * f], *e = m->x + 2 * b->facets[b->npf * f + 1];
+        double tx = e[0] - a[0], ty = e[1] - a[1], l2 = tx * tx + ty * ty;
+        double s = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
+        s = s < 0 ? 0 : (s > 1 ? 1 : s);
+        double cx = a[0] + s * tx, cy = a[1] + s * ty;
+        double dd = (x[0] - cx) * (x[0] - cx) + (x[1] - cy) * (x[1] - cy);
+        if (dd < bd) {
+            bd = dd, best = f, *delta = s;
+            chi[0] = cx, chi[1] = cy;
+        }
+    }
+    return best;
+}
+
+static int seg_add(cx_triplet *R, int row, int col, double v)
+{
+    return v != 0 ? cx_triplet_add(R, row, col, v) : CX_OK;
+}
+
+int cx_contact_node_to_segment(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *slave,
+                               const cx_boundary *master, const cx_dofmap *map, cx_diag *d)
+{
+    int *nodes = NULL, count = 0, status = CX_OK, *pos = NULL;
+    memset(cs, 0, sizeof *cs);
+    if (m->dim != 2 || slave->npf != 2 || master->npf != 2 || master->nfacets < 1)
+        return cx_diag_set(d, CX_EUNSUPPORTED,
+                           "node-to-segment contact needs a 2D mesh with straight 2-node edges");
+    CX_TRY(cx_boundary_nodes(slave, &nodes, &count));
+    /* the contact nodes: slave nodes with a free dof, ordered along x */
+    int mc = 0;
+    for (int i = 0; i < count; i++) {
+        int k = nodes[i];
+        if (!map || map->free_of[2 * k] >= 0 || map->free_of[2 * k + 1] >= 0)
+            nodes[mc++] = k;
+    }
+    seg_sort_x_ = m->x;
+    qsort(nodes, (size_t)mc, sizeof(int), seg_cmp);
+
+    cs->dim = 2;
+    cs->m = mc;
+    cs->nall = 2 * m->nnodes;
+    cs->node = CX_NEW(int, mc);
+    cs->x = CX_NEW(double, 2 * mc);
+    cs->weight = CX_NEW(double, mc);
+    cs->normal = CX_NEW(double, 2 * mc);
+    cs->tangent = CX_NEW(double, 2 * mc);
+    cs->gap = CX_NEW(double, mc);
+    pos = CX_NEW(int, m->nnodes);
+    if (!cs->node || !cs->x || !cs->weight || !cs->normal || !cs->tangent || !cs->gap || !pos) {
+        status = CX_ENOMEM;
+        goto fail;
+    }
+    if ((status = cx_triplet_init(&cs->N, mc, cs->nall, (size_t)(6 * mc))) ||
+        (status = cx_triplet_init(&cs->T, mc, cs->nall, (size_t)(6 * mc))))
+        goto fail;
+
+    /* lumped lengths of the slave boundary (Tresca bounds are tractions) */
+    for (int k = 0; k < m->nnodes; k++)
+        pos[k] = -1;
+    for (int i = 0; i < mc; i++)
+        pos[nodes[i]] = i;
+    for (int f = 0; f < slave->nfacets; f++) {
+        double xf[4], w[2];
+        const int *fn = slave->facets + 2 * f;
+        memcpy(xf, m->x + 2 * fn[0], 2 * sizeof(double));
+        memcpy(xf + 2, m->x + 2 * fn[1], 2 * sizeof(double));
+        cx_fem_facet_lumped(2, 2, xf, w);
+        for (int a = 0; a < 2; a++)
+            if (pos[fn[a]] >= 0)
+                cs->weight[pos[fn[a]]] += w[a];
+    }
+
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int k = 0; k < m->nnodes; k++)
+        for (int c = 0; c < 2; c++)
+            lo[c] = fmin(lo[c], m->x[2 * k + c]), hi[c] = fmax(hi[c], m->x[2 * k + c]);
+    double tol = 1e-12 * hypot(hi[0] - lo[0], hi[1] - lo[1]);
+
+    for (int i = 0; i < mc; i++) {
+        int k = nodes[i];
+        const double *x = m->x + 2 * k;
+        double delta = 0, chi[2] = {0, 0}, *nu = cs->normal + 2 * i, *t = cs->tangent + 2 * i, n1[2];
+        int f = seg_closest(m, master, x, &delta, chi);
+        int p = master->facets[2 * f], q = master->facets[2 * f + 1];
+        double gap = hypot(chi[0] - x[0], chi[1] - x[1]);
+        seg_slave_normal(m, slave, k, n1);
+        if (gap > tol) {
+            nu[0] = (chi[0] - x[0]) / gap, nu[1] = (chi[1] - x[1]) / gap;
+            /* nu against the slave's outward normal: x is inside body 2 */
+            if (nu[0] * n1[0] + nu[1] * n1[1] < 0) {
+                status = cx_diag_set(d, CX_EINVAL,
+                                     "contact point %d (node %d at (%g, %g)) penetrates the master "
+                                     "boundary by %g", i, k, x[0], x[1], gap);
+                goto fail;
+            }
+        } else {
+            gap = 0;
+            nu[0] = n1[0], nu[1] = n1[1];
+        }
+        cx_tangent_basis(2, nu, t);
+        cs->node[i] = k;
+        cs->x[2 * i] = x[0], cs->x[2 * i + 1] = x[1];
+        cs->gap[i] = gap;
+        const int col[3] = {k, p, q};
+        const double w[3] = {1, -(1 - delta), -delta};
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 2; c++)
+                if ((status = seg_add(&cs->N, i, 2 * col[a] + c, w[a] * nu[c])) ||
+                    (status = seg_add(&cs->T, i, 2 * col[a] + c, w[a] * t[c])))
+                    goto fail;
+    }
+    cx_free(nodes);
+    cx_free(pos);
+    return CX_OK;
+
+fail:
+    cx_free(nodes);
+    cx_free(pos);
+    cx_contact_clear(cs);
+    if (status == CX_ENOMEM)
+        cx_diag_set(d, CX_ENOMEM, "out of memory building contact rows");
+    return status;
+}
