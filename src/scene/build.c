@@ -16,6 +16,12 @@ static int build_mesh(const cx_scene *s, int level, cx_mesh **m, cx_diag *d)
         return cx_mesh_hertz(m, s->radius, cells[0], s->element, d);
     case CX_GEN_BRICK:
         return cx_mesh_brick(m, s->lo, s->hi, cells[0], cells[1], cells[2], s->element, d);
+    case CX_GEN_TWOBLOCKS: {
+        int lower[3];
+        cx_scene_cells_lower(s, level, lower);
+        return cx_mesh_twoblocks(m, s->lo[0], s->lo[1], s->interface, s->hi[0], s->hi[1], cells,
+                                 lower, s->element, d);
+    }
     }
     return cx_diag_set(d, CX_EINVAL, "%s: unknown generator", s->path);
 }
@@ -80,9 +86,16 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
     if ((st = cx_dofmap_finish(&map)))
         goto fail;
 
-    if ((st = build_boundary(s, m, s->contact_boundary, &b, d)) ||
-        (st = cx_contact_from_obstacle(&cs, m, b, &s->obstacle, d)))
+    if ((st = build_boundary(s, m, s->contact_boundary, &b, d)))
         goto fail;
+    if (s->contact_master[0]) {
+        const cx_boundary *master;
+        if ((st = build_boundary(s, m, s->contact_master, &master, d)) ||
+            (st = cx_contact_node_to_segment(&cs, m, b, master, &map, d)))
+            goto fail;
+    } else if ((st = cx_contact_from_obstacle(&cs, m, b, &s->obstacle, d))) {
+        goto fail;
+    }
 
     if ((st = cx_problem_create(pp, &m, &mats, &map, &cs, &K, f, d)))
         goto fail;

@@ -4,6 +4,7 @@
 #include "scene/scene.h"
 
 #include <limits.h>
+#include <string.h>
 
 void cx_scene_cells(const cx_scene *s, int level, int cells[3])
 {
@@ -14,4 +15,11 @@ void cx_scene_cells(const cx_scene *s, int level, int cells[3])
         long long c = k < used ? (long long)level * (s->cells[k] > 0 ? s->cells[k] : 1) : 1;
         cells[k] = c > INT_MAX ? INT_MAX : (int)c;
     }
+}
+
+void cx_scene_cells_lower(const cx_scene *s, int level, int cells[3])
+{
+    cx_scene tmp = *s;
+    memcpy(tmp.cells, s->cells_lower, sizeof tmp.cells);
+    cx_scene_cells(&tmp, level, cells);
 }

@@ -41,15 +41,17 @@ _Static_assert(CX_OBST_PLANE == 0 && CX_OBST_DISC == 1 && CX_OBST_CYLINDER == 2 
                CX_OBST_SPHERE == 3, "ld_obstacles follows cx_obstacle_kind");
 _Static_assert(CX_FRICTION_NONE == 0 && CX_FRICTION_TRESCA == 1 && CX_FRICTION_COULOMB == 2,
                "ld_frictions follows cx_friction");
-_Static_assert(CX_GEN_RECTANGLE == 0 && CX_GEN_HERTZ == 1 && CX_GEN_BRICK == 2,
+_Static_assert(CX_GEN_RECTANGLE == 0 && CX_GEN_HERTZ == 1 && CX_GEN_BRICK == 2 &&
+               CX_GEN_TWOBLOCKS == 3,
                "ld_generators follows cx_scene_generator");
 
-static const char ld_generators[] = "rectangle|hertz|brick";
-static const char *const ld_generator_name[] = {"rectangle", "hertz", "brick"};
-static const int ld_generator_dim[] = {2, 2, 3};
+static const char ld_generators[] = "rectangle|hertz|brick|twoblocks";
+static const char *const ld_generator_name[] = {"rectangle", "hertz", "brick", "twoblocks"};
+static const int ld_generator_dim[] = {2, 2, 3, 2};
 /* the boundary names of each generator's mesh (mesh.h) */
 static const char *const ld_boundaries[] = {
-    "left|right|bottom|top", "top|axis|arc|side", "xmin|xmax|ymin|ymax|zmin|zmax"};
+    "left|right|bottom|top", "top|axis|arc|side", "xmin|xmax|ymin|ymax|zmin|zmax",
+    "left1|right1|bottom1|top1|left2|right2|bottom2|top2"};
 static const char ld_elements[] = "tri3|tri6|quad4|hex8|tet4";
 static const char ld_models[] = "plane_strain|plane_stress|solid";
 static const char ld_obstacles[] = "plane|disc|cylinder|sphere";
@@ -88,7 +90,7 @@ typedef struct ld_bname {
 } ld_bname;
 
 #define LD_NSECDEFS 8
-#define LD_NBNAMES (2 * CX_SCENE_MAX_LOADS + 1)
+#define LD_NBNAMES (2 * CX_SCENE_MAX_LOADS + 2)
 
 struct ld_state {
     cx_scene *s;
@@ -358,12 +360,29 @@ static int ld_finish_scene(ld_state *L)
     return ld_int(L, "dim", 2, 3, "2 or 3", &s->dim);
 }
 
+/* twoblocks: the interface y strictly inside (lo, hi) and the lower
+ * body's cells (default: the upper's); the keys belong to it alone. */
+static int ld_finish_twoblocks(ld_state *L, int g)
+{
+    cx_scene *s = L->s;
+    if (g != CX_GEN_TWOBLOCKS) {
+        CX_TRY(ld_unused(L, "interface", "by this generator (only by twoblocks)"));
+        return ld_unused(L, "cells_lower", "by this generator (only by twoblocks)");
+    }
+    CX_TRY(ld_require(L, "interface"));
+    char expect[96];
+    snprintf(expect, sizeof expect, "a number strictly between lo and hi in y (%g, %g)", s->lo[1], s->hi[1]);
+    CX_TRY(ld_real(L, "interface", s->lo[1], s->hi[1], 1, expect, &s->interface));
+    memcpy(s->cells_lower, s->cells, sizeof s->cells_lower);
+    return ld_ints(L, "cells_lower", 2, 1, LD_COUNT_MAX, "2 positive integers (dim 2)", s->cells_lower);
+}
+
 static int ld_finish_mesh(ld_state *L)
 {
     cx_scene *s = L->s;
     int dim = s->dim, g = 0, el = dim == 2 ? CX_EL_TRI3 : CX_EL_HEX8;
 
-    CX_TRY(ld_choice(L, "generator", ld_generators, 0, 2, ld_generators, &g));
+    CX_TRY(ld_choice(L, "generator", ld_generators, 0, 3, ld_generators, &g));
     if (ld_generator_dim[g] != dim)
         return ld_bad(L, "generator", "generator '%s' needs dim %d (the scene has dim %d)",
                       ld_generator_name[g], ld_generator_dim[g], dim);
@@ -401,6 +420,7 @@ static int ld_finish_mesh(ld_state *L)
     } else if (s->level > s->level_max) {
         return ld_bad(L, "level", "expected a positive integer <= level_max (%d)", s->level_max);
     }
+    CX_TRY(ld_finish_twoblocks(L, g));
     L->has_generator = 1;
     return CX_OK;
 }
@@ -453,13 +473,48 @@ static int ld_finish_support(ld_state *L)
     return CX_OK;
 }
 
+static int ld_friction(ld_state *L)
+{
+    cx_scene *s = L->s;
+    int friction = CX_FRICTION_NONE;
+    CX_TRY(ld_choice(L, "friction", ld_frictions, 0, 2, ld_frictions, &friction));
+    s->friction = (cx_friction)friction;
+    CX_TRY(ld_nonnegative(L, "slip_bound", &s->slip_bound));
+    return ld_nonnegative(L, "F", &s->F);
+}
+
+/* Contact between two bodies (paper 000): boundary is the slave, master
+ * the master boundary; no obstacle keys. */
+static int ld_finish_contact_bodies(ld_state *L)
+{
+    cx_scene *s = L->s;
+    static const char *const obstacle_keys[] = {"obstacle", "point", "normal", "radius", "direction"};
+    for (int k = 0; k < 5; k++)
+        CX_TRY(ld_unused(L, obstacle_keys[k], "with 'master' (contact between two bodies)"));
+    if (s->dim != 2)
+        return ld_bad(L, "master", "contact between two bodies needs dim 2");
+    const char *v = ld_value(L, "master");
+    if (strlen(v) >= CX_SCENE_NAMELEN)
+        return ld_bad(L, "master", "unknown boundary '%.40s...'", v);
+    strcpy(s->contact_master, v);
+    L->bnames[L->nbnames].name = s->contact_master;
+    L->bnames[L->nbnames].line = ld_key_line(L, "master");
+    L->nbnames++;
+    if (strcmp(s->contact_master, s->contact_boundary) == 0)
+        return ld_bad(L, "master", "expected a boundary other than the slave '%s'", s->contact_boundary);
+    return ld_friction(L);
+}
+
 static int ld_finish_contact(ld_state *L)
 {
     cx_scene *s = L->s;
     cx_obstacle *ob = &s->obstacle;
-    int dim = s->dim, kind = 0, friction = CX_FRICTION_NONE;
+    int dim = s->dim, kind = 0;
 
     CX_TRY(ld_boundary(L, s->contact_boundary));
+    if (ld_value(L, "master"))
+        return ld_finish_contact_bodies(L);
+    CX_TRY(ld_require(L, "obstacle"));
     CX_TRY(ld_choice(L, "obstacle", ld_obstacles, 0, 3,
                      dim == 2 ? "plane|disc (dim 2)" : "plane|cylinder|sphere (dim 3)", &kind));
     if (kind != CX_OBST_PLANE && (kind == CX_OBST_DISC) != (dim == 2))
@@ -480,10 +535,7 @@ static int ld_finish_contact(ld_state *L)
         CX_TRY(ld_positive(L, "radius", &ob->radius));
     }
     CX_TRY(ld_direction(L, "direction", ob->direction));
-    CX_TRY(ld_choice(L, "friction", ld_frictions, 0, 2, ld_frictions, &friction));
-    s->friction = (cx_friction)friction;
-    CX_TRY(ld_nonnegative(L, "slip_bound", &s->slip_bound));
-    return ld_nonnegative(L, "F", &s->F);
+    return ld_friction(L);
 }
 
 static int ld_finish_hertz(ld_state *L)
@@ -532,7 +584,7 @@ static int ld_finish_methods(ld_state *L)
 static const ld_key ld_scene_keys[] = {{"id", 1}, {"title", 0}, {"dim", 1}, {NULL, 0}};
 static const ld_key ld_mesh_keys[] = {
     {"generator", 1}, {"element", 0}, {"lo", 0}, {"hi", 0}, {"radius", 0},
-    {"cells", 0}, {"level", 0}, {"level_max", 0}, {NULL, 0}};
+    {"cells", 0}, {"level", 0}, {"level_max", 0}, {"interface", 0}, {"cells_lower", 0}, {NULL, 0}};
 static const ld_key ld_material_keys[] = {
     {"model", 0}, {"E", 1}, {"nu", 1}, {"body_force", 0}, {NULL, 0}};
 static const ld_key ld_traction_keys[] = {
@@ -540,8 +592,8 @@ static const ld_key ld_traction_keys[] = {
 static const ld_key ld_support_keys[] = {
     {"boundary", 1}, {"fix", 1}, {"value", 0}, {NULL, 0}};
 static const ld_key ld_contact_keys[] = {
-    {"boundary", 1}, {"obstacle", 1}, {"point", 0}, {"normal", 0}, {"radius", 0},
-    {"direction", 0}, {"friction", 0}, {"slip_bound", 0}, {"F", 0}, {NULL, 0}};
+    {"boundary", 1}, {"obstacle", 0}, {"point", 0}, {"normal", 0}, {"radius", 0},
+    {"direction", 0}, {"friction", 0}, {"slip_bound", 0}, {"F", 0}, {"master", 0}, {NULL, 0}};
 static const ld_key ld_hertz_keys[] = {{"P", 1}, {"R", 1}, {NULL, 0}};
 static const ld_key ld_methods_keys[] = {{"list", 1}, {NULL, 0}};
 _Static_assert(sizeof ld_contact_keys / sizeof ld_contact_keys[0] - 1 <= LD_MAXKEYS &&

@@ -33,7 +33,8 @@ typedef struct cx_scene_support {
 typedef enum cx_scene_generator {
     CX_GEN_RECTANGLE,
     CX_GEN_HERTZ,
-    CX_GEN_BRICK
+    CX_GEN_BRICK,
+    CX_GEN_TWOBLOCKS     /* two stacked rectangles, two bodies (paper 000) */
 } cx_scene_generator;
 
 typedef struct cx_scene {
@@ -50,6 +51,8 @@ typedef struct cx_scene {
     int cells[3];                 /* cells per level step along x, y, z */
     int level;                    /* default level */
     int level_max;                /* largest level allowed */
+    double interface;             /* twoblocks: y of the interface (lo < it < hi) */
+    int cells_lower[3];           /* twoblocks: cells of the lower body per level step */
 
     /* [material] */
     cx_material mat;
@@ -63,6 +66,7 @@ typedef struct cx_scene {
 
     /* [contact] */
     char contact_boundary[CX_SCENE_NAMELEN];
+    char contact_master[CX_SCENE_NAMELEN];  /* two bodies: the master boundary ("" = obstacle) */
     cx_obstacle obstacle;
     cx_friction friction;         /* default law */
     double slip_bound;            /* Tresca bound (traction) */
@@ -92,6 +96,8 @@ int cx_scene_list(char (**ids)[CX_SCENE_NAMELEN], int *count, cx_diag *d);
 
 /* Mesh cell counts of a level (level 1 = cells, level L = L * cells). */
 void cx_scene_cells(const cx_scene *s, int level, int cells[3]);
+/* twoblocks: the lower body's cell counts of a level (level x cells_lower). */
+void cx_scene_cells_lower(const cx_scene *s, int level, int cells[3]);
 
 /* Generate the mesh, assemble, apply supports and loads, build contact:
  * the problem at a level (level <= 0: the scene's default). */
