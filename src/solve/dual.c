@@ -1,0 +1,176 @@
+/* The dual operator of paper 000 §5 (dual_impl.h): one Cholesky factor of
+ * K per session in the operator cache, products A x = B K^-1 B' x, the
+ * right-hand side b, alpha_max, and the box helpers of the dual methods. */
+#include "solve/dual_impl.h"
+
+#include <math.h>
+#include <string.h>
+
+struct cx_dual {
+    const cx_problem *p;   /* the session's problem (borrowed) */
+    cx_fact *K;            /* Cholesky of K */
+    cx_counters *cnt;      /* the session's run counters (borrowed) */
+    double *uf;            /* n: K^-1 f */
+    double *b;             /* m + nt: B K^-1 f - c */
+    double *w;             /* n: workspace of the products */
+    double *v0, *v1;       /* m + nt: power-method vectors */
+    double amax[2];        /* lambda_max of A: normal only / with tangential; 0 = not yet */
+};
+
+static void dual_destroy(void *obj)
+{
+    cx_dual *D = obj;
+    if (!D)
+        return;
+    cx_fact_destroy(&D->K);
+    cx_free(D->uf);
+    cx_free(D->b);
+    cx_free(D->w);
+    cx_free(D->v0);
+    cx_free(D->v1);
+    cx_free(D);
+}
+
+static int dual_build(void **obj, const cx_problem *p, const void *arg, cx_counters *cnt, cx_diag *d)
+{
+    (void)arg;
+    int nd = p->m + p->nt, st;
+    cx_dual *D = CX_NEW(cx_dual, 1);
+    if (!D)
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    D->p = p;
+    D->cnt = cnt;
+    D->uf = CX_NEW(double, p->n);
+    D->b = CX_NEW(double, nd);
+    D->w = CX_NEW(double, p->n);
+    D->v0 = CX_NEW(double, nd);
+    D->v1 = CX_NEW(double, nd);
+    if (!D->uf || !D->b || !D->w || !D->v0 || !D->v1) {
+        dual_destroy(D);
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    }
+    if ((st = cx_fact_create(&D->K, CX_FACT_CHOLESKY, cnt, d)) || (st = cx_fact_analyze(D->K, &p->K, d)) ||
+        (st = cx_fact_factorize(D->K, &p->K, d))) {
+        dual_destroy(D);
+        if (st == CX_ENUMERIC)
+            return cx_diag_set(d, CX_EUNSUPPORTED,
+                               "the dual methods need K^-1, but K is not positive definite "
+                               "(a body held only by contact); use ssn-tresca");
+        return st;
+    }
+    if ((st = cx_fact_solve(D->K, p->f, D->uf, d))) {
+        dual_destroy(D);
+        return st;
+    }
+    cx_csc_gemv(&p->N, 1.0, D->uf, 0.0, D->b);
+    cx_csc_gemv(&p->T, 1.0, D->uf, 0.0, D->b + p->m);
+    for (int i = 0; i < p->m; i++)
+        D->b[i] -= p->g[i];
+    *obj = D;
+    return CX_OK;
+}
+
+int cx_dual_get(cx_session *s, cx_dual **D, cx_diag *d)
+{
+    void *obj = NULL;
+    CX_TRY(cx_session_cache_get(s, "dual:K", dual_build, NULL, dual_destroy, &obj, d));
+    *D = obj;
+    return CX_OK;
+}
+
+int cx_dual_size(const cx_dual *D, int tangential) { return D->p->m + (tangential ? D->p->nt : 0); }
+const double *cx_dual_rhs(const cx_dual *D) { return D->b; }
+const double *cx_dual_uf(const cx_dual *D) { return D->uf; }
+
+int cx_dual_apply(cx_dual *D, int tangential, const double *x, double *y, double *z)
+{
+    const cx_problem *p = D->p;
+    cx_csc_gemv_t(&p->N, 1.0, x, 0.0, D->w);
+    if (tangential)
+        cx_csc_gemv_t(&p->T, 1.0, x + p->m, 1.0, D->w);
+    CX_TRY(cx_fact_solve(D->K, D->w, z, NULL));
+    cx_csc_gemv(&p->N, 1.0, z, 0.0, y);
+    if (tangential)
+        cx_csc_gemv(&p->T, 1.0, z, 0.0, y + p->m);
+    if (D->cnt)
+        D->cnt->dual_products++;
+    return CX_OK;
+}
+
+int cx_dual_amax(cx_dual *D, int tangential, double *amax, cx_diag *d)
+{
+    int nd = cx_dual_size(D, tangential);
+    double *z;
+    if (D->amax[tangential] > 0) {
+        *amax = D->amax[tangential];
+        return CX_OK;
+    }
+    /* the products' K^-1 B' x is not needed: borrow a scratch n-vector */
+    z = CX_NEW(double, D->p->n);
+    if (!z)
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    for (int i = 0; i < nd; i++)
+        D->v0[i] = 1.0 + (double)(i % 7) / 7.0;   /* not orthogonal to the top eigenvector */
+    double nv = cx_vec_norm2(nd, D->v0), est = 0;
+    for (int i = 0; i < nd; i++)
+        D->v0[i] /= nv;
+    for (int k = 0; k < 200 && nd > 0; k++) {
+        int st = cx_dual_apply(D, tangential, D->v0, D->v1, z);
+        if (st) {
+            cx_free(z);
+            return cx_diag_set(d, st, "dual operator: a solve with K failed");
+        }
+        double e = cx_vec_dot(nd, D->v0, D->v1), n1 = cx_vec_norm2(nd, D->v1);
+        if (!(n1 > 0))
+            break;
+        for (int i = 0; i < nd; i++)
+            D->v0[i] = D->v1[i] / n1;
+        int done = k > 0 && fabs(e - est) <= 1e-4 * e;
+        est = e;
+        if (done)
+            break;
+    }
+    cx_free(z);
+    if (!(est > 0))
+        return cx_diag_set(d, CX_ENUMERIC, "dual operator: no positive eigenvalue (no contact rows?)");
+    D->amax[tangential] = est;
+    *amax = est;
+    return CX_OK;
+}
+
+void cx_dual_recover(const cx_dual *D, const double *z, double *u)
+{
+    for (int i = 0; i < D->p->n; i++)
+        u[i] = D->uf[i] - z[i];
+}
+
+void cx_dual_bounds(const cx_problem *p, int tangential, double *lo, double *hi)
+{
+    for (int i = 0; i < p->m; i++)
+        lo[i] = 0, hi[i] = INFINITY;
+    for (int i = 0; tangential && i < p->nt; i++)
+        lo[p->m + i] = -p->s[i], hi[p->m + i] = p->s[i];
+}
+
+void cx_dual_project(int nd, const double *lo, const double *hi, double *x)
+{
+    for (int i = 0; i < nd; i++)
+        x[i] = x[i] < lo[i] ? lo[i] : (x[i] > hi[i] ? hi[i] : x[i]);
+}
+
+double cx_dual_objective(int nd, const double *lambda, const double *g, const double *b)
+{
+    double q = 0;
+    for (int i = 0; i < nd; i++)
+        q += lambda[i] * (g[i] - b[i]);
+    return 0.5 * q;
+}
+
+void cx_dual_split(const cx_problem *p, int tangential, const double *lambda, double *lN, double *lT)
+{
+    memcpy(lN, lambda, sizeof(double) * (size_t)p->m);
+    if (tangential)
+        memcpy(lT, lambda + p->m, sizeof(double) * (size_t)p->nt);
+    else
+        memset(lT, 0, sizeof(double) * (size_t)p->nt);
+}
