@@ -149,8 +149,8 @@ static int mprgp_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     (void)d;
 
     mprgp_gradients(st, &gp2, &b2, &rp);
-    if (sqrt(gp2) <= st->eps * st->bnorm) {
-        it->own = st->bnorm > 0 ? sqrt(gp2) / st->bnorm : 0;
+    if (gp2 == 0) {
+        it->own = 0;
         it->own_done = 1;
         goto out;
     }
