@@ -7,10 +7,12 @@
 
 extern const cx_method cx_method_ssn_tresca;
 extern const cx_method cx_method_mprgp;
+extern const cx_method cx_method_ssn_tresca_dual;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
     &cx_method_mprgp,
+    &cx_method_ssn_tresca_dual,
     NULL
 };
 
