@@ -8,11 +8,13 @@
 extern const cx_method cx_method_ssn_tresca;
 extern const cx_method cx_method_mprgp;
 extern const cx_method cx_method_ssn_tresca_dual;
+extern const cx_method cx_method_ssn_tresca_glob;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
     &cx_method_mprgp,
     &cx_method_ssn_tresca_dual,
+    &cx_method_ssn_tresca_glob,
     NULL
 };
 
