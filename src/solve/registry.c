@@ -9,12 +9,14 @@ extern const cx_method cx_method_ssn_tresca;
 extern const cx_method cx_method_mprgp;
 extern const cx_method cx_method_ssn_tresca_dual;
 extern const cx_method cx_method_ssn_tresca_glob;
+extern const cx_method cx_method_ssn_coulomb;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
     &cx_method_mprgp,
     &cx_method_ssn_tresca_dual,
     &cx_method_ssn_tresca_glob,
+    &cx_method_ssn_coulomb,
     NULL
 };
 
