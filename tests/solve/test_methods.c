@@ -31,6 +31,10 @@ static const method_case cases[] = {
     {"slider", 2, CX_FRICTION_TRESCA, 1.5, 1e-12, 2, 15, 1e-8},
     {"slider", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
     {"block3d", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
+    {"twoblocks", 2, CX_FRICTION_TRESCA, 1.7e7, 1e-12, 2, 15, 1e-8},
+    {"twoblocks", 4, CX_FRICTION_TRESCA, 5e7, 1e-12, 2, 15, 1e-8},
+    {"twoblocks", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
+    {"twoblocks", 3, CX_FRICTION_COULOMB, 0.3, 1e-12, 1, 12, 1e-8},
 };
 
 /* ||u - v||_K / ||v||_K */
