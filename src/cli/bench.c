@@ -23,6 +23,7 @@ typedef struct bench_paper {
 /* One line per paper: the id, what it reproduces, its entry point
  * (cli/paper_NNN.c). */
 static const bench_paper bench_papers[] = {
+    {"000", "Tables 1-2: MPRGP and SNM1-4 (nK/kmax) on two blocks", cli_paper_000},
     {NULL, NULL, NULL}
 };
 

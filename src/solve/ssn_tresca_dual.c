@@ -14,13 +14,17 @@
  * Parameters give the columns of 000's Table 1: rho = 1 in problem units
  * (rho_unit=abs, SNM1/SNM2) or rho = 1/alpha_max (rho_unit=amax, SNM3);
  * inner precision fixed (||g_free|| <= inner_tol ||b||, SNM1) or adaptive
- * (SNM2/3). The paper's adaptive rule (its ref. [21]) is lost; ours is the
- * proportioning test of MPRGP (000 §6 says the rule is adopted from
- * Dostál's work): CG on the face goes on while ||beta|| <= Gamma ||g_free||,
- * beta the chopped gradient on the fixed components (the part of the
- * natural map that says the face is wrong), and stops when the face no
- * longer looks right or at inner_tol. Every outer iteration does at least
- * one CG step, so that a small rho cannot stall the sets. */
+ * (SNM2/3). The paper's adaptive rule (its ref. [21]) is lost; ours joins
+ * an inexact-Newton forcing term to the proportioning test of MPRGP (000
+ * §6 says the rule is adopted from Dostál's work): CG on the face stops
+ * when ||g_free|| <= eta ||g^P||, g^P the projected gradient of the outer
+ * iterate (so an outer iterate far from the solution is not solved to
+ * 1e-12 on a face that will change), or when ||beta|| > Gamma ||g_free||,
+ * beta the chopped gradient on the fixed components (the face no longer
+ * looks right), and never below inner_tol. The proportioning test alone
+ * stops too late (beta is zero right after the sets are chosen), which is
+ * why the forcing term is there. Every outer iteration does at least one
+ * CG step, so that a small rho cannot stall the sets. */
 #include "solve/dual_impl.h"
 
 #include <math.h>
@@ -41,7 +45,8 @@ typedef struct {
     double rho;         /* the sets' parameter (absolute) */
     int adaptive;       /* inner precision: 0 fixed, 1 adaptive */
     double inner_tol;   /* relative to ||b|| */
-    double gamma;       /* adaptive rule constant */
+    double gamma;       /* adaptive rule: proportioning constant */
+    double eta;         /* adaptive rule: forcing term */
     double eps;         /* own criterion */
     int max_inner;      /* CG steps per outer iteration */
     double bnorm;       /* ||b|| */
@@ -55,6 +60,8 @@ static const cx_param sdual_params[] = {
      "inner CG precision: fixed inner_tol (SNM1) or the adaptive MPRGP-like rule (SNM2/3)", 0},
     {"inner_tol", CX_PARAM_REAL, 1e-12, 1e-16, 1, NULL, "inner CG tolerance, relative to ||b||", 0},
     {"gamma", CX_PARAM_REAL, 1.0, 1e-6, 1e6, NULL, "adaptive rule: stop CG when ||beta|| > gamma ||g_free||", 0},
+    {"eta", CX_PARAM_REAL, 0.1, 0, 1, NULL,
+     "adaptive rule: stop CG when ||g_free|| <= eta ||projected gradient|| of the outer iterate", 0},
     {"eps", CX_PARAM_REAL, 1e-10, 1e-16, 1, NULL,
      "own stop: ||l^k - l^(k-1)|| / ||l^k|| <= eps (000: 1e-6)", 0},
     {"max_inner", CX_PARAM_INT, 10000, 1, 1e8, NULL, "CG steps per outer iteration at most", 0},
@@ -106,6 +113,7 @@ static int sdual_init(void *state, cx_session *s, const cx_param_values *params,
     st->adaptive = (int)cx_param_get(params, "inner") == 1;
     st->inner_tol = cx_param_get(params, "inner_tol");
     st->gamma = cx_param_get(params, "gamma");
+    st->eta = cx_param_get(params, "eta");
     st->eps = cx_param_get(params, "eps");
     st->max_inner = (int)cx_param_get(params, "max_inner");
     const double *b = cx_dual_rhs(st->D);
@@ -151,6 +159,14 @@ static int sdual_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
 
     cx_dual_bounds(p, st->tangential, st->lo, st->hi);
     memcpy(st->lprev, st->lambda, sizeof(double) * (size_t)nd);
+    /* the outer residual for the forcing term: ||l - P(l - g)||, the
+     * projected gradient in its natural-map form */
+    double r2 = 0;
+    for (int i = 0; i < nd; i++) {
+        double y = st->lambda[i] - st->g[i];
+        y = y < st->lo[i] ? st->lo[i] : (y > st->hi[i] ? st->hi[i] : y);
+        r2 += (st->lambda[i] - y) * (st->lambda[i] - y);
+    }
     int nfree = sdual_sets(st);
 
     /* fix the inactive components at their bounds (21): one product */
@@ -164,6 +180,8 @@ static int sdual_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     /* CG on the free face (Lemma 3) */
     long inner = 0;
     double f2, b2, tol2 = st->inner_tol * st->inner_tol * st->bnorm * st->bnorm;
+    if (st->adaptive && st->eta * st->eta * r2 > tol2)
+        tol2 = st->eta * st->eta * r2;
     sdual_norms(st, &f2, &b2);
     for (int i = 0; i < nd; i++)
         st->p[i] = st->set[i] == 0 ? -st->g[i] : 0;
