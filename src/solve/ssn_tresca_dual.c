@@ -14,7 +14,10 @@
  * Parameters give the columns of 000's Table 1: rho = 1 in problem units
  * (rho_unit=abs, SNM1/SNM2) or rho = 1/alpha_max (rho_unit=amax, SNM3);
  * inner precision fixed (||g_free|| <= inner_tol ||b||, SNM1) or adaptive
- * (SNM2/3). The paper's adaptive rule (its ref. [21]) is lost; ours joins
+ * (SNM2/3). The default is rho = 1/alpha_max with exact inner solves: it
+ * reaches kkt errors near 1e-13, where the adaptive runs, with many more
+ * cheap outer iterations, stall a little above 1e-12 on the rounding of
+ * the recursively updated gradient. The paper's adaptive rule (its ref. [21]) is lost; ours joins
  * an inexact-Newton forcing term to the proportioning test of MPRGP (000
  * §6 says the rule is adopted from Dostál's work): CG on the face stops
  * when ||g_free|| <= eta ||g^P||, g^P the projected gradient of the outer
@@ -56,7 +59,7 @@ static const cx_param sdual_params[] = {
     {"rho", CX_PARAM_REAL, 1.0, 1e-30, 1e30, NULL, "the sets' parameter rho (see rho_unit)", 0},
     {"rho_unit", CX_PARAM_CHOICE, 0, 0, 1, "amax|abs",
      "rho relative to 1/alpha_max (amax, SNM3) or in problem units (abs, SNM1/2)", 0},
-    {"inner", CX_PARAM_CHOICE, 1, 0, 1, "fixed|adaptive",
+    {"inner", CX_PARAM_CHOICE, 0, 0, 1, "fixed|adaptive",
      "inner CG precision: fixed inner_tol (SNM1) or the adaptive MPRGP-like rule (SNM2/3)", 0},
     {"inner_tol", CX_PARAM_REAL, 1e-12, 1e-16, 1, NULL, "inner CG tolerance, relative to ||b||", 0},
     {"gamma", CX_PARAM_REAL, 1.0, 1e-6, 1e6, NULL, "adaptive rule: stop CG when ||beta|| > gamma ||g_free||", 0},
