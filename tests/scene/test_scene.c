@@ -226,6 +226,9 @@ static const bad_case bad_cases[] = {
     {"obstacle_dim.ini", CX_EINVAL, 17, "key 'obstacle': expected plane|disc"},
     {"hertz_missing_r.ini", CX_EINVAL, 20, "section [hertz]: missing key 'R'"},
     {"body_force_length.ini", CX_EINVAL, 14, "key 'body_force': expected 2 numbers"},
+    {"master_with_obstacle.ini", CX_EINVAL, 19, "key 'obstacle': not used with 'master'"},
+    {"interface_outside.ini", CX_EINVAL, 10, "key 'interface': expected a number strictly between"},
+    {"unknown_master.ini", CX_EINVAL, 18, "unknown boundary 'roof' of generator twoblocks"},
     {"no_such_file.ini", CX_EIO, 0, "cannot open: No such file or directory"},
     {NULL, CX_EIO, 0, "cannot read"},
 };
