@@ -208,6 +208,65 @@ static void test_coulomb(void)
     cx_session_destroy(&s);
 }
 
+/* 000 §6: the globalised method decreases the dual objective
+ * q(l) = 1/2 l'A l - l'b at every outer iteration. With w = B'l = f - K u
+ * and u_f = K^-1 f: q = -1/2 w'(u_f + u) + lN'g. */
+typedef struct {
+    const double *uf;
+    double *w;
+    double q_prev;
+    int rises;
+} glob_watch;
+
+static int glob_observe(void *ctx, const cx_session *s, const cx_iterate *it)
+{
+    glob_watch *gw = ctx;
+    const cx_problem *p = cx_session_problem(s);
+    cx_csc_gemv(&p->K, -1.0, it->u, 0.0, gw->w);
+    cx_vec_axpy(p->n, 1.0, p->f, gw->w);
+    double q = 0;
+    for (int j = 0; j < p->n; j++)
+        q -= 0.5 * gw->w[j] * (gw->uf[j] + it->u[j]);
+    for (int i = 0; i < p->m; i++)
+        q += it->lN[i] * p->g[i];
+    if (q > gw->q_prev + 1e-12 * fabs(gw->q_prev))
+        gw->rises++;
+    gw->q_prev = q;
+    return 0;
+}
+
+static void test_glob_monotone(void)
+{
+    cx_scene sc;
+    cx_diag d;
+    cx_session *s = fixture_session("twoblocks", 6, &sc);
+    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 5e7, &d));
+    const cx_problem *p = cx_session_problem(s);
+    double *uf = malloc(sizeof(double) * (size_t)p->n), *w = malloc(sizeof(double) * (size_t)p->n);
+    cx_fact *F = NULL;
+    CX_CHECK_OK(cx_fact_create(&F, CX_FACT_CHOLESKY, NULL, &d));
+    CX_CHECK_OK(cx_fact_analyze(F, &p->K, &d));
+    CX_CHECK_OK(cx_fact_factorize(F, &p->K, &d));
+    CX_CHECK_OK(cx_fact_solve(F, p->f, uf, &d));
+    cx_fact_destroy(&F);
+    cx_options o;
+    cx_options_default(&o);
+    o.tol = 1e-12;
+    o.own_stop = 0;
+    /* rho = 20/alpha_max exceeds 2/alpha_max: the safeguard is exercised */
+    CX_CHECK_OK(cx_session_set_method(s, cx_method_find("ssn-tresca-glob"), NULL, &o, &d));
+    glob_watch gw = {uf, w, 0.0, 0};   /* q(0) = 0 */
+    CX_CHECK_OK(cx_solver_solve(s, glob_observe, &gw, &d));
+    const cx_iterate *it = cx_session_iterate(s);
+    fprintf(stderr, "glob: %d outer iterations, q = %.6e, %d rises\n", it->iter, gw.q_prev, gw.rises);
+    CX_CHECK(it->reason > 0 && it->iter > 2);
+    CX_CHECK(gw.rises == 0);
+    CX_CHECK(gw.q_prev < 0);
+    free(uf);
+    free(w);
+    cx_session_destroy(&s);
+}
+
 static void test_refusals(void)
 {
     cx_scene sc;
@@ -236,6 +295,7 @@ int main(void)
     test_nonmatching();
     test_variants();
     test_coulomb();
+    test_glob_monotone();
     test_refusals();
     return check_finish("solve_twoblocks");
 }
