@@ -77,7 +77,8 @@ static void test_nonmatching(void)
     const cx_iterate *it = run(s, "ssn-tresca", NULL, 1e-13, 0);
     CX_CHECK(it->reason > 0 && it->nstick > 0 && it->nslip > 0);
     int n = p->n, m = p->m;
-    double uref[64], lNref[16], lTref[16];
+    double uref[128], lNref[16], lTref[16];
+    CX_CHECK(n <= 128 && m <= 16);
     memcpy(uref, it->u, sizeof(double) * (size_t)n);
     memcpy(lNref, it->lN, sizeof(double) * (size_t)m);
     memcpy(lTref, it->lT, sizeof(double) * (size_t)m);
