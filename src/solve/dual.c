@@ -174,3 +174,38 @@ void cx_dual_split(const cx_problem *p, int tangential, const double *lambda, do
     else
         memset(lT, 0, sizeof(double) * (size_t)p->nt);
 }
+
+void cx_dual_gradients(int nd, const double *x, const double *g, const double *lo, const double *hi,
+                       double abar, double *phi, double *beta, double *gp2, double *b2, double *rp)
+{
+    *gp2 = *b2 = *rp = 0;
+    for (int i = 0; i < nd; i++) {
+        double b = 0, f = 0;
+        if (x[i] <= lo[i])
+            b = g[i] < 0 ? g[i] : 0;
+        else if (x[i] >= hi[i])
+            b = g[i] > 0 ? g[i] : 0;
+        else {
+            f = g[i];
+            double r = f > 0 ? fmin((x[i] - lo[i]) / abar, f) : fmax((x[i] - hi[i]) / abar, f);
+            *rp += r * f;
+        }
+        phi[i] = f;
+        if (beta)
+            beta[i] = b;
+        *b2 += b * b;
+        *gp2 += (f + b) * (f + b);
+    }
+}
+
+double cx_dual_max_step(int nd, const double *x, const double *p, const double *lo, const double *hi)
+{
+    double a = INFINITY;
+    for (int i = 0; i < nd; i++) {
+        if (p[i] > 0)
+            a = fmin(a, (x[i] - lo[i]) / p[i]);
+        else if (p[i] < 0)
+            a = fmin(a, (x[i] - hi[i]) / p[i]);
+    }
+    return a;
+}

@@ -53,6 +53,16 @@ void cx_dual_project(int nd, const double *lo, const double *hi, double *x);
 /* q(lambda) = 1/2 l'(g - b) with g = A l - b. */
 double cx_dual_objective(int nd, const double *lambda, const double *g, const double *b);
 
+/* MPRGP's gradients at x in the box (Dostál; research/seed_benchmarks.md
+ * §2.3): the free gradient phi (nd), the chopped gradient beta (nd, may be
+ * NULL), and *gp2 = ||g^P||^2, *b2 = ||beta||^2, *rp = phi~'phi with phi~
+ * the free gradient reduced for the steplength abar. */
+void cx_dual_gradients(int nd, const double *x, const double *g, const double *lo, const double *hi,
+                       double abar, double *phi, double *beta, double *gp2, double *b2, double *rp);
+
+/* The largest a >= 0 with lo <= x - a p <= hi (x feasible). */
+double cx_dual_max_step(int nd, const double *x, const double *p, const double *lo, const double *hi);
+
 /* Split the iterate into lN, lT for the cx_iterate (lT zero when the dual
  * has no tangential part). */
 void cx_dual_split(const cx_problem *p, int tangential, const double *lambda, double *lN, double *lT);

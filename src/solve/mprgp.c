@@ -62,27 +62,10 @@ static void mprgp_destroy(void *state)
     memset(st, 0, sizeof *st);
 }
 
-/* phi, beta and the reduced free gradient's phi~'phi at lambda (Dostál's
- * definitions with bounds lo, hi). Returns ||g^P||^2 in *gp2, ||beta||^2
- * in *b2 and phi~'phi in *rp. */
+/* phi, beta, ||g^P||^2, ||beta||^2 and phi~'phi at the iterate. */
 static void mprgp_gradients(mprgp_state *st, double *gp2, double *b2, double *rp)
 {
-    *gp2 = *b2 = *rp = 0;
-    for (int i = 0; i < st->nd; i++) {
-        double x = st->lambda[i], g = st->g[i];
-        st->phi[i] = st->beta[i] = 0;
-        if (x <= st->lo[i])
-            st->beta[i] = g < 0 ? g : 0;
-        else if (x >= st->hi[i])
-            st->beta[i] = g > 0 ? g : 0;
-        else {
-            st->phi[i] = g;
-            double r = g > 0 ? fmin((x - st->lo[i]) / st->abar, g) : fmax((x - st->hi[i]) / st->abar, g);
-            *rp += r * g;
-        }
-        *b2 += st->beta[i] * st->beta[i];
-        *gp2 += (st->phi[i] + st->beta[i]) * (st->phi[i] + st->beta[i]);
-    }
+    cx_dual_gradients(st->nd, st->lambda, st->g, st->lo, st->hi, st->abar, st->phi, st->beta, gp2, b2, rp);
 }
 
 static int mprgp_init(void *state, cx_session *s, const cx_param_values *params, cx_diag *d)
@@ -160,13 +143,8 @@ static int mprgp_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
         double pAp = cx_vec_dot(nd, st->p, st->Ap);
         if (!(pAp > 0))
             return cx_diag_set(d, CX_ENUMERIC, "mprgp: p'Ap = %g is not positive", pAp);
-        double acg = cx_vec_dot(nd, st->g, st->p) / pAp, af = INFINITY;
-        for (int i = 0; i < nd; i++) {
-            if (st->p[i] > 0)
-                af = fmin(af, (st->lambda[i] - st->lo[i]) / st->p[i]);
-            else if (st->p[i] < 0)
-                af = fmin(af, (st->lambda[i] - st->hi[i]) / st->p[i]);
-        }
+        double acg = cx_vec_dot(nd, st->g, st->p) / pAp;
+        double af = cx_dual_max_step(nd, st->lambda, st->p, st->lo, st->hi);
         if (acg <= af) {
             mprgp_move(st, n, acg);
             mprgp_gradients(st, &gp2, &b2, &rp);

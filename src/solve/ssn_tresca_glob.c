@@ -125,25 +125,10 @@ static void glob_accept(glob_state *st, int n)
     cx_vec_axpy(n, 1.0, st->zp, st->z);
 }
 
-/* Free gradient phi; returns ||g^P||^2, ||beta||^2 and phi~'phi. */
+/* Free gradient phi; ||g^P||^2, ||beta||^2 and phi~'phi. */
 static void glob_gradients(glob_state *st, double *gp2, double *b2, double *rp)
 {
-    *gp2 = *b2 = *rp = 0;
-    for (int i = 0; i < st->nd; i++) {
-        double x = st->lambda[i], g = st->g[i], beta = 0;
-        st->phi[i] = 0;
-        if (x <= st->lo[i])
-            beta = g < 0 ? g : 0;
-        else if (x >= st->hi[i])
-            beta = g > 0 ? g : 0;
-        else {
-            st->phi[i] = g;
-            double r = g > 0 ? fmin((x - st->lo[i]) / st->abar, g) : fmax((x - st->hi[i]) / st->abar, g);
-            *rp += r * g;
-        }
-        *b2 += beta * beta;
-        *gp2 += (st->phi[i] + beta) * (st->phi[i] + beta);
-    }
+    cx_dual_gradients(st->nd, st->lambda, st->g, st->lo, st->hi, st->abar, st->phi, NULL, gp2, b2, rp);
 }
 
 static int glob_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
@@ -174,13 +159,8 @@ static int glob_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
         double pAp = cx_vec_dot(nd, st->p, st->Ap);
         if (!(pAp > 0))
             return cx_diag_set(d, CX_ENUMERIC, "ssn-tresca-glob: p'Ap = %g is not positive", pAp);
-        double acg = cx_vec_dot(nd, st->g, st->p) / pAp, af = INFINITY;
-        for (int i = 0; i < nd; i++) {
-            if (st->p[i] > 0)
-                af = fmin(af, (st->lambda[i] - st->lo[i]) / st->p[i]);
-            else if (st->p[i] < 0)
-                af = fmin(af, (st->lambda[i] - st->hi[i]) / st->p[i]);
-        }
+        double acg = cx_vec_dot(nd, st->g, st->p) / pAp;
+        double af = cx_dual_max_step(nd, st->lambda, st->p, st->lo, st->hi);
         double a = acg <= af ? acg : af;
         cx_vec_axpy(nd, -a, st->p, st->lambda);
         cx_vec_axpy(nd, -a, st->Ap, st->g);
