@@ -343,6 +343,10 @@ static int act_next_method(tui_state *st)
         int i = (st->sel_method + k) % n;
         if (!tui_state_method_reason(st, i, reason, sizeof reason)[0]) {
             st->field = TUI_F_METHOD;
+            if (i == st->sel_method) {
+                tui_msg(st, 0, "%s is the only method that fits this scene", cx_method_at(i)->id);
+                return TUI_REDRAW;
+            }
             return select_method(st, i);
         }
     }

@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""The explorer end to end in a real terminal: tmux on a private socket,
+a fixed size, keys sent, the pane captured and polled (no fixed sleeps).
+Checks: the scene name; N step keys give iteration N and a falling kkt;
+switching method, parameter and friction keeps "factorised: 1"; the
+contact strip shows stick and slip on 'slider' with Tresca; '?' shows the
+help; a resize to 40x12 says "terminal too small" and back redraws; 'q'
+and Ctrl-C exit 0 with the terminal restored; ASCII without a UTF-8
+locale."""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+exe = os.path.abspath(sys.argv[1])
+failures = 0
+checks = 0
+if not shutil.which("tmux"):
+    print("tmux not found (scripts/bootstrap.sh installs it)")
+    sys.exit(1)
+
+sock = f"signorini-tui-{os.getpid()}"
+conf = tempfile.NamedTemporaryFile("w", suffix=".conf", delete=False)
+conf.write("set -g remain-on-exit on\nset -g status off\n")
+conf.close()
+workdir = tempfile.mkdtemp(prefix="signorini-tui-")
+
+
+def tmux(*args, check=True):
+    r = subprocess.run(["tmux", "-L", sock, "-f", conf.name, *args], capture_output=True, text=True, timeout=30)
+    if check and r.returncode != 0:
+        raise RuntimeError(f"tmux {args}: {r.stderr}")
+    return r.stdout
+
+
+def check(cond, what):
+    global failures, checks
+    checks += 1
+    if not cond:
+        failures += 1
+        print(f"FAIL: {what}")
+        print(screen())
+
+
+def screen():
+    return tmux("capture-pane", "-t", "t", "-p", check=False)
+
+
+def wait_for(pred, what, timeout=30.0):
+    """Poll the pane until pred(text) holds; False after the timeout."""
+    end = time.time() + timeout
+    while time.time() < end:
+        text = screen()
+        if pred(text):
+            return True
+        time.sleep(0.05)
+    check(False, f"timed out waiting for {what}")
+    return False
+
+
+def has(s):
+    return lambda text: s in text
+
+
+def pane(fmt):
+    return tmux("display-message", "-p", "-t", "t", fmt).strip()
+
+
+def start(cmd, lang="C.UTF-8", x=80, y=24):
+    tmux("kill-server", check=False)
+    env = f"LANG={lang} LC_ALL={lang} SIGNORINI_SCENES={os.environ.get('SIGNORINI_SCENES', '')}"
+    tmux("new-session", "-d", "-s", "t", "-x", str(x), "-y", str(y), "-c", workdir, f"env {env} {cmd}")
+
+
+def keys(*k):
+    tmux("send-keys", "-t", "t", *k)
+
+
+def steps(text):
+    """(iteration, kkt) of the rows of the step table."""
+    rows = []
+    for line in text.splitlines():
+        m = re.match(r".{23}\s+(\d+) (\d\.\de[+-]\d\d) ", line)
+        if m:
+            rows.append((int(m.group(1)), float(m.group(2))))
+    return rows
+
+
+def exited_cleanly():
+    # the pty closes before tmux reaps the process: wait for the status
+    wait_for(lambda t: pane("#{pane_dead}") == "1" and pane("#{pane_dead_status}#{pane_dead_signal}") != "",
+             "the explorer to exit", 15)
+    check(pane("#{pane_dead_status}") == "0", f"exit status 0, got {pane('#{pane_dead_status}')}")
+    check(pane("#{alternate_on}") == "0", "the terminal left the alternate screen")
+
+
+try:
+    # ---- 'signorini' alone: the explorer on hertz --------------------------
+    start(exe)
+    wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
+    check("factorised: 1" in screen(), "factorised: 1 after the build")
+
+    # ---- N step keys: iteration N, the kkt falls ---------------------------
+    for _ in range(5):
+        keys("s")
+    wait_for(lambda t: any(i == 5 for i, _ in steps(t)), "iteration 5")
+    rows = dict(steps(screen()))
+    check(max(rows) == 5, f"iteration counter 5: {sorted(rows)}")
+    check(rows.get(5, 1) < rows.get(1, 0), f"kkt falls from step 1 to 5: {rows}")
+
+    # ---- method, parameter, friction: factorised once -----------------------
+    keys("m")                     # next method that fits
+    wait_for(lambda t: "ready (nothing reassembled)" in t or "the only method" in t, "the method switch")
+    check("factorised: 1" in screen(), "factorised: 1 after a method switch")
+    keys("Down", "Down", "Down", "Right")   # method -> tol -> max iter -> rho, x2
+    wait_for(lambda t: re.search(r"rho\s+.0\.002", t) is not None, "rho 0.002")
+    keys("f")                     # Tresca
+    wait_for(lambda t: "tresca" in t.splitlines()[0], "Tresca in the header")
+    keys("r")
+    wait_for(has("converged"), "the Tresca run to converge")
+    check("factorised: 1" in screen(), "factorised: 1 after parameter and friction changes")
+
+    # ---- help ----------------------------------------------------------------
+    keys("?")
+    wait_for(has("help: keys of the explorer"), "the help overlay")
+    check("quit" in screen() and "one iteration" in screen(), "the help lists the keys")
+    keys("Escape")
+    wait_for(lambda t: "help: keys" not in t, "the help to close")
+
+    # ---- resize down and back -------------------------------------------------
+    tmux("resize-window", "-t", "t", "-x", "40", "-y", "12")
+    wait_for(has("terminal too small"), "'terminal too small' at 40x12")
+    tmux("resize-window", "-t", "t", "-x", "80", "-y", "24")
+    wait_for(has("factorised: 1"), "the full screen back at 80x24")
+    check(pane("#{pane_dead}") == "0", "alive after the resizes")
+
+    # ---- export ----------------------------------------------------------------
+    keys("e")
+    wait_for(has("runs written to"), "the export")
+    check(os.path.exists(os.path.join(workdir, "signorini-hertz-L32-runs.csv")), "the CSV is written")
+    check(os.path.exists(os.path.join(workdir, "signorini-hertz-L32-runs.json")), "the JSON is written")
+
+    # ---- slider with Tresca: stick and slip in the strip --------------------------
+    keys("n")                     # the next scene: slider
+    wait_for(lambda t: "slider L4" in t and "built in" in t, "slider to be built")
+    keys("r")
+    wait_for(has("converged"), "the slider run to converge")
+    strip = [l for l in screen().splitlines() if "pts" in l and "dofs" not in l]
+    check(len(strip) == 1 and "●" in strip[0] and ("▶" in strip[0] or "◀" in strip[0]),
+          f"stick and slip symbols in the strip: {strip}")
+
+    # ---- q: exit 0, terminal restored -------------------------------------------
+    keys("q")
+    exited_cleanly()
+
+    # ---- Ctrl-C on a large terminal, monochrome ---------------------------------------
+    start(f"{exe} tui slider --mono", x=160, y=48)
+    wait_for(has("built in"), "slider at 160x48")
+    check("deformed mesh" in screen(), "the mesh view beside the plot on a wide terminal")
+    keys("C-c")
+    exited_cleanly()
+
+    # ---- no UTF-8 locale: ASCII -------------------------------------------------
+    start(f"{exe} tui slider", lang="C")
+    wait_for(has("built in"), "slider in the C locale")
+    keys("r")
+    wait_for(has("converged"), "the run in ASCII")
+    text = screen()
+    strip = [l for l in text.splitlines() if "pts" in l and "dofs" not in l]
+    check(len(strip) == 1 and "o" in strip[0] and (">" in strip[0] or "<" in strip[0]),
+          f"ASCII stick and slip symbols: {strip}")
+    check(all(ord(c) < 128 for c in text), "only ASCII on the screen")
+    keys("q")
+    exited_cleanly()
+finally:
+    tmux("kill-server", check=False)
+    os.unlink(conf.name)
+    shutil.rmtree(workdir, ignore_errors=True)
+
+print(f"tui: {checks} checks, {failures} failed")
+sys.exit(1 if failures else 0)
