@@ -104,7 +104,10 @@ static void draw_header(const tui_state *st, int cols)
     char left[512], right[64], pad[1024];
     const tui_run *run = tui_state_run(st);
     const char *bar = sym("│", "|");
-    snprintf(left, sizeof left, " signorini %s %s L%d %dD %s %d dofs %d pts %s %s %s", bar, st->scene.id, st->level,
+    if (!st->have_info)
+        snprintf(left, sizeof left, " signorini %s %s %s building level %d", bar, st->scene.id, bar, st->sel_level);
+    else
+        snprintf(left, sizeof left, " signorini %s %s L%d %dD %s %d dofs %d pts %s %s %s", bar, st->scene.id, st->level,
              st->info.dim, bar, st->info.n, st->info.m, bar, run ? run->method : "-",
              cx_friction_name(st->cur_law));
     /* the counter that shows nothing was refactorised stays visible */
@@ -255,7 +258,7 @@ static int draw_steps(const tui_state *st, draw_box b)
 {
     const tui_run *run = tui_state_run(st);
     int y = b.y;
-    int wide = b.w >= 72;
+    int wide = b.w >= 82;
     const char *hdr = wide ? "iter   kkt error   own crit.  free cont stick slip chg  inner K-solves   time ms"
                            : "iter     kkt     own  fr  ct  st  sl  ch  inn   nK   ms";
     tui_term_put(y++, b.x, TUI_C_LABEL, hdr, b.w);
@@ -607,7 +610,7 @@ static void draw_help(int rows, int cols)
         n++;
     int ncol = n + 4 > rows - 2 ? 2 : 1;
     int per = (n + ncol - 1) / ncol;
-    int cw = 38;
+    int cw = (cols - 2) / ncol < 44 ? (cols - 2) / ncol : 44;
     int w = ncol * cw + 2, h = per + 4;
     if (w > cols)
         w = cols;

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static const char tui_usage[] =
     "usage: signorini [tui [SCENE] [options]]\n"
@@ -187,6 +188,11 @@ int tui_main(int argc, char **argv)
         }
     }
     tui_term_close();
+    if (tui_state_busy(&st)) {
+        /* a build cannot be interrupted: leave it to the exit */
+        fflush(stdout);
+        _exit(0);
+    }
     if (a.stats)
         printf("explorer: %d redraws, median %.3f ms; %d run steps, median %.3f ms\n", ndraw,
                1e3 * median(draw_t, ndraw), nstep, 1e3 * median(step_t, nstep));
