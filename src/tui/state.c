@@ -280,7 +280,7 @@ static void job_start(tui_state *st, int kind)
     j->coef = state_sel_coef(st);
     j->session = NULL;
     atomic_store(&j->phase, TUI_PHASE_IDLE);
-    st->running = 0;
+    /* 'running' is kept: a run asked for during the job starts after it */
     if (!st->sync) {
         pthread_t *t = malloc(sizeof *t);
         if (t && pthread_create(t, NULL, job_thread, st) == 0) {

@@ -57,7 +57,9 @@ def wait_for(pred, what, timeout=30.0):
         if pred(text):
             return True
         time.sleep(0.05)
-    check(False, f"timed out waiting for {what}")
+    state = tmux("display-message", "-p", "-t", "t",
+                 "dead=#{pane_dead} status=#{pane_dead_status} signal=#{pane_dead_signal}", check=False)
+    check(False, f"timed out waiting for {what} ({state.strip()})")
     return False
 
 
@@ -69,10 +71,18 @@ def pane(fmt):
     return tmux("display-message", "-p", "-t", "t", fmt).strip()
 
 
+rcfile = os.path.join(workdir, "rc")
+
+
 def start(cmd, lang="C.UTF-8", x=80, y=24):
+    """Run cmd in a new pane; its exit status goes to rcfile (tmux's own
+    pane_dead_status is not always filled in when run under meson)."""
     tmux("kill-server", check=False)
+    if os.path.exists(rcfile):
+        os.unlink(rcfile)
     env = f"LANG={lang} LC_ALL={lang} SIGNORINI_SCENES={os.environ.get('SIGNORINI_SCENES', '')}"
-    tmux("new-session", "-d", "-s", "t", "-x", str(x), "-y", str(y), "-c", workdir, f"env {env} {cmd}")
+    tmux("new-session", "-d", "-s", "t", "-x", str(x), "-y", str(y), "-c", workdir,
+         f"env {env} {cmd}; echo $? > {rcfile}.tmp && mv {rcfile}.tmp {rcfile}")
 
 
 def keys(*k):
@@ -89,12 +99,12 @@ def steps(text):
     return rows
 
 
-def exited_cleanly():
-    # the pty closes before tmux reaps the process: wait for the status
-    wait_for(lambda t: pane("#{pane_dead}") == "1" and pane("#{pane_dead_status}#{pane_dead_signal}") != "",
-             "the explorer to exit", 15)
-    check(pane("#{pane_dead_status}") == "0", f"exit status 0, got {pane('#{pane_dead_status}')}")
-    check(pane("#{alternate_on}") == "0", "the terminal left the alternate screen")
+def exited_cleanly(how):
+    if wait_for(lambda t: os.path.exists(rcfile), f"the explorer to exit after {how}", 30):
+        with open(rcfile) as f:
+            rc = f.read().strip()
+        check(rc == "0", f"exit status 0 after {how}, got {rc}")
+        check(pane("#{alternate_on}") == "0", f"the terminal left the alternate screen after {how}")
 
 
 try:
@@ -154,14 +164,14 @@ try:
 
     # ---- q: exit 0, terminal restored -------------------------------------------
     keys("q")
-    exited_cleanly()
+    exited_cleanly("q")
 
     # ---- Ctrl-C on a large terminal, monochrome ---------------------------------------
     start(f"{exe} tui slider --mono", x=160, y=48)
     wait_for(has("built in"), "slider at 160x48")
     check("deformed mesh" in screen(), "the mesh view beside the plot on a wide terminal")
     keys("C-c")
-    exited_cleanly()
+    exited_cleanly("Ctrl-C")
 
     # ---- no UTF-8 locale: ASCII -------------------------------------------------
     start(f"{exe} tui slider", lang="C")
@@ -174,7 +184,7 @@ try:
           f"ASCII stick and slip symbols: {strip}")
     check(all(ord(c) < 128 for c in text), "only ASCII on the screen")
     keys("q")
-    exited_cleanly()
+    exited_cleanly("q in ASCII")
 finally:
     tmux("kill-server", check=False)
     os.unlink(conf.name)
