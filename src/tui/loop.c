@@ -24,7 +24,7 @@ static const char tui_usage[] =
     "  --export-dir DIR     where 'e' writes the runs (default: .)\n"
     "  --keys KEYS          type these keys first, one whenever idle (tests)\n"
     "  --frames N           quit after N frames (tests)\n"
-    "  --stats              on exit, print the median redraw and step times\n";
+    "  --stats              on exit, print the median redraw and step times (stderr)\n";
 
 static volatile sig_atomic_t loop_quit;
 
@@ -194,7 +194,7 @@ int tui_main(int argc, char **argv)
         _exit(0);
     }
     if (a.stats)
-        printf("explorer: %d redraws, median %.3f ms; %d run steps, median %.3f ms\n", ndraw,
+        fprintf(stderr, "explorer: %d redraws, median %.3f ms; %d run steps, median %.3f ms\n", ndraw,
                1e3 * median(draw_t, ndraw), nstep, 1e3 * median(step_t, nstep));
     tui_state_clear(&st);
     return 0;
