@@ -272,11 +272,13 @@ static int edit_key(tui_state *st, int key)
 
 static int act_step(tui_state *st)
 {
+    st->running = 0;
     if (tui_state_busy(st)) {
-        tui_msg(st, 0, "busy: the step waits for the build");
+        /* typed ahead: done in order when the job ends */
+        if (st->queued_steps < 1000)
+            st->queued_steps++;
         return TUI_REDRAW;
     }
-    st->running = 0;
     st->msg[0] = '\0';
     tui_state_step(st);
     return TUI_REDRAW;

@@ -123,16 +123,19 @@ static const char *const spinner_utf8[] = {"⠋", "⠙", "⠹", "⠸", "⠼", "�
 static void draw_status(const tui_state *st, int rows, int cols)
 {
     int y = rows - 1;
-    if (tui_state_busy(st)) {
-        double t = cx_clock_now() - st->job.t0;
+    double t = cx_clock_now() - st->job.t0;
+    /* a step shows progress only when it is slow */
+    if (tui_state_busy(st) && (st->job.kind != TUI_JOB_STEP || t > 0.25)) {
         int ph = atomic_load(&((tui_state *)st)->job.phase);
         const char *what = ph == TUI_PHASE_ASSEMBLE ? "assembling K and the contact rows"
                            : ph == TUI_PHASE_FACTORISE ? "factorising (method setup)"
+                           : ph == TUI_PHASE_STEP      ? "one iteration"
                                                        : "starting";
         const char *spin = draw_utf8 ? spinner_utf8[(int)(t * 10) % 10]
                                      : (char[]){spinner_ascii[(int)(t * 10) % 4], 0};
         put(y, 0, TUI_C_WARN, cols, "%s %s level %d: %s... %.1f s (keys still work)", spin,
-            st->job.kind == TUI_JOB_BUILD ? st->scene.id : "switching", st->job.level, what, t);
+            st->job.kind == TUI_JOB_BUILD ? st->scene.id : st->job.kind == TUI_JOB_STEP ? "stepping" : "switching",
+            st->job.kind == TUI_JOB_STEP ? st->level : st->job.level, what, t);
         return;
     }
     if (st->editing) {

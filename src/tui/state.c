@@ -221,6 +221,8 @@ static void state_take_session(tui_state *st)
     st->cur_coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
 }
 
+static void state_after_step(tui_state *st, int status, const cx_diag *d);
+
 /* ---- jobs ---------------------------------------------------------------- */
 
 /* Runs on the worker (or inline): touches only the job, the scene (read)
@@ -243,6 +245,9 @@ static void job_run(tui_state *st)
             atomic_store(&j->phase, TUI_PHASE_FACTORISE);
             j->status = cx_session_set_method(j->session, j->method, &j->params, &j->opt, &j->diag);
         }
+    } else if (j->kind == TUI_JOB_STEP) {
+        atomic_store(&j->phase, TUI_PHASE_STEP);
+        j->status = cx_solver_step(st->session, &j->diag);
     } else if (j->kind == TUI_JOB_RESOLVE) {
         cx_session *s = st->session;
         const cx_problem *p = cx_session_problem(s);
@@ -293,6 +298,20 @@ static void job_start(tui_state *st, int kind)
     tui_state_poll(st);
 }
 
+/* What arrived during a job: changes first, then typed-ahead steps. */
+static void state_after_job(tui_state *st)
+{
+    if (st->pending) {
+        int r = st->pending;
+        st->pending = 0;
+        tui_state_apply(st, r);
+    }
+    if (st->queued_steps > 0 && !tui_state_busy(st) && st->session) {
+        st->queued_steps--;
+        tui_state_step(st);
+    }
+}
+
 int tui_state_poll(tui_state *st)
 {
     tui_job *j = &st->job;
@@ -305,6 +324,11 @@ int tui_state_poll(tui_state *st)
     }
     int kind = j->kind;
     j->kind = TUI_JOB_NONE;
+    if (kind == TUI_JOB_STEP) {
+        state_after_step(st, j->status, &j->diag);
+        state_after_job(st);
+        return 1;
+    }
     if (kind == TUI_JOB_BUILD) {
         if (j->status == CX_OK || j->session) {
             cx_session_destroy(&st->session);
@@ -339,11 +363,7 @@ int tui_state_poll(tui_state *st)
                 st->level, st->info.n, st->info.m, st->build_time);
     else
         tui_msg(st, 0, "%s ready (nothing reassembled)", st->cur_method ? st->cur_method->id : "-");
-    if (st->pending) {
-        int r = st->pending;
-        st->pending = 0;
-        tui_state_apply(st, r);
-    }
+    state_after_job(st);
     return 1;
 }
 
@@ -431,18 +451,25 @@ void tui_state_step(tui_state *st)
     const cx_iterate *it = cx_session_iterate(st->session);
     if (it->reason != CX_ITERATING) {
         st->running = 0;
+        st->queued_steps = 0;
         tui_msg(st, it->reason < 0, "run ended (%s); x starts again", cx_reason_str(it->reason));
         return;
     }
-    cx_diag d;
-    cx_diag_clear(&d);
-    int status = cx_solver_step(st->session, &d);
+    /* the step runs as a job: a slow method or a large level never
+     * freezes the screen */
+    job_start(st, TUI_JOB_STEP);
+}
+
+/* After a step (main thread): the history, the snapshot, the outcome. */
+static void state_after_step(tui_state *st, int status, const cx_diag *d)
+{
+    const cx_iterate *it = cx_session_iterate(st->session);
     tui_run *run = &st->runs[st->nruns - 1];
     run_append(run, it);
     state_snapshot(st);
     if (status != CX_OK) {
         st->running = 0;
-        tui_msg(st, 1, "%s", cx_diag_msg(&d, status));
+        tui_msg(st, 1, "%s", cx_diag_msg(d, status));
         return;
     }
     if (it->reason != CX_ITERATING) {

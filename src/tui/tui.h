@@ -8,8 +8,8 @@
  * term.c includes curses, so the state and the actions are tested without
  * a terminal (tests/tui/test_actions.c).
  *
- * Building a level (assembly and the first factorisation) and switching
- * method run as a job, on a worker thread in the program and inline in the
+ * Building a level (assembly and the first factorisation), switching
+ * method and each step run as a job, on a worker thread in the program and inline in the
  * tests; while a job runs, the main thread does not touch the session and
  * draws from the state's own copies (snapshot and history). Errors never
  * end the program: they go to the status line (st->msg). */
@@ -88,8 +88,8 @@ typedef struct tui_run {
 
 /* ---- jobs ---------------------------------------------------------------- */
 
-enum { TUI_JOB_NONE, TUI_JOB_BUILD, TUI_JOB_RESOLVE };
-enum { TUI_PHASE_IDLE, TUI_PHASE_ASSEMBLE, TUI_PHASE_FACTORISE, TUI_PHASE_DONE };
+enum { TUI_JOB_NONE, TUI_JOB_BUILD, TUI_JOB_RESOLVE, TUI_JOB_STEP };
+enum { TUI_PHASE_IDLE, TUI_PHASE_ASSEMBLE, TUI_PHASE_FACTORISE, TUI_PHASE_STEP, TUI_PHASE_DONE };
 
 typedef struct tui_job {
     int kind;
@@ -145,6 +145,7 @@ typedef struct tui_state {
     tui_job job;
     void *worker;             /* pthread_t *, when a worker thread runs */
     int pending;              /* reactions that arrived during a job */
+    int queued_steps;         /* step keys that arrived during a job */
 
     /* what panels draw (copies, safe while a job runs) */
     int m;                    /* contact points of the snapshot */
@@ -193,8 +194,9 @@ void tui_state_apply(tui_state *st, int reactions);
 int tui_state_poll(tui_state *st);
 int tui_state_busy(const tui_state *st);
 
-/* One step of the current method (nothing if busy or the run ended);
- * appends to the history and refreshes the snapshot. */
+/* One step of the current method (nothing if busy or the run ended), as
+ * a job; when it ends, tui_state_poll appends it to the history and
+ * refreshes the snapshot (at once when sync). */
 void tui_state_step(tui_state *st);
 
 /* Start the current method again (a new run; nothing rebuilt). */

@@ -22,7 +22,10 @@ if not shutil.which("tmux"):
     print("tmux not found (scripts/bootstrap.sh installs it)")
     sys.exit(1)
 
-sock = f"signorini-tui-{os.getpid()}"
+# one private server per start: a new server on a socket whose server was
+# just killed can fail with "server exited unexpectedly"
+sock = None
+nstarts = 0
 conf = tempfile.NamedTemporaryFile("w", suffix=".conf", delete=False)
 conf.write("set -g remain-on-exit on\nset -g status off\n")
 conf.close()
@@ -77,7 +80,11 @@ rcfile = os.path.join(workdir, "rc")
 def start(cmd, lang="C.UTF-8", x=80, y=24):
     """Run cmd in a new pane; its exit status goes to rcfile (tmux's own
     pane_dead_status is not always filled in when run under meson)."""
-    tmux("kill-server", check=False)
+    global sock, nstarts
+    if sock:
+        tmux("kill-server", check=False)
+    nstarts += 1
+    sock = f"signorini-tui-{os.getpid()}-{nstarts}"
     if os.path.exists(rcfile):
         os.unlink(rcfile)
     env = f"LANG={lang} LC_ALL={lang} SIGNORINI_SCENES={os.environ.get('SIGNORINI_SCENES', '')}"
@@ -186,7 +193,8 @@ try:
     keys("q")
     exited_cleanly("q in ASCII")
 finally:
-    tmux("kill-server", check=False)
+    if sock:
+        tmux("kill-server", check=False)
     os.unlink(conf.name)
     shutil.rmtree(workdir, ignore_errors=True)
 
