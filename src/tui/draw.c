@@ -107,9 +107,8 @@ static void draw_header(const tui_state *st, int cols)
     if (!st->have_info)
         snprintf(left, sizeof left, " signorini %s %s %s building level %d", bar, st->scene.id, bar, st->sel_level);
     else
-        snprintf(left, sizeof left, " signorini %s %s L%d %dD %s %d dofs %d pts %s %s %s", bar, st->scene.id, st->level,
-             st->info.dim, bar, st->info.n, st->info.m, bar, run ? run->method : "-",
-             cx_friction_name(st->cur_law));
+        snprintf(left, sizeof left, " signorini %s %s L%d %dD %d dofs %d pts %s %s %s", bar, st->scene.id, st->level,
+             st->info.dim, st->info.n, st->info.m, bar, run ? run->method : "-", cx_friction_name(st->cur_law));
     /* the counter that shows nothing was refactorised stays visible */
     int rw = snprintf(right, sizeof right, " %s factorised: %ld ", bar, st->cache.factorizations);
     snprintf(pad, sizeof pad, "%-*s", cols, left);

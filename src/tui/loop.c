@@ -62,7 +62,9 @@ static int loop_parse(int argc, char **argv, loop_args *a)
             a->ascii = 1;
         } else if (strcmp(o, "--stats") == 0) {
             a->stats = 1;
-        } else if (o[0] == '-' && o[1] == '-' && !v) {
+        } else if (!v && (strcmp(o, "--level") == 0 || strcmp(o, "--frames") == 0 || strcmp(o, "--method") == 0 ||
+                          strcmp(o, "--friction") == 0 || strcmp(o, "--keys") == 0 ||
+                          strcmp(o, "--export-dir") == 0)) {
             fprintf(stderr, "signorini tui: option '%s' needs a value\n", o);
             return 1;
         } else if (strcmp(o, "--level") == 0 || strcmp(o, "--frames") == 0) {

@@ -555,9 +555,10 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
     state_select_scene_defaults(st);
     if (level > 0) {
         if (level > st->scene.level_max) {
+            cx_diag_set(d, CX_EINVAL, "--level %d: scene '%s' allows 1 to %d", level, st->scene.id,
+                        st->scene.level_max);
             tui_state_clear(st);
-            return cx_diag_set(d, CX_EINVAL, "--level %d: scene '%s' allows 1 to %d", level,
-                               scene, st->scene.level_max);
+            return CX_EINVAL;
         }
         st->sel_level = level;
     }

@@ -49,6 +49,8 @@ def check(cond, what):
 
 
 def screen():
+    if not sock:
+        return ""
     return tmux("capture-pane", "-t", "t", "-p", check=False)
 
 
@@ -113,6 +115,20 @@ def exited_cleanly(how):
         check(rc == "0", f"exit status 0 after {how}, got {rc}")
         check(pane("#{alternate_on}") == "0", f"the terminal left the alternate screen after {how}")
 
+
+# ---- bad options: one line on stderr, exit 1, before the screen opens ----
+for args, needle in [(["tui", "--nope"], "unknown option '--nope'"),
+                     (["tui", "--level"], "'--level' needs a value"),
+                     (["tui", "hertz", "--level", "99999"], "allows 1 to 2048"),
+                     (["tui", "nope"], "unknown scene 'nope'"),
+                     (["tui", "--method", "nope"], "unknown method 'nope'"),
+                     (["tui", "--friction", "x"], "expected none, tresca or coulomb")]:
+    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 1 and len(lines) == 1 and needle in r.stderr, f"{args}: {r.returncode} {r.stderr!r}")
+# with no terminal, no argument prints the usage
+r = subprocess.run([exe], capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL)
+check(r.returncode == 0 and "usage:" in r.stdout, f"no argument without a terminal: {r.stdout!r}")
 
 try:
     # ---- 'signorini' alone: the explorer on hertz --------------------------
