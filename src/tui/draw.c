@@ -143,7 +143,8 @@ static void draw_status(const tui_state *st, int rows, int cols)
         return;
     }
     if (st->msg[0]) {
-        put(y, 0, st->msg_error ? TUI_C_ERROR : TUI_C_OK, cols, " %s ", st->msg);
+        put(y, 0, st->msg_error == 1 ? TUI_C_ERROR : st->msg_error == 2 ? TUI_C_WARN : TUI_C_OK, cols, " %s ",
+            st->msg);
         return;
     }
     put(y, 0, TUI_C_LABEL, cols, " s step  r run/pause  x reset  %s field  %s change  Enter edit  ? help  q quit",

@@ -137,6 +137,10 @@ static void state_new_run(tui_state *st)
     r->coef = st->cur_coef;
     r->tol = st->cur_opt.tol;
     r->reason = CX_ITERATING;
+    if (st->flips && st->m > 0)
+        memset(st->flips, 0, sizeof(int) * (size_t)st->m);
+    memset(st->status_hash, 0, sizeof st->status_hash);
+    st->cycle_iter = 0;
 }
 
 static void run_append(tui_run *r, const cx_iterate *it)
@@ -181,6 +185,8 @@ static void state_snapshot(tui_state *st)
         st->pressure = tui_xalloc(st->pressure, sizeof(double) * ((size_t)m + 1));
         st->hertz = tui_xalloc(st->hertz, sizeof(double) * ((size_t)m + 1));
         st->slip_dir = tui_xalloc(st->slip_dir, sizeof(double) * (2 * (size_t)m + 1));
+        st->flips = tui_xalloc(st->flips, sizeof(int) * ((size_t)m + 1));
+        memset(st->flips, 0, sizeof(int) * ((size_t)m + 1));
     }
     st->uall = tui_xalloc(st->uall, sizeof(double) * ((size_t)nall + 1));
     for (int i = 0; i < m; i++) {
@@ -460,6 +466,28 @@ void tui_state_step(tui_state *st)
     job_start(st, TUI_JOB_STEP);
 }
 
+/* Chattering (peers.md §4 item 4): count each point's status changes, and
+ * flag a 2-cycle when a step repeats the step before last (same statuses,
+ * same kkt to 1e-10) without repeating the last one: the iteration then
+ * alternates between two iterates and will not converge by itself. */
+static void state_watch_cycles(tui_state *st, const tui_run *run)
+{
+    unsigned long long h = 1469598103934665603ULL;    /* FNV-1a */
+    for (int i = 0; i < st->m; i++) {
+        st->flips[i] += st->changed[i] != 0;
+        h = (h ^ st->status[i]) * 1099511628211ULL;
+    }
+    st->status_hash[2] = st->status_hash[1];
+    st->status_hash[1] = st->status_hash[0];
+    st->status_hash[0] = h;
+    int n = run->nsteps;
+    if (n < 4 || st->cycle_iter)
+        return;
+    double k0 = run->steps[n - 1].kkt, k1 = run->steps[n - 2].kkt, k2 = run->steps[n - 3].kkt;
+    if (st->status_hash[0] == st->status_hash[2] && fabs(k0 - k2) <= 1e-10 * k0 && fabs(k0 - k1) > 1e-8 * k0)
+        st->cycle_iter = run->steps[n - 1].iter;
+}
+
 /* After a step (main thread): the history, the snapshot, the outcome. */
 static void state_after_step(tui_state *st, int status, const cx_diag *d)
 {
@@ -467,6 +495,18 @@ static void state_after_step(tui_state *st, int status, const cx_diag *d)
     tui_run *run = &st->runs[st->nruns - 1];
     run_append(run, it);
     state_snapshot(st);
+    int seen = st->cycle_iter;
+    state_watch_cycles(st, run);
+    if (!seen && st->cycle_iter && it->reason == CX_ITERATING) {
+        int flipping = 0;
+        for (int i = 0; i < st->m; i++)
+            flipping += st->flips[i] >= 3;
+        st->running = 0;
+        tui_msg(st, 2, "cycling: iteration %d repeats iteration %d (kkt %.3g, %.3g; %d points flipped 3+ times);"
+                " paused", it->iter, it->iter - 2, run->steps[run->nsteps - 1].kkt,
+                run->steps[run->nsteps - 2].kkt, flipping);
+        return;
+    }
     if (status != CX_OK) {
         st->running = 0;
         tui_msg(st, 1, "%s", cx_diag_msg(d, status));
@@ -595,6 +635,7 @@ void tui_state_clear(tui_state *st)
     free(st->pressure);
     free(st->hertz);
     free(st->slip_dir);
+    free(st->flips);
     free(st->uall);
     memset(st, 0, sizeof *st);
 }

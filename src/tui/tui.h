@@ -154,6 +154,9 @@ typedef struct tui_state {
     double *hertz;            /* m: analytical pressure (NaN if none) */
     double *slip_dir;         /* 2m: tangential force direction in 3D (x, y) */
     double *uall;             /* dim * nnodes displacement of every node */
+    int *flips;               /* m: status changes of each point in this run */
+    unsigned long long status_hash[3];  /* of the last three steps, newest first */
+    int cycle_iter;           /* iteration at which a 2-cycle was seen, 0 if none */
     cx_counters cache;        /* the session's cache counters */
     int cache_size;
     double build_time;        /* seconds of the last build */
@@ -173,7 +176,7 @@ typedef struct tui_state {
 
     /* status line */
     char msg[CX_DIAG_LEN];
-    int msg_error;
+    int msg_error;            /* 0 information, 1 error, 2 warning */
 } tui_state;
 
 /* Create the state on scene id at level (<= 0: the scene's default) with

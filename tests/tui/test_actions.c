@@ -232,6 +232,35 @@ static void test_slider(void)
     CX_CHECK(strstr(d.msg, "unknown method 'nope'") != NULL);
 }
 
+/* ssn-tresca with rho = 1 on hertz with Tresca alternates between two
+ * iterates from iteration 6 on (kkt 2.482e-2, 2.544e-2: see the comment
+ * in solve/ssn_tresca.c): the explorer says so and pauses. */
+static void test_cycle(void)
+{
+    static tui_state st;
+    cx_diag d;
+    cx_diag_clear(&d);
+    CX_CHECK_OK(tui_state_init(&st, "hertz", 32, NULL, CX_FRICTION_TRESCA, 1, &d));
+    st.field = TUI_F_PARAM0;
+    tui_key(&st, TUI_KEY_ENTER);
+    for (int k = 0; k < 10; k++)
+        tui_key(&st, TUI_KEY_BACKSPACE);
+    tui_state_apply(&st, type(&st, "1\n"));
+    CX_CHECK_NEAR(st.cur_params.num[0], 1, 0, 0);
+    st.running = 1;
+    for (int k = 0; k < 12 && st.running; k++)
+        tui_state_step(&st);
+    const tui_run *run = tui_state_run(&st);
+    CX_CHECK(st.cycle_iter == 8 && run->nsteps == 8);
+    CX_CHECK(!st.running && st.msg_error == 2 && strstr(st.msg, "cycling: iteration 8 repeats iteration 6"));
+    CX_CHECK_NEAR(run->steps[7].kkt, run->steps[5].kkt, 1e-10, 0);
+    CX_CHECK(run->reason == CX_ITERATING);
+    /* a new run forgets it */
+    tui_key(&st, 'x');
+    CX_CHECK(st.cycle_iter == 0);
+    tui_state_clear(&st);
+}
+
 static void test_pieces(void)
 {
     /* strip buckets: slip beats stick beats contact beats free */
@@ -281,5 +310,6 @@ int main(void)
     test_pieces();
     test_hertz();
     test_slider();
+    test_cycle();
     return check_finish("tui_actions");
 }
