@@ -502,9 +502,8 @@ static void state_after_step(tui_state *st, int status, const cx_diag *d)
         for (int i = 0; i < st->m; i++)
             flipping += st->flips[i] >= 3;
         st->running = 0;
-        tui_msg(st, 2, "cycling: iteration %d repeats iteration %d (kkt %.3g, %.3g; %d points flipped 3+ times);"
-                " paused", it->iter, it->iter - 2, run->steps[run->nsteps - 1].kkt,
-                run->steps[run->nsteps - 2].kkt, flipping);
+        tui_msg(st, 2, "cycling: iteration %d repeats iteration %d, paused (kkt %.3g / %.3g, %d points flip 3+ times)",
+                it->iter, it->iter - 2, run->steps[run->nsteps - 1].kkt, run->steps[run->nsteps - 2].kkt, flipping);
         return;
     }
     if (status != CX_OK) {
