@@ -355,41 +355,19 @@ static int act_next_method(tui_state *st)
     return TUI_REDRAW;
 }
 
-static int act_friction(tui_state *st)
+/* Shortcuts: move to a row and change it. */
+static int act_row(tui_state *st, int field, int dir)
 {
-    st->field = TUI_F_FRICTION;
-    return change_field(st, +1);
+    st->field = field;
+    return change_field(st, dir);
 }
 
-static int act_coef_up(tui_state *st)
-{
-    st->field = TUI_F_COEF;
-    return change_field(st, +1);
-}
-
-static int act_coef_down(tui_state *st)
-{
-    st->field = TUI_F_COEF;
-    return change_field(st, -1);
-}
-
-static int act_level_up(tui_state *st)
-{
-    st->field = TUI_F_LEVEL;
-    return change_field(st, +1);
-}
-
-static int act_level_down(tui_state *st)
-{
-    st->field = TUI_F_LEVEL;
-    return change_field(st, -1);
-}
-
-static int act_next_scene(tui_state *st)
-{
-    st->field = TUI_F_SCENE;
-    return change_field(st, +1);
-}
+static int act_friction(tui_state *st) { return act_row(st, TUI_F_FRICTION, +1); }
+static int act_coef_up(tui_state *st) { return act_row(st, TUI_F_COEF, +1); }
+static int act_coef_down(tui_state *st) { return act_row(st, TUI_F_COEF, -1); }
+static int act_level_up(tui_state *st) { return act_row(st, TUI_F_LEVEL, +1); }
+static int act_level_down(tui_state *st) { return act_row(st, TUI_F_LEVEL, -1); }
+static int act_next_scene(tui_state *st) { return act_row(st, TUI_F_SCENE, +1); }
 
 static int act_view(tui_state *st)
 {

@@ -89,4 +89,26 @@ double tui_mesh_auto_scale(const tui_state *st);
 /* Draw every panel from the state (through term.c). */
 void tui_draw(const tui_state *st, int rows, int cols, int utf8);
 
+/* Drawing helpers (draw.c), valid during tui_draw: the UTF-8 or the ASCII
+ * text by the terminal; formatted text; a section rule "- name ---"; a
+ * canvas at (y, x). */
+typedef struct tui_box {
+    int y, x, h, w;
+} tui_box;
+const char *tui_sym(const char *utf8, const char *ascii);
+void tui_put(int y, int x, int role, int maxw, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+void tui_rule(int y, int x, int w, const char *name);
+void tui_put_canvas(const tui_canvas *c, int y, int x);
+
+/* The panels (panels.c), each within its box. */
+void tui_panel_steps(const tui_state *st, tui_box b);
+void tui_panel_contact(const tui_state *st, tui_box b);
+void tui_panel_plot(const tui_state *st, tui_box b);
+void tui_panel_mesh(const tui_state *st, tui_box b);
+void tui_panel_runs(const tui_state *st, tui_box b);
+
 #endif
