@@ -114,7 +114,14 @@ static void draw_pickers(const tui_state *st, tui_box b)
     int y = b.y;
     const int lw = 9;
     tui_rule(y++, b.x, b.w, "setup");
-    for (int f = 0; f < nf && y < b.y + b.h; f++, y++) {
+    /* the rows above the session block; scrolled to keep the cursor in view
+     * when a method has many parameters */
+    int room = b.h - 6, first = 0;
+    if (room < 1)
+        room = 1;
+    if (st->field >= room)
+        first = st->field - room + 1;
+    for (int f = first; f < nf && y < b.y + 1 + room; f++, y++) {
         char val[64];
         tui_field_value(st, f, val, sizeof val);
         int sel = f == st->field;
