@@ -522,7 +522,11 @@ static void state_after_step(tui_state *st, int status, const cx_diag *d)
 
 void tui_state_reset(tui_state *st)
 {
-    if (tui_state_busy(st) || !st->session || !st->cur_method) {
+    if (tui_state_busy(st)) {
+        tui_msg(st, 0, "busy: reset when the job ends");
+        return;
+    }
+    if (!st->session || !st->cur_method) {
         tui_msg(st, 0, "nothing to reset yet");
         return;
     }
