@@ -196,6 +196,12 @@ try:
     keys("C-c")
     exited_cleanly("Ctrl-C")
 
+    # ---- scripted sessions end by themselves ------------------------------------
+    start(f"{exe} tui slider --keys rq")
+    exited_cleanly("the scripted keys 'rq'")
+    start(f"{exe} tui slider --frames 3")
+    exited_cleanly("--frames 3")
+
     # ---- no UTF-8 locale: ASCII -------------------------------------------------
     start(f"{exe} tui slider", lang="C")
     wait_for(has("built in"), "slider in the C locale")
