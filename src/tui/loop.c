@@ -23,7 +23,7 @@ static const char tui_usage[] =
     "  --ascii              ASCII only (automatic when the locale is not UTF-8)\n"
     "  --export-dir DIR     where 'e' writes the runs (default: .)\n"
     "  --keys KEYS          type these keys first, one whenever idle (tests)\n"
-    "  --frames N           quit after N frames (tests)\n"
+    "  --frames N           draw N frames (one per tick) and quit (tests)\n"
     "  --stats              on exit, print the median redraw and step times (stderr)\n";
 
 static volatile sig_atomic_t loop_quit;
@@ -153,7 +153,8 @@ int tui_main(int argc, char **argv)
         int busy = tui_state_busy(&st);
         double now = cx_clock_now();
         /* while a job runs, the progress line moves ten times a second */
-        if (dirty || (busy && now - last_draw > 0.1)) {
+        /* with --frames every tick draws, so that N frames end the run */
+        if (dirty || a.frames || (busy && now - last_draw > 0.1)) {
             int rows, cols;
             tui_term_size(&rows, &cols);
             double t0 = cx_clock_now();
