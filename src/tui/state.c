@@ -344,6 +344,13 @@ int tui_state_poll(tui_state *st)
             st->build_time = cx_clock_now() - j->t0;
             state_clear_runs(st);
             st->m = -1;
+        } else if (st->session) {
+            /* the build failed: the old session stays, and so does its scene */
+            st->scene = st->prev_scene;
+            for (int i = 0; i < st->nscenes; i++)
+                if (strcmp(st->scene_ids[i], st->scene.id) == 0)
+                    st->sel_scene = i;
+            st->sel_level = st->level;
         }
     }
     if (st->session) {
@@ -409,6 +416,7 @@ void tui_state_apply(tui_state *st, int r)
         return;
     }
     if (r & TUI_REASSEMBLE) {
+        st->prev_scene = st->scene;
         if (strcmp(st->scene.id, st->scene_ids[st->sel_scene]) != 0) {
             cx_diag d;
             cx_diag_clear(&d);

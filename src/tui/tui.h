@@ -114,7 +114,8 @@ typedef struct tui_state {
     /* scenes */
     char (*scene_ids)[CX_SCENE_NAMELEN];
     int nscenes;
-    cx_scene scene;           /* the scene of the session */
+    cx_scene scene;           /* the scene of the session (or being built) */
+    cx_scene prev_scene;      /* the scene before a build, kept if it fails */
     int level;                /* of the session */
 
     /* the session (NULL until the first build ends) */

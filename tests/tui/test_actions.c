@@ -261,6 +261,53 @@ static void test_cycle(void)
     tui_state_clear(&st);
 }
 
+/* A scene that fails to build (the block starts inside the plane): the
+ * message says why and the explorer stays on the scene it had. */
+static void test_failed_build(void)
+{
+    char dir[] = "/tmp/tui_scenes_XXXXXX", path[600], scenes[1200];
+    CX_CHECK(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/sunk.ini", dir);
+    FILE *f = fopen(path, "w");
+    CX_CHECK(f != NULL);
+    if (!f)
+        return;
+    fputs("[scene]\nid = sunk\ntitle = a block below the plane\ndim = 2\n"
+          "[mesh]\ngenerator = rectangle\nelement = quad4\nlo = -2 0\nhi = 2 1\ncells = 8 2\nlevel = 1\n"
+          "level_max = 4\n[material]\nmodel = plane_strain\nE = 1000\nnu = 0.3\n"
+          "[support punch]\nboundary = top\nfix = xy\nvalue = 0 -0.01\n"
+          "[contact]\nboundary = bottom\nobstacle = plane\npoint = 0 0.5\nnormal = 0 1\nfriction = none\n"
+          "[methods]\nlist = ssn-tresca\n", f);
+    fclose(f);
+    const char *old = getenv("SIGNORINI_SCENES");
+    snprintf(scenes, sizeof scenes, "%s:%s", old ? old : "", dir);
+    setenv("SIGNORINI_SCENES", scenes, 1);
+
+    static tui_state st;
+    cx_diag d;
+    cx_diag_clear(&d);
+    CX_CHECK_OK(tui_state_init(&st, "hertz", 4, NULL, -1, 1, &d));
+    int dofs = st.info.n;
+    st.field = TUI_F_SCENE;
+    tui_key(&st, TUI_KEY_ENTER);
+    for (int k = 0; k < 10; k++)
+        tui_key(&st, TUI_KEY_BACKSPACE);
+    int r = type(&st, "sunk\n");
+    CX_CHECK(r == (TUI_REDRAW | TUI_REASSEMBLE));
+    tui_state_apply(&st, r);
+    CX_CHECK(st.msg_error == 1 && strstr(st.msg, "penetrates the plane obstacle by 0.5") != NULL);
+    CX_CHECK(strcmp(st.scene.id, "hertz") == 0 && strcmp(st.scene_ids[st.sel_scene], "hertz") == 0);
+    CX_CHECK(st.info.n == dofs && st.level == 4 && st.sel_level == 4);
+    /* and it still steps */
+    tui_key(&st, 's');
+    CX_CHECK(tui_state_run(&st)->nsteps == 1);
+    tui_state_clear(&st);
+    if (old)
+        setenv("SIGNORINI_SCENES", old, 1);
+    remove(path);
+    rmdir(dir);
+}
+
 static void test_pieces(void)
 {
     /* strip buckets: slip beats stick beats contact beats free */
@@ -311,5 +358,6 @@ int main(void)
     test_hertz();
     test_slider();
     test_cycle();
+    test_failed_build();
     return check_finish("tui_actions");
 }
