@@ -354,12 +354,30 @@ void tui_panel_mesh(const tui_state *st, tui_box b)
     case CX_EL_TET4: edges = tet, ne = 6; break;
     default: edges = hex, ne = 12; break;
     }
-    for (int e = 0; e < mesh->nelems; e++) {
-        const int *nd = mesh->conn + (size_t)mesh->npe * e;
-        for (int k = 0; k < ne; k++) {
+    /* 2D: every edge while they are at least 3 dots long on average, else
+     * the outline (the edges of the surface facets); 3D: the surface */
+    double len = 0;
+    int sampled = 0;
+    for (int e = 0; e < mesh->nelems && sampled < 4000; e += 1 + mesh->nelems / 2000)
+        for (int k = 0; k < ne; k++, sampled++) {
+            const int *nd = mesh->conn + (size_t)mesh->npe * e;
             int a = nd[edges[2 * k]], bb = nd[edges[2 * k + 1]];
+            len += s * hypot(P[2 * a] - P[2 * bb], P[2 * a + 1] - P[2 * bb + 1]);
+        }
+    if (dim == 2 && sampled && len / sampled >= 3) {
+        for (int e = 0; e < mesh->nelems; e++) {
+            const int *nd = mesh->conn + (size_t)mesh->npe * e;
+            for (int k = 0; k < ne; k++) {
+                int a = nd[edges[2 * k]], bb = nd[edges[2 * k + 1]];
+                tui_canvas_line(&c, (P[2 * a] - x0) * s, (y1 - P[2 * a + 1]) * s, (P[2 * bb] - x0) * s,
+                                (y1 - P[2 * bb + 1]) * s, TUI_C_FAINT);
+            }
+        }
+    } else {
+        for (int k = 0; k < st->noutline; k++) {
+            int a = st->outline[2 * k], bb = st->outline[2 * k + 1];
             tui_canvas_line(&c, (P[2 * a] - x0) * s, (y1 - P[2 * a + 1]) * s, (P[2 * bb] - x0) * s,
-                            (y1 - P[2 * bb + 1]) * s, TUI_C_FAINT);
+                            (y1 - P[2 * bb + 1]) * s, TUI_C_NORMAL);
         }
     }
     const cx_contact_set *cs = &st->info.contact;

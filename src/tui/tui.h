@@ -155,6 +155,8 @@ typedef struct tui_state {
     double *hertz;            /* m: analytical pressure (NaN if none) */
     double *slip_dir;         /* 2m: tangential force direction in 3D (x, y) */
     double *uall;             /* dim * nnodes displacement of every node */
+    int *outline;             /* 2 noutline: node pairs of the edges on the body's surface */
+    int noutline;
     int *flips;               /* m: status changes of each point in this run */
     unsigned long long status_hash[3];  /* of the last three steps, newest first */
     int cycle_iter;           /* iteration at which a 2-cycle was seen, 0 if none */
