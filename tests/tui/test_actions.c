@@ -214,6 +214,8 @@ static void test_slider(void)
     tui_state_apply(&st, r);
     CX_CHECK(strcmp(st.scene.id, "slider") == 0 && st.level == st.scene.level);
     CX_CHECK(st.cur_law == CX_FRICTION_TRESCA);
+    /* the mesh view's outline of the 32 x 8 quad grid: its 2 (32 + 8) boundary edges */
+    CX_CHECK(st.noutline == 2 * (32 + 8));
     run_to_end(&st, 60);
     CX_CHECK(tui_state_run(&st)->reason > 0);
     /* the slider sticks in the middle and slips at the edges */
