@@ -14,6 +14,11 @@ int cli_solve(int argc, char **argv);
 int cli_bench(int argc, char **argv);   /* cli/bench.c */
 int cli_paper_000(int argc, char **argv);  /* cli/paper_000.c */
 
+/* The explorer (src/tui/loop.c, a peer program layer: declared here rather
+ * than included, so that cli/ and tui/ stay independent). argv[0] is the
+ * command name; returns the exit status. */
+int tui_main(int argc, char **argv);
+
 /* Print "signorini CMD: message" on stderr and return CLI_EXIT_ERROR. */
 int cli_fail(const char *cmd, const char *msg);
 

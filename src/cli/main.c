@@ -4,11 +4,15 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 static const char usage[] =
-    "usage: signorini <command> [options]\n"
+    "usage: signorini [<command> [options]]\n"
+    "\n"
+    "With no command, in a terminal: the explorer on the scene 'hertz'.\n"
     "\n"
     "commands:\n"
+    "  tui [SCENE] [options]    the explorer (an ncurses UI; tui --help)\n"
     "  list [--json]            scenes and methods, with what each supports and its parameters\n"
     "  solve SCENE [options]    solve a scene and print a summary (or --json)\n"
     "  bench KIND [options]     benchmarks and the papers' tables (bench --help)\n"
@@ -18,6 +22,9 @@ static const char usage[] =
 
 int main(int argc, char **argv)
 {
+    /* no argument: the explorer, when there is a terminal to draw on */
+    if (argc < 2 && isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))
+        return tui_main(argc, argv);
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {
         fputs(usage, stdout);
@@ -28,6 +35,8 @@ int main(int argc, char **argv)
         return cli_list(argc - 1, argv + 1);
     if (strcmp(cmd, "solve") == 0)
         return cli_solve(argc - 1, argv + 1);
+    if (strcmp(cmd, "tui") == 0)
+        return tui_main(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
         return cli_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "version") == 0 || strcmp(cmd, "--version") == 0) {

@@ -1,0 +1,528 @@
+/* Actions: one table maps keys to functions that change the state and
+ * return reactions (STYLE.md C12). Only scene and level changes raise
+ * TUI_REASSEMBLE; method, parameter, friction and tolerance changes raise
+ * TUI_RESOLVE, which the session serves from its operator cache. No
+ * curses here. */
+#include "tui/tui_impl.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <stdio.h>
+#include <string.h>
+
+/* ---- the picker rows ------------------------------------------------------ */
+
+const char *tui_field_label(const tui_state *st, int f)
+{
+    switch (f) {
+    case TUI_F_SCENE: return "scene";
+    case TUI_F_LEVEL: return "level";
+    case TUI_F_FRICTION: return "friction";
+    case TUI_F_COEF:
+        return st->sel_law == CX_FRICTION_COULOMB ? "F" : st->sel_law == CX_FRICTION_TRESCA ? "slip s" : "F / s";
+    case TUI_F_METHOD: return "method";
+    case TUI_F_TOL: return "tol";
+    case TUI_F_MAXIT: return "max iter";
+    default:
+        if (f - TUI_F_PARAM0 < st->sel_params.n)
+            return st->sel_params.table[f - TUI_F_PARAM0].key;
+        return "?";
+    }
+}
+
+void tui_field_value(const tui_state *st, int f, char *buf, size_t len)
+{
+    switch (f) {
+    case TUI_F_SCENE: snprintf(buf, len, "%s", st->scene_ids[st->sel_scene]); break;
+    case TUI_F_LEVEL: snprintf(buf, len, "%d", st->sel_level); break;
+    case TUI_F_FRICTION: snprintf(buf, len, "%s", cx_friction_name(st->sel_law)); break;
+    case TUI_F_COEF:
+        if (st->sel_law == CX_FRICTION_NONE)
+            snprintf(buf, len, "-");
+        else
+            snprintf(buf, len, "%.4g", st->sel_law == CX_FRICTION_COULOMB ? st->sel_F : st->sel_slip);
+        break;
+    case TUI_F_METHOD: snprintf(buf, len, "%s", tui_state_sel_method(st)->id); break;
+    case TUI_F_TOL: snprintf(buf, len, "%.0e", st->sel_opt.tol); break;
+    case TUI_F_MAXIT: snprintf(buf, len, "%d", st->sel_opt.max_iter); break;
+    default: cx_param_format(&st->sel_params, f - TUI_F_PARAM0, buf, len); break;
+    }
+}
+
+/* ---- changing a row --------------------------------------------------------- */
+
+static int select_method(tui_state *st, int index)
+{
+    st->sel_method = index;
+    cx_param_default(&st->sel_params, cx_method_at(index)->params);
+    char reason[CX_DIAG_LEN];
+    if (tui_state_method_reason(st, index, reason, sizeof reason)[0]) {
+        /* greyed: shown with its reason, the session keeps its method */
+        tui_msg(st, 1, "%s", reason);
+        return TUI_REDRAW;
+    }
+    st->msg[0] = '\0';
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+static int change_param(tui_state *st, int i, int dir)
+{
+    cx_param_values *v = &st->sel_params;
+    const cx_param *p = &v->table[i];
+    char text[CX_PARAM_STRLEN];
+    double x = v->num[i];
+    switch (p->type) {
+    case CX_PARAM_REAL:
+        if (isnan(x))
+            x = p->def;
+        else if (x == 0)
+            x = dir > 0 ? fmin(p->max, 1e-3) : fmax(p->min, -1e-3);
+        else
+            x = dir > 0 ? x * 2 : x / 2;
+        x = fmax(p->min, fmin(p->max, x));
+        snprintf(text, sizeof text, "%.6g", x);
+        break;
+    case CX_PARAM_INT:
+        snprintf(text, sizeof text, "%.0f", fmax(p->min, fmin(p->max, x + dir)));
+        break;
+    case CX_PARAM_BOOL:
+        snprintf(text, sizeof text, "%s", x != 0 ? "false" : "true");
+        break;
+    case CX_PARAM_CHOICE: {
+        int n = 1;
+        for (const char *c = p->choices; c && *c; c++)
+            n += *c == '|';
+        int k = (((int)x + dir) % n + n) % n;
+        const char *c = p->choices;
+        for (int j = 0; j < k; j++)
+            c = strchr(c, '|') + 1;
+        size_t len = strcspn(c, "|");
+        snprintf(text, sizeof text, "%.*s", (int)len, c);
+        break;
+    }
+    default: {
+        /* free text, in practice the id of an inner method: cycle the registry */
+        int k = 0, n = cx_method_count();
+        for (int j = 0; j < n; j++)
+            if (strcmp(cx_method_at(j)->id, v->str[i]) == 0)
+                k = j;
+        snprintf(text, sizeof text, "%s", cx_method_at(((k + dir) % n + n) % n)->id);
+        break;
+    }
+    }
+    cx_diag d;
+    cx_diag_clear(&d);
+    char owner[64];
+    snprintf(owner, sizeof owner, "method '%s'", tui_state_sel_method(st)->id);
+    if (cx_param_set(v, p->key, text, owner, &d) != CX_OK) {
+        tui_msg(st, 1, "%s", d.msg);
+        return TUI_REDRAW;
+    }
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+/* Left (-1) or right (+1) on the row under the cursor. */
+static int change_field(tui_state *st, int dir)
+{
+    switch (st->field) {
+    case TUI_F_SCENE:
+        st->sel_scene = ((st->sel_scene + dir) % st->nscenes + st->nscenes) % st->nscenes;
+        return TUI_REDRAW | TUI_REASSEMBLE;
+    case TUI_F_LEVEL: {
+        int l = dir > 0 ? st->sel_level * 2 : st->sel_level / 2;
+        l = l < 1 ? 1 : l > st->scene.level_max ? st->scene.level_max : l;
+        if (l == st->sel_level)
+            return TUI_REDRAW;
+        st->sel_level = l;
+        return TUI_REDRAW | TUI_REASSEMBLE;
+    }
+    case TUI_F_FRICTION:
+        st->sel_law = (cx_friction)(((int)st->sel_law + dir + 3) % 3);
+        return TUI_REDRAW | TUI_RESOLVE;
+    case TUI_F_COEF:
+        if (st->sel_law == CX_FRICTION_NONE) {
+            tui_msg(st, 1, "no friction: choose Tresca or Coulomb first");
+            return TUI_REDRAW;
+        }
+        if (st->sel_law == CX_FRICTION_COULOMB)
+            st->sel_F = fmax(0, round((st->sel_F + 0.05 * dir) * 100) / 100);
+        else
+            st->sel_slip = dir > 0 ? st->sel_slip * 1.25 : st->sel_slip / 1.25;
+        return TUI_REDRAW | TUI_RESOLVE;
+    case TUI_F_METHOD: {
+        int n = cx_method_count();
+        return select_method(st, ((st->sel_method + dir) % n + n) % n);
+    }
+    case TUI_F_TOL:
+        st->sel_opt.tol = fmax(1e-16, fmin(1, dir > 0 ? st->sel_opt.tol * 10 : st->sel_opt.tol / 10));
+        return TUI_REDRAW | TUI_RESOLVE;
+    case TUI_F_MAXIT: {
+        int n = dir > 0 ? st->sel_opt.max_iter * 2 : st->sel_opt.max_iter / 2;
+        st->sel_opt.max_iter = n < 1 ? 1 : n > 1000000 ? 1000000 : n;
+        return TUI_REDRAW | TUI_RESOLVE;
+    }
+    default:
+        return change_param(st, st->field - TUI_F_PARAM0, dir);
+    }
+}
+
+/* Enter on a row: the typed text. */
+static int commit_edit(tui_state *st, const char *text)
+{
+    cx_diag d;
+    cx_diag_clear(&d);
+    long n;
+    double x;
+    switch (st->field) {
+    case TUI_F_SCENE:
+        for (int i = 0; i < st->nscenes; i++)
+            if (strcmp(st->scene_ids[i], text) == 0) {
+                st->sel_scene = i;
+                return TUI_REDRAW | TUI_REASSEMBLE;
+            }
+        tui_msg(st, 1, "unknown scene '%s' (see 'signorini list')", text);
+        return TUI_REDRAW;
+    case TUI_F_LEVEL:
+        if (cx_parse_int(text, 1, st->scene.level_max, &n)) {
+            tui_msg(st, 1, "level '%s': expected an integer in [1, %d]", text, st->scene.level_max);
+            return TUI_REDRAW;
+        }
+        st->sel_level = (int)n;
+        return TUI_REDRAW | TUI_REASSEMBLE;
+    case TUI_F_FRICTION: {
+        int law = cx_friction_from_name(text);
+        if (law < 0) {
+            tui_msg(st, 1, "friction '%s': expected none, tresca or coulomb", text);
+            return TUI_REDRAW;
+        }
+        st->sel_law = (cx_friction)law;
+        return TUI_REDRAW | TUI_RESOLVE;
+    }
+    case TUI_F_COEF:
+        if (cx_parse_double(text, &x) || !(x >= 0) || !isfinite(x)) {
+            tui_msg(st, 1, "'%s': expected a number >= 0", text);
+            return TUI_REDRAW;
+        }
+        if (st->sel_law == CX_FRICTION_COULOMB)
+            st->sel_F = x;
+        else
+            st->sel_slip = x;
+        return TUI_REDRAW | TUI_RESOLVE;
+    case TUI_F_METHOD: {
+        const cx_method *m = cx_method_find(text);
+        if (!m) {
+            tui_msg(st, 1, "unknown method '%s' (see 'signorini list')", text);
+            return TUI_REDRAW;
+        }
+        for (int i = 0; i < cx_method_count(); i++)
+            if (cx_method_at(i) == m)
+                return select_method(st, i);
+        return TUI_REDRAW;
+    }
+    case TUI_F_TOL:
+        if (cx_parse_double(text, &x) || !(x > 0) || !(x < 1)) {
+            tui_msg(st, 1, "tol '%s': expected a number in (0, 1)", text);
+            return TUI_REDRAW;
+        }
+        st->sel_opt.tol = x;
+        return TUI_REDRAW | TUI_RESOLVE;
+    case TUI_F_MAXIT:
+        if (cx_parse_int(text, 1, 100000000, &n)) {
+            tui_msg(st, 1, "max iter '%s': expected a positive integer", text);
+            return TUI_REDRAW;
+        }
+        st->sel_opt.max_iter = (int)n;
+        return TUI_REDRAW | TUI_RESOLVE;
+    default: {
+        char owner[64];
+        snprintf(owner, sizeof owner, "method '%s'", tui_state_sel_method(st)->id);
+        const cx_param *p = &st->sel_params.table[st->field - TUI_F_PARAM0];
+        if (cx_param_set(&st->sel_params, p->key, text, owner, &d) != CX_OK) {
+            tui_msg(st, 1, "%s", d.msg);
+            return TUI_REDRAW;
+        }
+        return TUI_REDRAW | TUI_RESOLVE;
+    }
+    }
+}
+
+static int edit_key(tui_state *st, int key)
+{
+    if (key == TUI_KEY_ESC || key == TUI_KEY_CTRL_C) {
+        st->editing = 0;
+        return TUI_REDRAW;
+    }
+    if (key == TUI_KEY_ENTER) {
+        st->editing = 0;
+        st->edit[st->edit_len] = '\0';
+        st->msg[0] = '\0';
+        return commit_edit(st, st->edit);
+    }
+    if (key == TUI_KEY_BACKSPACE) {
+        if (st->edit_len > 0)
+            st->edit_len--;
+        return TUI_REDRAW;
+    }
+    if (key >= 32 && key < 127 && st->edit_len + 1 < (int)sizeof st->edit)
+        st->edit[st->edit_len++] = (char)key;
+    return TUI_REDRAW;
+}
+
+/* ---- actions ------------------------------------------------------------------ */
+
+static int act_step(tui_state *st)
+{
+    st->running = 0;
+    if (tui_state_busy(st)) {
+        /* typed ahead: done in order when the job ends */
+        if (st->queued_steps < 1000)
+            st->queued_steps++;
+        return TUI_REDRAW;
+    }
+    st->msg[0] = '\0';
+    tui_state_step(st);
+    return TUI_REDRAW;
+}
+
+static int act_run(tui_state *st)
+{
+    if (st->running) {
+        st->running = 0;
+        tui_msg(st, 0, "paused (r runs on)");
+        return TUI_REDRAW;
+    }
+    const tui_run *run = tui_state_run(st);
+    if (run && run->reason != CX_ITERATING) {
+        tui_msg(st, run->reason < 0, "run ended (%s); x starts again", cx_reason_str(run->reason));
+        return TUI_REDRAW;
+    }
+    st->running = 1;
+    st->msg[0] = '\0';
+    return TUI_REDRAW;
+}
+
+static int act_reset(tui_state *st)
+{
+    tui_state_reset(st);
+    return TUI_REDRAW;
+}
+
+static int act_up(tui_state *st)
+{
+    int n = tui_state_nfields(st);
+    st->field = (st->field - 1 + n) % n;
+    return TUI_REDRAW;
+}
+
+static int act_down(tui_state *st)
+{
+    st->field = (st->field + 1) % tui_state_nfields(st);
+    return TUI_REDRAW;
+}
+
+static int act_left(tui_state *st) { return change_field(st, -1); }
+static int act_right(tui_state *st) { return change_field(st, +1); }
+
+static int act_edit(tui_state *st)
+{
+    st->editing = 1;
+    char v[64];
+    tui_field_value(st, st->field, v, sizeof v);
+    if (strcmp(v, "-") == 0)
+        v[0] = '\0';
+    st->edit_len = snprintf(st->edit, sizeof st->edit, "%s", v);
+    if (st->edit_len >= (int)sizeof st->edit)
+        st->edit_len = (int)sizeof st->edit - 1;
+    return TUI_REDRAW;
+}
+
+static int act_next_method(tui_state *st)
+{
+    /* the next method that can run this scene */
+    int n = cx_method_count();
+    char reason[CX_DIAG_LEN];
+    for (int k = 1; k <= n; k++) {
+        int i = (st->sel_method + k) % n;
+        if (!tui_state_method_reason(st, i, reason, sizeof reason)[0]) {
+            st->field = TUI_F_METHOD;
+            if (i == st->sel_method) {
+                tui_msg(st, 0, "%s is the only method that fits this scene", cx_method_at(i)->id);
+                return TUI_REDRAW;
+            }
+            return select_method(st, i);
+        }
+    }
+    return TUI_REDRAW;
+}
+
+/* Shortcuts: move to a row and change it. */
+static int act_row(tui_state *st, int field, int dir)
+{
+    st->field = field;
+    return change_field(st, dir);
+}
+
+static int act_friction(tui_state *st) { return act_row(st, TUI_F_FRICTION, +1); }
+static int act_coef_up(tui_state *st) { return act_row(st, TUI_F_COEF, +1); }
+static int act_coef_down(tui_state *st) { return act_row(st, TUI_F_COEF, -1); }
+static int act_level_up(tui_state *st) { return act_row(st, TUI_F_LEVEL, +1); }
+static int act_level_down(tui_state *st) { return act_row(st, TUI_F_LEVEL, -1); }
+static int act_next_scene(tui_state *st) { return act_row(st, TUI_F_SCENE, +1); }
+
+static int act_view(tui_state *st)
+{
+    st->view = !st->view;
+    return TUI_REDRAW;
+}
+
+static int act_scale_up(tui_state *st)
+{
+    st->disp_scale = 2 * (st->disp_scale > 0 ? st->disp_scale : tui_mesh_auto_scale(st));
+    return TUI_REDRAW;
+}
+
+static int act_scale_down(tui_state *st)
+{
+    st->disp_scale = 0.5 * (st->disp_scale > 0 ? st->disp_scale : tui_mesh_auto_scale(st));
+    return TUI_REDRAW;
+}
+
+static int act_scale_auto(tui_state *st)
+{
+    st->disp_scale = 0;
+    return TUI_REDRAW;
+}
+
+static int act_clear_runs(tui_state *st)
+{
+    /* keep the current run, forget the earlier ones */
+    if (st->nruns > 1) {
+        for (int i = 0; i < st->nruns - 1; i++)
+            free(st->runs[i].steps);
+        st->runs[0] = st->runs[st->nruns - 1];
+        memset(&st->runs[st->nruns - 1], 0, sizeof st->runs[0]);
+        st->nruns = 1;
+    }
+    tui_msg(st, 0, "earlier runs cleared");
+    return TUI_REDRAW;
+}
+
+static int act_export(tui_state *st)
+{
+    char csv[512], json[512];
+    cx_diag d;
+    cx_diag_clear(&d);
+    if (tui_export(st, st->export_dir, csv, json, sizeof csv, &d) != CX_OK)
+        tui_msg(st, 1, "export: %s", d.msg);
+    else
+        tui_msg(st, 0, "runs written to %s and %s", csv, json);
+    return TUI_REDRAW;
+}
+
+/* ==== RENDERING HOOK ========================================================
+ * The one place the explorer renders. Rendering (src/render/, issue 9) is
+ * not in this build yet: when it lands, this function calls the renderer
+ * on the session's problem and iterate and returns the file name. */
+int tui_render_png(const tui_state *st, char *file, size_t len, cx_diag *d)
+{
+    (void)st;
+    if (len)
+        file[0] = '\0';
+    return cx_diag_set(d, CX_EUNSUPPORTED, "rendering not available in this build");
+}
+/* ==== END OF RENDERING HOOK ================================================== */
+
+static int act_render(tui_state *st)
+{
+    char file[512];
+    cx_diag d;
+    cx_diag_clear(&d);
+    if (tui_state_busy(st) || !st->session)
+        tui_msg(st, 0, "busy: render after the build");
+    else if (tui_render_png(st, file, sizeof file, &d) != CX_OK)
+        tui_msg(st, 1, "%s", d.msg);
+    else
+        tui_msg(st, 0, "rendered to %s", file);
+    return TUI_REDRAW;
+}
+
+static int act_help(tui_state *st)
+{
+    st->help = !st->help;
+    return TUI_REDRAW;
+}
+
+static int act_quit(tui_state *st)
+{
+    (void)st;
+    return TUI_QUIT;
+}
+
+static int act_resize(tui_state *st)
+{
+    (void)st;
+    return TUI_REDRAW;
+}
+
+static const tui_binding tui_keys[] = {
+    {'s', "s space", act_step, "one iteration of the method"},
+    {' ', NULL, act_step, NULL},
+    {'r', "r", act_run, "run to convergence / pause"},
+    {'x', "x", act_reset, "start the method again"},
+    {TUI_KEY_UP, "up k", act_up, "previous setup row"},
+    {'k', NULL, act_up, NULL},
+    {TUI_KEY_DOWN, "down j", act_down, "next setup row"},
+    {'j', NULL, act_down, NULL},
+    {TUI_KEY_LEFT, "left h", act_left, "previous value of the row"},
+    {'h', NULL, act_left, NULL},
+    {TUI_KEY_RIGHT, "right l", act_right, "next value of the row"},
+    {'l', NULL, act_right, NULL},
+    {TUI_KEY_ENTER, "Enter", act_edit, "type a value for the row"},
+    {'m', "m", act_next_method, "next method that fits"},
+    {'f', "f", act_friction, "friction none/Tresca/Coulomb"},
+    {'+', "+ -", act_coef_up, "friction coefficient up/down"},
+    {'-', NULL, act_coef_down, NULL},
+    {']', "] [", act_level_up, "mesh level x2, /2 (rebuilds)"},
+    {'[', NULL, act_level_down, NULL},
+    {'n', "n", act_next_scene, "next scene (rebuilds)"},
+    {'v', "v", act_view, "convergence plot / mesh view"},
+    {'>', "> < =", act_scale_up, "mesh displacement x2,/2,auto"},
+    {'<', NULL, act_scale_down, NULL},
+    {'=', NULL, act_scale_auto, NULL},
+    {'c', "c", act_clear_runs, "forget the earlier runs"},
+    {'e', "e", act_export, "export runs as CSV and JSON"},
+    {'p', "p", act_render, "render the state to PNG"},
+    {'?', "?", act_help, "this help"},
+    {'q', "q ^C", act_quit, "quit"},
+    {TUI_KEY_CTRL_C, NULL, act_quit, NULL},
+    {TUI_KEY_RESIZE, NULL, act_resize, NULL},
+    {0, NULL, NULL, NULL}
+};
+
+/* The help lists the rows with a key name. */
+const tui_binding *tui_bindings(void)
+{
+    static tui_binding shown[sizeof tui_keys / sizeof tui_keys[0]];
+    int n = 0;
+    for (int k = 0; tui_keys[k].key; k++)
+        if (tui_keys[k].keyname)
+            shown[n++] = tui_keys[k];
+    shown[n] = (tui_binding){0, NULL, NULL, NULL};
+    return shown;
+}
+
+int tui_key(tui_state *st, int key)
+{
+    if (key == TUI_KEY_NONE)
+        return 0;
+    if (st->editing)
+        return edit_key(st, key);
+    if (st->help && key != TUI_KEY_RESIZE && key != TUI_KEY_CTRL_C && key != 'q') {
+        st->help = 0;
+        return TUI_REDRAW;
+    }
+    for (int k = 0; tui_keys[k].key; k++)
+        if (tui_keys[k].key == key)
+            return tui_keys[k].action(st);
+    return 0;
+}

@@ -1,0 +1,293 @@
+/* The screen, drawn from the state only (through term.c): the layout, the
+ * header, the pickers, the status line and the help overlay, and the
+ * drawing helpers the panels (panels.c) share. */
+#include "tui/tui_impl.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DRAW_MIN_COLS 60
+#define DRAW_MIN_ROWS 16
+
+static int draw_utf8;
+
+const char *tui_sym(const char *utf8, const char *ascii)
+{
+    return draw_utf8 ? utf8 : ascii;
+}
+
+void tui_put(int y, int x, int role, int maxw, const char *fmt, ...)
+{
+    char buf[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    tui_term_put(y, x, role, buf, maxw);
+}
+
+/* A section title: "─ name ───" across w columns. */
+void tui_rule(int y, int x, int w, const char *name)
+{
+    char buf[512];
+    const char *dash = tui_sym("─", "-");
+    size_t at = 0;
+    at += (size_t)snprintf(buf, sizeof buf, "%s %s ", dash, name);
+    for (int k = (int)strlen(name) + 3; k < w && at + 4 < sizeof buf; k++)
+        at += (size_t)snprintf(buf + at, sizeof buf - at, "%s", dash);
+    tui_term_put(y, x, TUI_C_LABEL, buf, w);
+}
+
+void tui_put_canvas(const tui_canvas *c, int y, int x)
+{
+    char g[8];
+    for (int j = 0; j < c->h; j++)
+        for (int i = 0; i < c->w; i++) {
+            tui_canvas_glyph(c, i, j, draw_utf8, g);
+            if (g[0] != ' ')
+                tui_term_put(y + j, x + i, c->role[j * c->w + i], g, 1);
+        }
+}
+
+/* ---- header and status line ------------------------------------------------- */
+
+static void draw_header(const tui_state *st, int cols)
+{
+    char left[512], right[64], pad[1024];
+    const tui_run *run = tui_state_run(st);
+    const char *bar = tui_sym("│", "|");
+    if (!st->have_info)
+        snprintf(left, sizeof left, " signorini %s %s %s building level %d", bar, st->scene.id, bar, st->sel_level);
+    else
+        snprintf(left, sizeof left, " signorini %s %s L%d %dD %d dofs %d pts %s %s %s", bar, st->scene.id, st->level,
+             st->info.dim, st->info.n, st->info.m, bar, run ? run->method : "-", cx_friction_name(st->cur_law));
+    /* the counter that shows nothing was refactorised stays visible */
+    int rw = snprintf(right, sizeof right, " %s factorised: %ld ", bar, st->cache.factorizations);
+    snprintf(pad, sizeof pad, "%-*s", cols, left);
+    tui_term_put(0, 0, TUI_C_TITLE, pad, cols);
+    tui_term_put(0, cols - rw + (draw_utf8 ? 2 : 0), TUI_C_TITLE, right, cols);
+}
+
+static const char spinner_ascii[] = "|/-\\";
+static const char *const spinner_utf8[] = {"⠋", "⠙", "⠹", "⠸", "⠼", "⠴", "⠦", "⠧", "⠇", "⠏"};
+
+static void draw_status(const tui_state *st, int rows, int cols)
+{
+    int y = rows - 1;
+    double t = cx_clock_now() - st->job.t0;
+    /* a step shows progress only when it is slow */
+    if (tui_state_busy(st) && (st->job.kind != TUI_JOB_STEP || t > 0.25)) {
+        int ph = atomic_load(&((tui_state *)st)->job.phase);
+        const char *what = ph == TUI_PHASE_ASSEMBLE ? "assembling K and the contact rows"
+                           : ph == TUI_PHASE_FACTORISE ? "factorising (method setup)"
+                           : ph == TUI_PHASE_STEP      ? "one iteration"
+                                                       : "starting";
+        const char *spin = draw_utf8 ? spinner_utf8[(int)(t * 10) % 10]
+                                     : (char[]){spinner_ascii[(int)(t * 10) % 4], 0};
+        tui_put(y, 0, TUI_C_WARN, cols, "%s %s level %d: %s... %.1f s (keys still work)", spin,
+            st->job.kind == TUI_JOB_BUILD ? st->scene.id : st->job.kind == TUI_JOB_STEP ? "stepping" : "switching",
+            st->job.kind == TUI_JOB_STEP ? st->level : st->job.level, what, t);
+        return;
+    }
+    if (st->editing) {
+        tui_put(y, 0, TUI_C_SELECT, cols, " %s: %.*s_   (Enter sets, Esc cancels) ", tui_field_label(st, st->field),
+            st->edit_len, st->edit);
+        return;
+    }
+    if (st->msg[0]) {
+        tui_put(y, 0, st->msg_error == 1 ? TUI_C_ERROR : st->msg_error == 2 ? TUI_C_WARN : TUI_C_OK, cols, " %s ",
+            st->msg);
+        return;
+    }
+    tui_put(y, 0, TUI_C_LABEL, cols, " s step  r run/pause  x reset  %s field  %s change  Enter edit  ? help  q quit",
+        tui_sym("↑↓", "up/dn"), tui_sym("←→", "<-/->"));
+}
+
+/* ---- pickers ---------------------------------------------------------------- */
+
+static void draw_pickers(const tui_state *st, tui_box b)
+{
+    int nf = tui_state_nfields(st);
+    int y = b.y;
+    const int lw = 9;
+    tui_rule(y++, b.x, b.w, "setup");
+    /* the rows above the session block; scrolled to keep the cursor in view
+     * when a method has many parameters */
+    int room = b.h - 6, first = 0;
+    if (room < 1)
+        room = 1;
+    if (st->field >= room)
+        first = st->field - room + 1;
+    for (int f = first; f < nf && y < b.y + 1 + room; f++, y++) {
+        char val[64];
+        tui_field_value(st, f, val, sizeof val);
+        int sel = f == st->field;
+        int role = sel ? TUI_C_SELECT : TUI_C_NORMAL;
+        char reason[CX_DIAG_LEN];
+        if (f == TUI_F_METHOD && tui_state_method_reason(st, st->sel_method, reason, sizeof reason)[0])
+            role = sel ? TUI_C_SELECT : TUI_C_GREY;
+        if (f == TUI_F_COEF && st->sel_law == CX_FRICTION_NONE)
+            role = sel ? TUI_C_SELECT : TUI_C_GREY;
+        if (sel && st->editing)
+            snprintf(val, sizeof val, "%.*s_", st->edit_len, st->edit);
+        char line[128];
+        snprintf(line, sizeof line, "%-*.*s%s%-*s", lw, lw - 1, tui_field_label(st, f),
+                 sel ? tui_sym("◂", "<") : " ", b.w, val);
+        tui_term_put(y, b.x, role, line, b.w);
+    }
+    y++;
+    if (y >= b.y + b.h)
+        return;
+    /* detail of the row under the cursor */
+    int bottom = b.y + b.h - 5;
+    if (st->field == TUI_F_METHOD || st->field == TUI_F_SCENE) {
+        int is_m = st->field == TUI_F_METHOD;
+        int n = is_m ? cx_method_count() : st->nscenes;
+        int cur = is_m ? st->sel_method : st->sel_scene;
+        int first = cur - (bottom - y - 2) / 2;
+        if (first + (bottom - y - 2) > n)
+            first = n - (bottom - y - 2);
+        if (first < 0)
+            first = 0;
+        for (int i = first; i < n && y < bottom - 1; i++, y++) {
+            char reason[CX_DIAG_LEN];
+            const char *id = is_m ? cx_method_at(i)->id : st->scene_ids[i];
+            int grey = is_m && tui_state_method_reason(st, i, reason, sizeof reason)[0];
+            tui_put(y, b.x, i == cur ? (grey ? TUI_C_GREY : TUI_C_STICK) : grey ? TUI_C_GREY : TUI_C_NORMAL, b.w,
+                "%s%s", i == cur ? tui_sym("▸ ", "> ") : "  ", id);
+        }
+        if (is_m) {
+            char reason[CX_DIAG_LEN];
+            const cx_method *m = tui_state_sel_method(st);
+            if (tui_state_method_reason(st, st->sel_method, reason, sizeof reason)[0])
+                tui_put(y++, b.x, TUI_C_WARN, b.w, "%s", reason + (strncmp(reason, "method ", 7) == 0 ? 7 : 0));
+            else if (y < bottom)
+                tui_put(y++, b.x, TUI_C_FAINT, b.w, "%s (%s)", m->name, m->source);
+        } else if (y < bottom) {
+            tui_put(y++, b.x, TUI_C_FAINT, b.w, "%s", st->scene.title);
+        }
+    } else if (st->field >= TUI_F_PARAM0) {
+        const cx_param *p = &st->sel_params.table[st->field - TUI_F_PARAM0];
+        char range[96];
+        cx_param_range(p, range, sizeof range);
+        tui_put(y++, b.x, TUI_C_FAINT, b.w, "range %s", range);
+        /* the help, wrapped */
+        const char *h = p->help ? p->help : "";
+        while (*h && y < bottom) {
+            int len = (int)strlen(h);
+            int cut = len <= b.w ? len : b.w;
+            if (cut < len)
+                while (cut > 0 && h[cut] != ' ')
+                    cut--;
+            if (cut == 0)
+                cut = b.w < len ? b.w : len;
+            tui_put(y++, b.x, TUI_C_FAINT, b.w, "%.*s", cut, h);
+            h += cut;
+            while (*h == ' ')
+                h++;
+        }
+    } else if (st->field == TUI_F_COEF) {
+        tui_put(y++, b.x, TUI_C_FAINT, b.w, "%s", st->sel_law == CX_FRICTION_COULOMB ? "Coulomb coefficient F"
+                                              : st->sel_law == CX_FRICTION_TRESCA ? "Tresca bound (traction)"
+                                                                                   : "no friction");
+    } else if (st->field == TUI_F_LEVEL) {
+        tui_put(y++, b.x, TUI_C_FAINT, b.w, "1 to %d; rebuilds", st->scene.level_max);
+    }
+    /* the session */
+    y = b.y + b.h - 4;
+    if (y <= b.y)
+        return;
+    tui_rule(y++, b.x, b.w, "session");
+    tui_put(y++, b.x, TUI_C_NORMAL, b.w, "%dD %s, %d bod%s", st->info.dim,
+        st->info.mesh ? cx_elem_name(st->info.mesh->etype) : "-", st->info.mesh ? st->info.mesh->nbodies : 0,
+        st->info.mesh && st->info.mesh->nbodies > 1 ? "ies" : "y");
+    tui_put(y++, b.x, TUI_C_NORMAL, b.w, "%d dofs, %d points", st->info.n, st->info.m);
+    tui_put(y++, b.x, st->cache.factorizations == 1 ? TUI_C_OK : TUI_C_WARN, b.w, "cache %d op%s, %ld fact.",
+        st->cache_size, st->cache_size == 1 ? "" : "s", st->cache.factorizations);
+}
+
+/* ---- help overlay -------------------------------------------------------------------- */
+
+static void draw_help(int rows, int cols)
+{
+    const tui_binding *bd = tui_bindings();
+    int n = 0;
+    while (bd[n].key)
+        n++;
+    int ncol = n + 4 > rows - 2 ? 2 : 1;
+    int per = (n + ncol - 1) / ncol;
+    int cw = (cols - 2) / ncol < 44 ? (cols - 2) / ncol : 44;
+    int w = ncol * cw + 2, h = per + 4;
+    if (w > cols)
+        w = cols;
+    if (h > rows)
+        h = rows;
+    int y0 = (rows - h) / 2, x0 = (cols - w) / 2;
+    char blank[512];
+    snprintf(blank, sizeof blank, "%*s", w, "");
+    for (int y = 0; y < h; y++)
+        tui_term_put(y0 + y, x0, TUI_C_NORMAL, blank, w);
+    tui_put(y0, x0, TUI_C_TITLE, w, " help: keys of the explorer%*s", w - 27, "");
+    for (int k = 0; k < n; k++) {
+        int col = k / per, row = k % per;
+        tui_put(y0 + 2 + row, x0 + 1 + col * cw, TUI_C_LABEL, 9, "%s", bd[k].keyname);
+        tui_put(y0 + 2 + row, x0 + 10 + col * cw, TUI_C_NORMAL, cw - 10, "%s", bd[k].help);
+    }
+    tui_put(y0 + h - 1, x0, TUI_C_FAINT, w, " any key closes this help");
+}
+
+/* ---- the screen --------------------------------------------------------------------- */
+
+void tui_draw(const tui_state *st, int rows, int cols, int utf8)
+{
+    draw_utf8 = utf8;
+    tui_term_clear();
+    if (cols < DRAW_MIN_COLS || rows < DRAW_MIN_ROWS) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "terminal too small (%dx%d, need %dx%d)", cols, rows, DRAW_MIN_COLS,
+                 DRAW_MIN_ROWS);
+        int len = (int)strlen(msg);
+        tui_term_put(rows / 2, len < cols ? (cols - len) / 2 : 0, TUI_C_WARN, msg, cols);
+        tui_term_put(rows / 2 + 1, 0, TUI_C_FAINT, "q quits", cols);
+        return;
+    }
+    draw_header(st, cols);
+    draw_status(st, rows, cols);
+    int lw = cols >= 120 ? 30 : 23;
+    draw_pickers(st, (tui_box){1, 0, rows - 2, lw});
+
+    int x = lw + 1, w = cols - x, y = 1, h = rows - 2;
+    /* a second column for the mesh on wide terminals */
+    int mesh_w = cols >= 140 ? (w * 2) / 5 : 0;
+    w -= mesh_w ? mesh_w + 1 : 0;
+    int big = h >= 34;
+    int steps_h = big ? 12 : 6;
+    int contact_h = st->info.dim == 3 ? (big ? 10 : 5) : (big ? 6 : 4);
+    int runs_h = mesh_w ? 0 : big ? 8 : 4;
+    int plot_h = h - steps_h - contact_h - runs_h;
+    if (plot_h < 5) {
+        runs_h = 0;
+        plot_h = h - steps_h - contact_h;
+    }
+    tui_panel_steps(st, (tui_box){y, x, steps_h, w});
+    y += steps_h;
+    tui_panel_contact(st, (tui_box){y, x, contact_h, w});
+    y += contact_h;
+    if (st->view == 1 && !mesh_w)
+        tui_panel_mesh(st, (tui_box){y, x, plot_h, w});
+    else
+        tui_panel_plot(st, (tui_box){y, x, plot_h, w});
+    y += plot_h;
+    if (runs_h)
+        tui_panel_runs(st, (tui_box){y, x, runs_h, w});
+    if (mesh_w) {
+        int mx = x + w + 1, rh = big ? 10 : 5;
+        tui_panel_mesh(st, (tui_box){1, mx, h - rh, mesh_w});
+        tui_panel_runs(st, (tui_box){1 + h - rh, mx, rh, mesh_w});
+    }
+    if (st->help)
+        draw_help(rows, cols);
+}

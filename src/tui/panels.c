@@ -1,0 +1,417 @@
+/* The panels of the right-hand side, drawn from the state only: the
+ * per-step table, the contact strip (or 3D face) over the pressure
+ * profile, the convergence plot, the mesh view and the table of runs. */
+#include "tui/tui_impl.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- contact status ------------------------------------------------------- */
+
+static const char *status_glyph(int s)
+{
+    switch (s) {
+    case CX_PT_CONTACT: return tui_sym("█", "#");
+    case CX_PT_STICK: return tui_sym("●", "o");
+    case CX_PT_SLIP_POS: return tui_sym("▶", ">");
+    case CX_PT_SLIP_NEG: return tui_sym("◀", "<");
+    default: return tui_sym("·", ".");
+    }
+}
+
+static int status_role(int s)
+{
+    switch (s) {
+    case CX_PT_CONTACT: return TUI_C_CONTACT;
+    case CX_PT_STICK: return TUI_C_STICK;
+    case CX_PT_SLIP_POS:
+    case CX_PT_SLIP_NEG: return TUI_C_SLIP;
+    default: return TUI_C_FREE;
+    }
+}
+
+/* 3D slip: an arrow along the friction force's direction in x, y. */
+static const char *arrow_glyph(double fx, double fy)
+{
+    static const char *const utf8[8] = {"→", "↗", "↑", "↖", "←", "↙", "↓", "↘"};
+    static const char *const ascii[8] = {">", "/", "^", "\\", "<", "/", "v", "\\"};
+    if (fx == 0 && fy == 0)
+        return tui_sym("▶", ">");
+    double a = atan2(fy, fx);
+    int k = ((int)lround(a / (CX_PI / 4)) + 8) % 8;
+    return tui_sym(utf8[k], ascii[k]);
+}
+
+/* ---- per-step table ----------------------------------------------------------- */
+
+static void fmt_num(char *buf, size_t len, double v, int w)
+{
+    if (isnan(v))
+        snprintf(buf, len, "%*s", w, "-");
+    else
+        snprintf(buf, len, "%*.1e", w, v);
+}
+
+void tui_panel_steps(const tui_state *st, tui_box b)
+{
+    const tui_run *run = tui_state_run(st);
+    int y = b.y;
+    int wide = b.w >= 82;
+    const char *hdr = wide ? "iter   kkt error   own crit.  free cont stick slip chg  inner K-solves   time ms"
+                           : "iter     kkt     own  fr  ct  st  sl  ch  inn   nK   ms";
+    tui_term_put(y++, b.x, TUI_C_LABEL, hdr, b.w);
+    int rows = b.h - 1;
+    if (!run)
+        return;
+    int first = run->nsteps - rows;
+    if (first < 0)
+        first = 0;
+    for (int k = first; k < run->nsteps; k++, y++) {
+        const tui_step *s = &run->steps[k];
+        char kkt[24], own[24];
+        fmt_num(kkt, sizeof kkt, s->kkt, wide ? 11 : 7);
+        fmt_num(own, sizeof own, s->own, wide ? 11 : 7);
+        int role = k == run->nsteps - 1 ? TUI_C_NORMAL : TUI_C_FAINT;
+        if (k == run->nsteps - 1 && run->reason > 0)
+            role = TUI_C_OK;
+        if (k == run->nsteps - 1 && run->reason < 0)
+            role = TUI_C_ERROR;
+        if (wide)
+            tui_put(y, b.x, role, b.w, "%4d %s %s %5d %4d %5d %4d %3d %6ld %8ld %9.1f", s->iter, kkt, own, s->nfree,
+                s->ncontact + s->nstick + s->nslip, s->nstick, s->nslip, s->nchanged, s->inner, s->solves,
+                1e3 * s->time);
+        else
+            tui_put(y, b.x, role, b.w, "%4d %s %s %3d %3d %3d %3d %3d %4ld %4ld %4.0f", s->iter, kkt, own, s->nfree,
+                s->ncontact + s->nstick + s->nslip, s->nstick, s->nslip, s->nchanged, s->inner, s->solves,
+                1e3 * s->time);
+    }
+    if (run->nsteps == 0)
+        tui_put(y, b.x, TUI_C_FAINT, b.w, "   (no step yet: s steps, r runs)");
+}
+
+/* ---- contact strip -------------------------------------------------------------- */
+
+static void draw_strip_2d(const tui_state *st, int y, int x, int w)
+{
+    int m = st->m;
+    for (int c = 0; c < w && m > 0; c++) {
+        int lo = (int)((long)c * m / w), hi = (int)((long)(c + 1) * m / w);
+        if (hi <= lo)
+            hi = lo + 1;
+        if (lo >= m)
+            break;
+        int ch;
+        int s = tui_bucket_status(st->status, st->changed, lo, hi, &ch);
+        tui_term_put(y, x + c, ch ? TUI_C_CHANGED : status_role(s), status_glyph(s), 1);
+    }
+}
+
+/* The pressure p = lN / weight per point as bars, Hertz's over it. */
+static void draw_pressure(const tui_state *st, int y, int x, int w, int h)
+{
+    int m = st->m;
+    double pmax = 0;
+    for (int i = 0; i < m; i++) {
+        if (isfinite(st->pressure[i]))
+            pmax = fmax(pmax, st->pressure[i]);
+        if (isfinite(st->hertz[i]))
+            pmax = fmax(pmax, st->hertz[i]);
+    }
+    if (!(pmax > 0) || h <= 0 || w <= 0)
+        return;
+    tui_canvas c;
+    tui_canvas_init(&c, w, h);
+    int ny = 4 * h;
+    for (int xd = 0; xd < 2 * w; xd++) {
+        int i = (int)((long)xd * m / (2 * w));
+        if (i >= m)
+            i = m - 1;
+        double v = st->pressure[i] > 0 ? st->pressure[i] : 0;
+        int top = ny - (int)lround(v / pmax * ny);
+        for (int yd = top; yd < ny; yd++)
+            tui_canvas_dot(&c, xd, yd, TUI_C_BAR);
+        if (isfinite(st->hertz[i]) && st->hertz[i] > 0) {
+            int hy = ny - (int)lround(st->hertz[i] / pmax * ny);
+            tui_canvas_dot(&c, xd, hy < ny ? hy : ny - 1, TUI_C_REF);
+        }
+    }
+    tui_put_canvas(&c, y, x);
+    tui_canvas_free(&c);
+}
+
+/* 3D: a grid of the contact face (x right, y up), slip as arrows. */
+static void draw_face_3d(const tui_state *st, int y, int x, int w, int h)
+{
+    const cx_contact_set *cs = &st->info.contact;
+    int m = st->m;
+    if (m == 0 || h <= 0)
+        return;
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    for (int i = 0; i < m; i++) {
+        x0 = fmin(x0, cs->x[3 * i]);
+        x1 = fmax(x1, cs->x[3 * i]);
+        y0 = fmin(y0, cs->x[3 * i + 1]);
+        y1 = fmax(y1, cs->x[3 * i + 1]);
+    }
+    /* as many columns and rows as distinct coordinates, within the room */
+    int gw = (int)lround(sqrt((double)m) * (x1 - x0) / fmax(1e-300, sqrt((x1 - x0) * (y1 - y0))));
+    int gh = gw > 0 ? m / gw : 1;
+    gw = gw < 1 ? 1 : gw > w / 2 ? w / 2 : gw;
+    gh = gh < 1 ? 1 : gh > h ? h : gh;
+    int cells = gw * gh;
+    int best[64 * 64], chg[64 * 64], who[64 * 64];
+    if (gw > 64)
+        gw = 64;
+    if (gh > 64)
+        gh = 64;
+    cells = gw * gh;
+    for (int k = 0; k < cells; k++)
+        best[k] = -1, chg[k] = 0, who[k] = -1;
+    for (int i = 0; i < m; i++) {
+        int cx = x1 > x0 ? (int)lround((cs->x[3 * i] - x0) / (x1 - x0) * (gw - 1)) : 0;
+        int cy = y1 > y0 ? (int)lround((cs->x[3 * i + 1] - y0) / (y1 - y0) * (gh - 1)) : 0;
+        int k = (gh - 1 - cy) * gw + cx;
+        if (best[k] < 0 || tui_status_rank(st->status[i]) > tui_status_rank(best[k])) {
+            best[k] = st->status[i];
+            who[k] = i;
+        }
+        chg[k] |= st->changed[i];
+    }
+    for (int k = 0; k < cells; k++) {
+        if (best[k] < 0)
+            continue;
+        const char *g = status_glyph(best[k]);
+        if (best[k] == CX_PT_SLIP_POS)
+            g = arrow_glyph(st->slip_dir[2 * who[k]], st->slip_dir[2 * who[k] + 1]);
+        tui_term_put(y + k / gw, x + 2 * (k % gw), chg[k] ? TUI_C_CHANGED : status_role(best[k]), g, 1);
+    }
+}
+
+void tui_panel_contact(const tui_state *st, tui_box b)
+{
+    int y = b.y;
+    char legend[160];
+    snprintf(legend, sizeof legend, "contact %s", st->info.dim == 3 ? "face" : "strip");
+    tui_rule(y, b.x, b.w, legend);
+    /* legend on the rule's right */
+    int lx = b.x + 16;
+    const int roles[] = {TUI_C_FREE, TUI_C_CONTACT, TUI_C_STICK, TUI_C_SLIP, TUI_C_CHANGED};
+    const char *names[] = {"free", "contact", "stick", "slip", "changed"};
+    const char *glyphs[] = {status_glyph(CX_PT_FREE), status_glyph(CX_PT_CONTACT), status_glyph(CX_PT_STICK),
+                            st->info.dim == 3 ? tui_sym("→", ">") : tui_sym("▶◀", "><"), tui_sym("▒", "%")};
+    for (int k = 0; k < 5 && lx < b.x + b.w - 8; k++) {
+        tui_put(y, lx - 1, TUI_C_LABEL, 1, " ");
+        tui_put(y, lx, roles[k], b.w - (lx - b.x), "%s", glyphs[k]);
+        lx += k == 3 && st->info.dim != 3 ? 2 : 1;
+        tui_put(y, lx, TUI_C_LABEL, b.w - (lx - b.x), "%s ", names[k]);
+        lx += (int)strlen(names[k]) + 2;
+    }
+    y++;
+    if (st->m <= 0)
+        return;
+    if (st->info.dim == 3) {
+        draw_face_3d(st, y, b.x, b.w, b.h - 1);
+        return;
+    }
+    /* the strip and the profile share their columns: cell c is the same
+     * points in both */
+    int lw = 12, w = b.w - lw;
+    draw_strip_2d(st, y, b.x, w);
+    tui_put(y++, b.x + w + 1, TUI_C_LABEL, lw - 1, "%d pts", st->m);
+    int ph = b.h - 2;
+    if (ph > 0) {
+        double pmax = 0, hmax = 0;
+        for (int i = 0; i < st->m; i++) {
+            pmax = fmax(pmax, st->pressure[i]);
+            if (isfinite(st->hertz[i]))
+                hmax = fmax(hmax, st->hertz[i]);
+        }
+        draw_pressure(st, y, b.x, w, ph);
+        tui_put(y, b.x + w + 1, TUI_C_BAR, lw - 1, "p %.3g", pmax);
+        if (hmax > 0 && ph > 1)
+            tui_put(y + 1, b.x + w + 1, TUI_C_REF, lw - 1, "%s %.3g", tui_sym("⠒Hertz", "'Hertz"), hmax);
+    }
+}
+
+/* ---- convergence plot ---------------------------------------------------------- */
+
+void tui_panel_plot(const tui_state *st, tui_box b)
+{
+    tui_rule(b.y, b.x, b.w, "log10 kkt error vs iteration");
+    int lw = 6;
+    int w = b.w - lw, h = b.h - 2;
+    if (w < 4 || h < 2)
+        return;
+    int itmax = 10;
+    double lo = -12, hi = 0;
+    for (int r = 0; r < st->nruns; r++)
+        for (int k = 0; k < st->runs[r].nsteps; k++) {
+            const tui_step *s = &st->runs[r].steps[k];
+            itmax = s->iter > itmax ? s->iter : itmax;
+            if (s->kkt > 0 && isfinite(s->kkt)) {
+                lo = fmin(lo, floor(log10(s->kkt)));
+                hi = fmax(hi, ceil(log10(s->kkt)));
+            }
+        }
+    lo = fmax(lo, -18);
+    tui_canvas c;
+    tui_canvas_init(&c, w, h);
+    double sx = (2.0 * w - 1) / itmax, sy = (4.0 * h - 1) / (hi - lo);
+#define PX(it) ((it) * sx)
+#define PY(v) ((hi - (v)) * sy)
+    /* the tolerance, dotted */
+    double lt = log10(st->cur_opt.tol);
+    if (lt >= lo && lt <= hi)
+        for (int xd = 0; xd < 2 * w; xd += 3)
+            tui_canvas_dot(&c, xd, (int)lround(PY(lt)), TUI_C_FAINT);
+    for (int r = 0; r < st->nruns; r++) {
+        const tui_run *run = &st->runs[r];
+        int role = r == st->nruns - 1 ? TUI_C_CURRENT : TUI_C_FAINT;
+        double px = NAN, py = NAN;
+        for (int k = 0; k < run->nsteps; k++) {
+            double v = run->steps[k].kkt > 0 ? log10(run->steps[k].kkt) : lo;
+            if (!isfinite(v))
+                v = hi;
+            v = fmax(lo, fmin(hi, v));
+            double qx = PX(run->steps[k].iter), qy = PY(v);
+            if (isfinite(px))
+                tui_canvas_line(&c, px, py, qx, qy, role);
+            else
+                tui_canvas_dot(&c, (int)lround(qx), (int)lround(qy), role);
+            px = qx;
+            py = qy;
+        }
+    }
+#undef PX
+#undef PY
+    tui_put_canvas(&c, b.y + 1, b.x + lw);
+    tui_canvas_free(&c);
+    for (int j = 0; j < h; j += h > 4 ? (h - 1) / 2 : h - 1) {
+        double v = hi - (hi - lo) * j / (h - 1);
+        tui_put(b.y + 1 + j, b.x, TUI_C_LABEL, lw, "%4.0f %s", v, tui_sym("┤", "|"));
+        if (h <= 1)
+            break;
+    }
+    tui_put(b.y + b.h - 1, b.x + lw, TUI_C_LABEL, w, "0%*d", w - 1, itmax);
+    if (st->nruns > 1)
+        tui_put(b.y + b.h - 1, b.x + lw + 3, TUI_C_FAINT, w - 8, "earlier runs faint");
+}
+
+/* ---- mesh view -------------------------------------------------------------------- */
+
+static void project(int dim, const double *x, double *px, double *py)
+{
+    if (dim == 2) {
+        *px = x[0];
+        *py = x[1];
+    } else {
+        /* an oblique view: x right, z up, y into the screen */
+        *px = x[0] + 0.45 * x[1];
+        *py = x[2] + 0.3 * x[1];
+    }
+}
+
+void tui_panel_mesh(const tui_state *st, tui_box b)
+{
+    const cx_mesh *mesh = st->info.mesh;
+    double scale = st->disp_scale > 0 ? st->disp_scale : tui_mesh_auto_scale(st);
+    char title[96];
+    snprintf(title, sizeof title, "deformed mesh, displacement x%.3g", scale);
+    tui_rule(b.y, b.x, b.w, title);
+    int w = b.w, h = b.h - 1;
+    if (!mesh || !st->uall || w < 4 || h < 2)
+        return;
+    int dim = mesh->dim, nn = mesh->nnodes;
+    double *P = tui_xalloc(NULL, sizeof(double) * 2 * (size_t)nn);
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    for (int k = 0; k < nn; k++) {
+        double q[3];
+        for (int c = 0; c < dim; c++)
+            q[c] = mesh->x[dim * k + c] + scale * st->uall[dim * k + c];
+        project(dim, q, &P[2 * k], &P[2 * k + 1]);
+        x0 = fmin(x0, P[2 * k]);
+        x1 = fmax(x1, P[2 * k]);
+        y0 = fmin(y0, P[2 * k + 1]);
+        y1 = fmax(y1, P[2 * k + 1]);
+    }
+    /* dots are about square: one scale for both axes */
+    double s = fmin((2.0 * w - 2) / fmax(x1 - x0, 1e-300), (4.0 * h - 2) / fmax(y1 - y0, 1e-300));
+    tui_canvas c;
+    tui_canvas_init(&c, w, h);
+    static const int tri[] = {0, 1, 1, 2, 2, 0};
+    static const int quad[] = {0, 1, 1, 2, 2, 3, 3, 0};
+    static const int tri6[] = {0, 3, 3, 1, 1, 4, 4, 2, 2, 5, 5, 0};
+    static const int tet[] = {0, 1, 1, 2, 2, 0, 0, 3, 1, 3, 2, 3};
+    static const int hex[] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 5, 6, 6, 7, 7, 4, 0, 4, 1, 5, 2, 6, 3, 7};
+    const int *edges;
+    int ne;
+    switch (mesh->etype) {
+    case CX_EL_TRI3: edges = tri, ne = 3; break;
+    case CX_EL_QUAD4: edges = quad, ne = 4; break;
+    case CX_EL_TRI6: edges = tri6, ne = 6; break;
+    case CX_EL_TET4: edges = tet, ne = 6; break;
+    default: edges = hex, ne = 12; break;
+    }
+    /* 2D: every edge while they are at least 3 dots long on average, else
+     * the outline (the edges of the surface facets); 3D: the surface */
+    double len = 0;
+    int sampled = 0;
+    for (int e = 0; e < mesh->nelems && sampled < 4000; e += 1 + mesh->nelems / 2000)
+        for (int k = 0; k < ne; k++, sampled++) {
+            const int *nd = mesh->conn + (size_t)mesh->npe * e;
+            int a = nd[edges[2 * k]], bb = nd[edges[2 * k + 1]];
+            len += s * hypot(P[2 * a] - P[2 * bb], P[2 * a + 1] - P[2 * bb + 1]);
+        }
+    if (dim == 2 && sampled && len / sampled >= 3) {
+        for (int e = 0; e < mesh->nelems; e++) {
+            const int *nd = mesh->conn + (size_t)mesh->npe * e;
+            for (int k = 0; k < ne; k++) {
+                int a = nd[edges[2 * k]], bb = nd[edges[2 * k + 1]];
+                tui_canvas_line(&c, (P[2 * a] - x0) * s, (y1 - P[2 * a + 1]) * s, (P[2 * bb] - x0) * s,
+                                (y1 - P[2 * bb + 1]) * s, TUI_C_FAINT);
+            }
+        }
+    } else {
+        for (int k = 0; k < st->noutline; k++) {
+            int a = st->outline[2 * k], bb = st->outline[2 * k + 1];
+            tui_canvas_line(&c, (P[2 * a] - x0) * s, (y1 - P[2 * a + 1]) * s, (P[2 * bb] - x0) * s,
+                            (y1 - P[2 * bb + 1]) * s, TUI_C_NORMAL);
+        }
+    }
+    const cx_contact_set *cs = &st->info.contact;
+    for (int i = 0; i < st->m && cs->node; i++) {
+        int k = cs->node[i];
+        tui_canvas_dot(&c, (int)lround((P[2 * k] - x0) * s), (int)lround((y1 - P[2 * k + 1]) * s),
+                       status_role(st->status[i]));
+    }
+    tui_put_canvas(&c, b.y + 1, b.x);
+    tui_canvas_free(&c);
+    free(P);
+}
+
+/* ---- finished runs --------------------------------------------------------------------- */
+
+void tui_panel_runs(const tui_state *st, tui_box b)
+{
+    tui_rule(b.y, b.x, b.w, "runs");
+    tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-14s %-7s %5s %9s %8s %6s  %s", "method", "law", "iter", "kkt", "time ms",
+        "nK", "outcome");
+    int rows = b.h - 2;
+    int first = st->nruns - rows;
+    if (first < 0)
+        first = 0;
+    for (int r = first, y = b.y + 2; r < st->nruns; r++, y++) {
+        const tui_run *run = &st->runs[r];
+        const tui_step *s = run->nsteps ? &run->steps[run->nsteps - 1] : NULL;
+        char kkt[24];
+        fmt_num(kkt, sizeof kkt, s ? s->kkt : NAN, 9);
+        int role = run->reason > 0 ? TUI_C_OK : run->reason < 0 ? TUI_C_ERROR : TUI_C_NORMAL;
+        if (r == st->nruns - 1 && run->reason == 0)
+            role = TUI_C_CURRENT;
+        tui_put(y, b.x, role, b.w, "%-14.14s %-7s %5d %s %8.1f %6ld  %s", run->method, cx_friction_name(run->law),
+            s ? s->iter : 0, kkt, s ? 1e3 * s->time : 0, s ? s->solves : 0,
+            run->reason ? cx_reason_id(run->reason) : r == st->nruns - 1 ? "current" : "stopped");
+    }
+}

@@ -1,0 +1,738 @@
+/* The explorer's state: scenes, the session, jobs (build a level, switch
+ * method) on a worker thread, the snapshot panels draw from, and the
+ * history of runs. No curses here. */
+#include "tui/tui_impl.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void tui_msg(tui_state *st, int error, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(st->msg, sizeof st->msg, fmt, ap);
+    va_end(ap);
+    st->msg_error = error;
+}
+
+/* Fail fast on OOM in the program layer (STYLE.md C5): the loop's atexit
+ * handler restores the terminal first. */
+void *tui_xalloc(void *p, size_t size)
+{
+    void *q = realloc(p, size ? size : 1);
+    if (!q) {
+        tui_fatal("out of memory");
+    }
+    return q;
+}
+
+/* ---- selections ---------------------------------------------------------- */
+
+int tui_state_nfields(const tui_state *st)
+{
+    return TUI_F_PARAM0 + st->sel_params.n;
+}
+
+const cx_method *tui_state_sel_method(const tui_state *st)
+{
+    return cx_method_at(st->sel_method);
+}
+
+const char *tui_state_method_reason(const tui_state *st, int index, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    const cx_method *m = cx_method_at(index);
+    if (!m || !st->have_info)
+        return buf;
+    /* the law the pickers select, on the session's problem */
+    cx_problem info = st->info;
+    info.friction = st->sel_law;
+    cx_diag d;
+    cx_diag_clear(&d);
+    if (cx_method_check(m, &info, &d) != CX_OK)
+        snprintf(buf, len, "%s", d.msg);
+    return buf;
+}
+
+static int state_method_index(const char *id)
+{
+    for (int i = 0; i < cx_method_count(); i++)
+        if (strcmp(cx_method_at(i)->id, id) == 0)
+            return i;
+    return -1;
+}
+
+/* The selections a freshly loaded scene starts from. */
+static void state_select_scene_defaults(tui_state *st)
+{
+    st->sel_level = st->scene.level;
+    st->sel_law = st->scene.friction;
+    st->sel_slip = st->scene.slip_bound;
+    st->sel_F = st->scene.F;
+    st->sel_method = 0;
+    for (int k = 0; k < st->scene.nmethods; k++) {
+        int i = state_method_index(st->scene.methods[k]);
+        if (i >= 0) {
+            st->sel_method = i;
+            break;
+        }
+    }
+    cx_param_default(&st->sel_params, cx_method_at(st->sel_method)->params);
+}
+
+static double state_sel_coef(const tui_state *st)
+{
+    return st->sel_law == CX_FRICTION_COULOMB ? st->sel_F : st->sel_slip;
+}
+
+/* ---- runs ---------------------------------------------------------------- */
+
+const tui_run *tui_state_run(const tui_state *st)
+{
+    return st->nruns ? &st->runs[st->nruns - 1] : NULL;
+}
+
+static void run_free(tui_run *r)
+{
+    free(r->steps);
+    memset(r, 0, sizeof *r);
+}
+
+static void state_clear_runs(tui_state *st)
+{
+    for (int i = 0; i < st->nruns; i++)
+        run_free(&st->runs[i]);
+    st->nruns = 0;
+}
+
+/* A new run for the session's current method; an empty current run is
+ * replaced, the oldest run dropped when the table is full. */
+static void state_new_run(tui_state *st)
+{
+    if (st->nruns && st->runs[st->nruns - 1].nsteps == 0)
+        run_free(&st->runs[--st->nruns]);
+    if (st->nruns == TUI_MAX_RUNS) {
+        run_free(&st->runs[0]);
+        memmove(st->runs, st->runs + 1, sizeof st->runs[0] * (TUI_MAX_RUNS - 1));
+        memset(&st->runs[TUI_MAX_RUNS - 1], 0, sizeof st->runs[0]);
+        st->nruns--;
+    }
+    tui_run *r = &st->runs[st->nruns++];
+    memset(r, 0, sizeof *r);
+    const cx_method *m = st->cur_method;
+    snprintf(r->method, sizeof r->method, "%s", m ? m->id : "-");
+    size_t at = 0;
+    for (int i = 0; i < st->cur_params.n && at < sizeof r->params; i++) {
+        char v[CX_PARAM_STRLEN];
+        cx_param_format(&st->cur_params, i, v, sizeof v);
+        int w = snprintf(r->params + at, sizeof r->params - at, "%s%s=%s", i ? " " : "",
+                         st->cur_params.table[i].key, v);
+        at += w > 0 ? (size_t)w : 0;
+    }
+    r->law = st->cur_law;
+    r->coef = st->cur_coef;
+    r->tol = st->cur_opt.tol;
+    r->reason = CX_ITERATING;
+    if (st->flips && st->m > 0)
+        memset(st->flips, 0, sizeof(int) * (size_t)st->m);
+    memset(st->status_hash, 0, sizeof st->status_hash);
+    st->cycle_iter = 0;
+}
+
+static void run_append(tui_run *r, const cx_iterate *it)
+{
+    if (r->nsteps == r->cap) {
+        r->cap = r->cap ? 2 * r->cap : 64;
+        r->steps = tui_xalloc(r->steps, sizeof *r->steps * (size_t)r->cap);
+    }
+    tui_step *s = &r->steps[r->nsteps++];
+    s->iter = it->iter;
+    s->kkt = it->kkt;
+    s->own = it->own;
+    s->nfree = it->nfree;
+    s->ncontact = it->ncontact;
+    s->nstick = it->nstick;
+    s->nslip = it->nslip;
+    s->nchanged = it->nchanged;
+    s->inner = it->inner;
+    s->solves = it->counters.solves;
+    s->time = it->time;
+    s->step_time = it->step_time;
+    r->reason = it->reason;
+    r->factorizations = it->counters.factorizations;
+}
+
+/* ---- snapshot ------------------------------------------------------------ */
+
+/* Copy what the panels draw out of the session (main thread, no job). */
+static void state_snapshot(tui_state *st)
+{
+    const cx_session *s = st->session;
+    if (!s)
+        return;
+    const cx_problem *p = cx_session_problem(s);
+    const cx_iterate *it = cx_session_iterate(s);
+    const cx_contact_set *c = &p->contact;
+    int m = p->m, dim = p->dim, nall = p->map.nall;
+    if (m != st->m || !st->status) {
+        st->m = m;
+        st->status = tui_xalloc(st->status, (size_t)m + 1);
+        st->changed = tui_xalloc(st->changed, (size_t)m + 1);
+        st->pressure = tui_xalloc(st->pressure, sizeof(double) * ((size_t)m + 1));
+        st->hertz = tui_xalloc(st->hertz, sizeof(double) * ((size_t)m + 1));
+        st->slip_dir = tui_xalloc(st->slip_dir, sizeof(double) * (2 * (size_t)m + 1));
+        st->flips = tui_xalloc(st->flips, sizeof(int) * ((size_t)m + 1));
+        memset(st->flips, 0, sizeof(int) * ((size_t)m + 1));
+    }
+    st->uall = tui_xalloc(st->uall, sizeof(double) * ((size_t)nall + 1));
+    for (int i = 0; i < m; i++) {
+        st->status[i] = it->status[i];
+        st->changed[i] = it->changed[i];
+        st->pressure[i] = c->weight[i] > 0 ? it->lN[i] / c->weight[i] : 0;
+        st->hertz[i] = st->scene.has_hertz && dim == 2 ? cx_scene_hertz_pressure(&st->scene, c->x[2 * i])
+                                                       : NAN;
+        /* the friction force on the body, -lT t, in the x, y plane */
+        double fx = 0, fy = 0;
+        if (p->friction != CX_FRICTION_NONE)
+            for (int r = 0; r < dim - 1; r++) {
+                const double *t = c->tangent + dim * ((dim - 1) * i + r);
+                fx -= it->lT[(dim - 1) * i + r] * t[0];
+                fy -= it->lT[(dim - 1) * i + r] * t[1];
+            }
+        st->slip_dir[2 * i] = fx;
+        st->slip_dir[2 * i + 1] = fy;
+    }
+    for (int k = 0; k < nall; k++) {
+        int f = p->map.free_of[k];
+        st->uall[k] = f >= 0 ? it->u[f] : p->map.value[k];
+    }
+    st->cache = *cx_session_cache_counters(s);
+    st->cache_size = cx_session_cache_size(s);
+}
+
+/* ---- the outline of the mesh --------------------------------------------- */
+
+/* Facets of each element type as local node lists (2D: edges, tri6 split
+ * at the mid nodes; 3D: faces), padded with -1 to 4 nodes. */
+static int outline_facets(cx_elem_type t, const int (**f)[4])
+{
+    static const int tri3[][4] = {{0, 1, -1, -1}, {1, 2, -1, -1}, {2, 0, -1, -1}};
+    static const int tri6[][4] = {{0, 3, -1, -1}, {3, 1, -1, -1}, {1, 4, -1, -1},
+                                  {4, 2, -1, -1}, {2, 5, -1, -1}, {5, 0, -1, -1}};
+    static const int quad4[][4] = {{0, 1, -1, -1}, {1, 2, -1, -1}, {2, 3, -1, -1}, {3, 0, -1, -1}};
+    static const int hex8[][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    static const int tet4[][4] = {{0, 2, 1, -1}, {0, 1, 3, -1}, {1, 2, 3, -1}, {2, 0, 3, -1}};
+    switch (t) {
+    case CX_EL_TRI3: *f = tri3; return 3;
+    case CX_EL_TRI6: *f = tri6; return 6;
+    case CX_EL_QUAD4: *f = quad4; return 4;
+    case CX_EL_HEX8: *f = hex8; return 6;
+    default: *f = tet4; return 4;
+    }
+}
+
+typedef struct {
+    int key[4];   /* sorted node ids (-1 padded at the end as INT_MAX) */
+    int nodes[4]; /* in element order */
+} outline_facet;
+
+static int outline_cmp(const void *a, const void *b)
+{
+    const int *x = ((const outline_facet *)a)->key, *y = ((const outline_facet *)b)->key;
+    for (int k = 0; k < 4; k++)
+        if (x[k] != y[k])
+            return x[k] < y[k] ? -1 : 1;
+    return 0;
+}
+
+/* The edges of the facets that belong to one element only: what the mesh
+ * view draws when the mesh is too fine to show every edge. */
+static void state_outline(tui_state *st)
+{
+    const cx_mesh *mesh = st->info.mesh;
+    st->noutline = 0;
+    if (!mesh)
+        return;
+    const int (*lf)[4];
+    int nf = outline_facets(mesh->etype, &lf);
+    size_t n = (size_t)nf * (size_t)mesh->nelems;
+    outline_facet *fs = tui_xalloc(NULL, sizeof *fs * (n + 1));
+    for (int e = 0; e < mesh->nelems; e++)
+        for (int k = 0; k < nf; k++) {
+            outline_facet *f = &fs[(size_t)e * nf + k];
+            for (int c = 0; c < 4; c++) {
+                f->nodes[c] = lf[k][c] < 0 ? -1 : mesh->conn[(size_t)mesh->npe * e + lf[k][c]];
+                f->key[c] = f->nodes[c] < 0 ? 0x7fffffff : f->nodes[c];
+            }
+            /* sort the key (4 entries) */
+            for (int i = 1; i < 4; i++)
+                for (int j = i; j > 0 && f->key[j - 1] > f->key[j]; j--) {
+                    int t = f->key[j];
+                    f->key[j] = f->key[j - 1];
+                    f->key[j - 1] = t;
+                }
+        }
+    qsort(fs, n, sizeof *fs, outline_cmp);
+    st->outline = tui_xalloc(st->outline, sizeof(int) * (8 * n + 2));
+    for (size_t i = 0; i < n;) {
+        size_t j = i + 1;
+        while (j < n && outline_cmp(&fs[i], &fs[j]) == 0)
+            j++;
+        if (j == i + 1) {
+            /* a facet of one element: its edges */
+            int nn = fs[i].nodes[2] < 0 ? 2 : fs[i].nodes[3] < 0 ? 3 : 4;
+            for (int c = 0; c < (nn == 2 ? 1 : nn); c++) {
+                st->outline[2 * st->noutline] = fs[i].nodes[c];
+                st->outline[2 * st->noutline + 1] = fs[i].nodes[(c + 1) % nn];
+                st->noutline++;
+            }
+        }
+        i = j;
+    }
+    free(fs);
+}
+
+/* After a job: what the session now is. */
+static void state_take_session(tui_state *st)
+{
+    const cx_problem *p = cx_session_problem(st->session);
+    st->info = *p;
+    st->have_info = 1;
+    st->cur_method = cx_session_method(st->session);
+    st->cur_params = *cx_session_params(st->session);
+    st->cur_opt = *cx_session_options(st->session);
+    st->cur_law = p->friction;
+    st->cur_coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
+}
+
+static void state_after_step(tui_state *st, int status, const cx_diag *d);
+
+/* ---- jobs ---------------------------------------------------------------- */
+
+/* Runs on the worker (or inline): touches only the job, the scene (read)
+ * and, for a resolve, the session, which the main thread leaves alone. */
+static void job_run(tui_state *st)
+{
+    tui_job *j = &st->job;
+    cx_diag_clear(&j->diag);
+    j->status = CX_OK;
+    if (j->kind == TUI_JOB_BUILD) {
+        cx_problem *p = NULL;
+        atomic_store(&j->phase, TUI_PHASE_ASSEMBLE);
+        j->status = cx_scene_build(&st->scene, j->level, &p, &j->diag);
+        if (j->status == CX_OK)
+            j->status = cx_problem_set_friction(p, j->law, j->coef, &j->diag);
+        if (j->status == CX_OK)
+            j->status = cx_session_create(&j->session, &p, &j->diag);
+        cx_problem_destroy(&p);
+        if (j->status == CX_OK) {
+            atomic_store(&j->phase, TUI_PHASE_FACTORISE);
+            j->status = cx_session_set_method(j->session, j->method, &j->params, &j->opt, &j->diag);
+        }
+    } else if (j->kind == TUI_JOB_STEP) {
+        atomic_store(&j->phase, TUI_PHASE_STEP);
+        j->status = cx_solver_step(st->session, &j->diag);
+    } else if (j->kind == TUI_JOB_RESOLVE) {
+        cx_session *s = st->session;
+        const cx_problem *p = cx_session_problem(s);
+        double coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
+        atomic_store(&j->phase, TUI_PHASE_FACTORISE);
+        if (j->law != p->friction || j->coef != coef)
+            j->status = cx_session_set_friction(s, j->law, j->coef, &j->diag);
+        if (j->status == CX_OK)
+            j->status = cx_session_set_method(s, j->method, &j->params, &j->opt, &j->diag);
+    }
+    atomic_store(&j->phase, TUI_PHASE_DONE);
+}
+
+static void *job_thread(void *arg)
+{
+    job_run(arg);
+    return NULL;
+}
+
+int tui_state_busy(const tui_state *st)
+{
+    return st->job.kind != TUI_JOB_NONE;
+}
+
+static void job_start(tui_state *st, int kind)
+{
+    tui_job *j = &st->job;
+    j->kind = kind;
+    j->t0 = cx_clock_now();
+    j->level = st->sel_level;
+    j->method = tui_state_sel_method(st);
+    j->params = st->sel_params;
+    j->opt = st->sel_opt;
+    j->law = st->sel_law;
+    j->coef = state_sel_coef(st);
+    j->session = NULL;
+    atomic_store(&j->phase, TUI_PHASE_IDLE);
+    /* 'running' is kept: a run asked for during the job starts after it */
+    if (!st->sync) {
+        pthread_t *t = malloc(sizeof *t);
+        if (t && pthread_create(t, NULL, job_thread, st) == 0) {
+            st->worker = t;
+            return;
+        }
+        free(t);
+    }
+    job_run(st);
+    tui_state_poll(st);
+}
+
+/* What arrived during a job: changes first, then typed-ahead steps. */
+static void state_after_job(tui_state *st)
+{
+    if (st->pending) {
+        int r = st->pending;
+        st->pending = 0;
+        tui_state_apply(st, r);
+    }
+    if (st->queued_steps > 0 && !tui_state_busy(st) && st->session) {
+        st->queued_steps--;
+        tui_state_step(st);
+    }
+}
+
+int tui_state_poll(tui_state *st)
+{
+    tui_job *j = &st->job;
+    if (j->kind == TUI_JOB_NONE || atomic_load(&j->phase) != TUI_PHASE_DONE)
+        return 0;
+    if (st->worker) {
+        pthread_join(*(pthread_t *)st->worker, NULL);
+        free(st->worker);
+        st->worker = NULL;
+    }
+    int kind = j->kind;
+    j->kind = TUI_JOB_NONE;
+    if (kind == TUI_JOB_STEP) {
+        state_after_step(st, j->status, &j->diag);
+        state_after_job(st);
+        return 1;
+    }
+    if (kind == TUI_JOB_BUILD) {
+        if (j->status == CX_OK || j->session) {
+            cx_session_destroy(&st->session);
+            st->session = j->session;
+            j->session = NULL;
+            st->level = j->level;
+            st->build_time = cx_clock_now() - j->t0;
+            state_clear_runs(st);
+            st->m = -1;
+            st->info = *cx_session_problem(st->session);
+            state_outline(st);
+        } else if (st->session) {
+            /* the build failed: the old session stays, and so does its scene */
+            st->scene = st->prev_scene;
+            for (int i = 0; i < st->nscenes; i++)
+                if (strcmp(st->scene_ids[i], st->scene.id) == 0)
+                    st->sel_scene = i;
+            st->sel_level = st->level;
+        }
+    }
+    if (st->session) {
+        state_take_session(st);
+        /* a refused switch leaves the session as it was: show that */
+        if (j->status != CX_OK && st->cur_method) {
+            st->sel_method = state_method_index(st->cur_method->id);
+            st->sel_params = st->cur_params;
+            st->sel_law = st->cur_law;
+            if (st->cur_law == CX_FRICTION_COULOMB)
+                st->sel_F = st->cur_coef;
+            else if (st->cur_law == CX_FRICTION_TRESCA)
+                st->sel_slip = st->cur_coef;
+        }
+        if (st->cur_method && (j->status == CX_OK || kind == TUI_JOB_BUILD))
+            state_new_run(st);
+        state_snapshot(st);
+    }
+    if (j->status != CX_OK)
+        tui_msg(st, 1, "%s", cx_diag_msg(&j->diag, j->status));
+    else if (kind == TUI_JOB_BUILD)
+        tui_msg(st, 0, "%s level %d: %d dofs, %d contact points, built in %.2f s", st->scene.id,
+                st->level, st->info.n, st->info.m, st->build_time);
+    else
+        tui_msg(st, 0, "%s ready (nothing reassembled)", st->cur_method ? st->cur_method->id : "-");
+    state_after_job(st);
+    return 1;
+}
+
+/* ---- apply --------------------------------------------------------------- */
+
+static int state_load_scene(tui_state *st, int index, cx_diag *d)
+{
+    char path[512];
+    cx_scene sc;
+    CX_TRY(cx_scene_resolve(st->scene_ids[index], path, sizeof path, d));
+    CX_TRY(cx_scene_load(&sc, path, d));
+    st->scene = sc;
+    st->sel_scene = index;
+    return CX_OK;
+}
+
+static int params_equal(const cx_param_values *a, const cx_param_values *b)
+{
+    if (a->table != b->table || a->n != b->n)
+        return 0;
+    for (int i = 0; i < a->n; i++) {
+        if (!(a->num[i] == b->num[i] || (isnan(a->num[i]) && isnan(b->num[i]))))
+            return 0;
+        if (strcmp(a->str[i], b->str[i]) != 0)
+            return 0;
+    }
+    return 1;
+}
+
+void tui_state_apply(tui_state *st, int r)
+{
+    r &= TUI_RESOLVE | TUI_REASSEMBLE;
+    if (!r)
+        return;
+    if (tui_state_busy(st)) {
+        st->pending |= r;
+        return;
+    }
+    if (r & TUI_REASSEMBLE) {
+        st->prev_scene = st->scene;
+        if (strcmp(st->scene.id, st->scene_ids[st->sel_scene]) != 0) {
+            cx_diag d;
+            cx_diag_clear(&d);
+            int keep = st->sel_scene;
+            if (state_load_scene(st, keep, &d) != CX_OK) {
+                tui_msg(st, 1, "%s", d.msg);
+                for (int i = 0; i < st->nscenes; i++)
+                    if (strcmp(st->scene_ids[i], st->scene.id) == 0)
+                        st->sel_scene = i;
+                return;
+            }
+            state_select_scene_defaults(st);
+        }
+        job_start(st, TUI_JOB_BUILD);
+        return;
+    }
+    if (!st->session)
+        return;
+    double coef = state_sel_coef(st);
+    int same_method = st->cur_method == tui_state_sel_method(st) &&
+                      params_equal(&st->cur_params, &st->sel_params);
+    int same_law = st->sel_law == st->cur_law && (st->sel_law == CX_FRICTION_NONE || coef == st->cur_coef);
+    if (same_method && same_law) {
+        /* only options: the run goes on under them */
+        cx_session_set_options(st->session, &st->sel_opt);
+        st->cur_opt = st->sel_opt;
+        if (st->nruns)
+            st->runs[st->nruns - 1].tol = st->sel_opt.tol;
+        tui_msg(st, 0, "tolerance %.3g, iteration limit %d (run kept)", st->sel_opt.tol, st->sel_opt.max_iter);
+        return;
+    }
+    job_start(st, TUI_JOB_RESOLVE);
+}
+
+/* ---- stepping ------------------------------------------------------------ */
+
+void tui_state_step(tui_state *st)
+{
+    if (tui_state_busy(st) || !st->session)
+        return;
+    if (!st->cur_method) {
+        tui_msg(st, 1, "no method selected");
+        st->running = 0;
+        return;
+    }
+    const cx_iterate *it = cx_session_iterate(st->session);
+    if (it->reason != CX_ITERATING) {
+        st->running = 0;
+        st->queued_steps = 0;
+        tui_msg(st, it->reason < 0, "run ended (%s); x starts again", cx_reason_str(it->reason));
+        return;
+    }
+    /* the step runs as a job: a slow method or a large level never
+     * freezes the screen */
+    job_start(st, TUI_JOB_STEP);
+}
+
+/* Chattering (peers.md §4 item 4): count each point's status changes, and
+ * flag a 2-cycle when a step repeats the step before last (same statuses,
+ * same kkt to 1e-10) without repeating the last one: the iteration then
+ * alternates between two iterates and will not converge by itself. */
+static void state_watch_cycles(tui_state *st, const tui_run *run)
+{
+    unsigned long long h = 1469598103934665603ULL;    /* FNV-1a */
+    for (int i = 0; i < st->m; i++) {
+        st->flips[i] += st->changed[i] != 0;
+        h = (h ^ st->status[i]) * 1099511628211ULL;
+    }
+    st->status_hash[2] = st->status_hash[1];
+    st->status_hash[1] = st->status_hash[0];
+    st->status_hash[0] = h;
+    int n = run->nsteps;
+    if (n < 4 || st->cycle_iter)
+        return;
+    double k0 = run->steps[n - 1].kkt, k1 = run->steps[n - 2].kkt, k2 = run->steps[n - 3].kkt;
+    if (st->status_hash[0] == st->status_hash[2] && fabs(k0 - k2) <= 1e-10 * k0 && fabs(k0 - k1) > 1e-8 * k0)
+        st->cycle_iter = run->steps[n - 1].iter;
+}
+
+/* After a step (main thread): the history, the snapshot, the outcome. */
+static void state_after_step(tui_state *st, int status, const cx_diag *d)
+{
+    const cx_iterate *it = cx_session_iterate(st->session);
+    tui_run *run = &st->runs[st->nruns - 1];
+    run_append(run, it);
+    state_snapshot(st);
+    int seen = st->cycle_iter;
+    state_watch_cycles(st, run);
+    if (!seen && st->cycle_iter && it->reason == CX_ITERATING) {
+        int flipping = 0;
+        for (int i = 0; i < st->m; i++)
+            flipping += st->flips[i] >= 3;
+        st->running = 0;
+        tui_msg(st, 2, "cycling: iteration %d repeats iteration %d, paused (kkt %.3g / %.3g, %d points flip 3+ times)",
+                it->iter, it->iter - 2, run->steps[run->nsteps - 1].kkt, run->steps[run->nsteps - 2].kkt, flipping);
+        return;
+    }
+    if (status != CX_OK) {
+        st->running = 0;
+        tui_msg(st, 1, "%s", cx_diag_msg(d, status));
+        return;
+    }
+    if (it->reason != CX_ITERATING) {
+        st->running = 0;
+        const char *why = cx_session_reason_msg(st->session);
+        snprintf(run->reason_msg, sizeof run->reason_msg, "%s", why);
+        tui_msg(st, it->reason < 0, "%s after %d iterations%s%s", cx_reason_str(it->reason), it->iter,
+                why[0] ? ": " : "", why);
+    }
+}
+
+void tui_state_reset(tui_state *st)
+{
+    if (tui_state_busy(st)) {
+        tui_msg(st, 0, "busy: reset when the job ends");
+        return;
+    }
+    if (!st->session || !st->cur_method) {
+        tui_msg(st, 0, "nothing to reset yet");
+        return;
+    }
+    cx_diag d;
+    cx_diag_clear(&d);
+    st->running = 0;
+    if (cx_session_reset(st->session, &d) != CX_OK) {
+        tui_msg(st, 1, "%s", d.msg);
+        return;
+    }
+    state_new_run(st);
+    state_snapshot(st);
+    tui_msg(st, 0, "%s starts again (nothing rebuilt)", st->cur_method->id);
+}
+
+/* ---- mesh view scale ---- */
+
+double tui_mesh_auto_scale(const tui_state *st)
+{
+    const cx_mesh *mesh = st->info.mesh;
+    if (!mesh || !st->uall)
+        return 1;
+    int dim = mesh->dim;
+    double size = 0, umax = 0;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < mesh->nnodes; k++)
+        for (int c = 0; c < dim; c++) {
+            lo[c] = fmin(lo[c], mesh->x[dim * k + c]);
+            hi[c] = fmax(hi[c], mesh->x[dim * k + c]);
+            umax = fmax(umax, fabs(st->uall[dim * k + c]));
+        }
+    for (int c = 0; c < dim; c++)
+        size = fmax(size, hi[c] - lo[c]);
+    /* the largest displacement drawn as 10% of the body */
+    return umax > 0 ? 0.1 * size / umax : 1;
+}
+
+/* ---- life ---------------------------------------------------------------- */
+
+int tui_state_init(tui_state *st, const char *scene, int level, const char *method, int law,
+                   int sync, cx_diag *d)
+{
+    memset(st, 0, sizeof *st);
+    st->sync = sync;
+    st->m = -1;
+    snprintf(st->export_dir, sizeof st->export_dir, ".");
+    cx_options_default(&st->sel_opt);
+    st->cur_opt = st->sel_opt;
+    CX_TRY(cx_scene_list(&st->scene_ids, &st->nscenes, d));
+    /* a path to an .ini, or an id */
+    char path[512];
+    int status = cx_scene_resolve(scene, path, sizeof path, d);
+    if (status == CX_OK)
+        status = cx_scene_load(&st->scene, path, d);
+    if (status != CX_OK) {
+        tui_state_clear(st);
+        return status;
+    }
+    st->sel_scene = -1;
+    for (int i = 0; i < st->nscenes; i++)
+        if (strcmp(st->scene_ids[i], st->scene.id) == 0)
+            st->sel_scene = i;
+    if (st->sel_scene < 0) {
+        /* a scene file outside the scene directories: add it to the list */
+        st->scene_ids = tui_xalloc(st->scene_ids, sizeof st->scene_ids[0] * (size_t)(st->nscenes + 1));
+        snprintf(st->scene_ids[st->nscenes], CX_SCENE_NAMELEN, "%s", st->scene.id);
+        st->sel_scene = st->nscenes++;
+    }
+    state_select_scene_defaults(st);
+    if (level > 0) {
+        if (level > st->scene.level_max) {
+            cx_diag_set(d, CX_EINVAL, "--level %d: scene '%s' allows 1 to %d", level, st->scene.id,
+                        st->scene.level_max);
+            tui_state_clear(st);
+            return CX_EINVAL;
+        }
+        st->sel_level = level;
+    }
+    if (law >= 0)
+        st->sel_law = (cx_friction)law;
+    if (method) {
+        int i = state_method_index(method);
+        if (i < 0) {
+            tui_state_clear(st);
+            return cx_diag_set(d, CX_EINVAL, "unknown method '%s' (see 'signorini list')", method);
+        }
+        st->sel_method = i;
+        cx_param_default(&st->sel_params, cx_method_at(i)->params);
+    }
+    st->field = TUI_F_METHOD;
+    job_start(st, TUI_JOB_BUILD);
+    return CX_OK;
+}
+
+void tui_state_clear(tui_state *st)
+{
+    if (st->worker) {
+        /* a build cannot be interrupted: wait for it */
+        pthread_join(*(pthread_t *)st->worker, NULL);
+        free(st->worker);
+        st->worker = NULL;
+    }
+    cx_session_destroy(&st->job.session);
+    cx_session_destroy(&st->session);
+    state_clear_runs(st);
+    cx_free(st->scene_ids);
+    free(st->status);
+    free(st->changed);
+    free(st->pressure);
+    free(st->hertz);
+    free(st->slip_dir);
+    free(st->flips);
+    free(st->outline);
+    free(st->uall);
+    memset(st, 0, sizeof *st);
+}

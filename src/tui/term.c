@@ -1,0 +1,153 @@
+/* The terminal: the only file that includes curses (STYLE.md C12). Keys
+ * become TUI_KEY_* codes, colour roles become colour pairs or, without
+ * colours, attributes (bold, dim, reverse, underline). */
+#include "tui/tui_impl.h"
+
+#include <curses.h>
+#include <langinfo.h>
+#include <locale.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int term_on;
+static int term_utf8;
+static attr_t term_attr[TUI_C_COUNT];
+
+/* role: foreground, background (-1 default), extra attribute with colours,
+ * attribute without colours */
+static const struct {
+    short fg, bg;
+    attr_t color_attr, mono_attr;
+} term_scheme[TUI_C_COUNT] = {
+    [TUI_C_NORMAL] = {-1, -1, 0, 0},
+    [TUI_C_FAINT] = {COLOR_BLUE, -1, 0, 0},
+    [TUI_C_LABEL] = {COLOR_CYAN, -1, 0, 0},
+    [TUI_C_TITLE] = {COLOR_WHITE, COLOR_BLUE, A_BOLD, A_REVERSE},
+    [TUI_C_SELECT] = {COLOR_BLACK, COLOR_CYAN, 0, A_REVERSE},
+    [TUI_C_GREY] = {COLOR_BLACK, -1, A_BOLD, A_DIM},
+    [TUI_C_REF] = {COLOR_MAGENTA, -1, 0, 0},
+    [TUI_C_BAR] = {COLOR_YELLOW, -1, 0, A_BOLD},
+    [TUI_C_CURRENT] = {COLOR_GREEN, -1, A_BOLD, A_BOLD},
+    [TUI_C_FREE] = {-1, -1, A_DIM, 0},
+    [TUI_C_CONTACT] = {COLOR_CYAN, -1, A_BOLD, A_BOLD},
+    [TUI_C_STICK] = {COLOR_GREEN, -1, A_BOLD, A_BOLD},
+    [TUI_C_SLIP] = {COLOR_RED, -1, A_BOLD, A_BOLD},
+    [TUI_C_CHANGED] = {COLOR_BLACK, COLOR_YELLOW, 0, A_REVERSE},
+    [TUI_C_OK] = {COLOR_GREEN, -1, 0, 0},
+    [TUI_C_WARN] = {COLOR_YELLOW, -1, A_BOLD, A_BOLD},
+    [TUI_C_ERROR] = {COLOR_WHITE, COLOR_RED, A_BOLD, A_REVERSE | A_BOLD},
+};
+
+int tui_term_open(int mono, int ascii)
+{
+    setlocale(LC_ALL, "");
+    const char *cs = nl_langinfo(CODESET);
+    term_utf8 = !ascii && cs && (strcmp(cs, "UTF-8") == 0 || strcmp(cs, "utf8") == 0);
+    if (!initscr())
+        return -1;
+    term_on = 1;
+    raw();          /* Ctrl-C arrives as a key: the loop quits cleanly */
+    noecho();
+    keypad(stdscr, TRUE);
+    curs_set(0);
+    set_escdelay(25);
+    if (getenv("NO_COLOR") && getenv("NO_COLOR")[0])
+        mono = 1;
+    int color = !mono && has_colors() && start_color() == OK;
+    if (color)
+        use_default_colors();
+    for (int r = 0; r < TUI_C_COUNT; r++) {
+        if (color && r > 0 && init_pair((short)r, term_scheme[r].fg, term_scheme[r].bg) == OK)
+            term_attr[r] = COLOR_PAIR(r) | term_scheme[r].color_attr;
+        else
+            term_attr[r] = term_scheme[r].mono_attr;
+    }
+    return 0;
+}
+
+void tui_term_close(void)
+{
+    if (!term_on)
+        return;
+    term_on = 0;
+    curs_set(1);
+    endwin();
+}
+
+int tui_term_utf8(void)
+{
+    return term_utf8;
+}
+
+void tui_term_size(int *rows, int *cols)
+{
+    getmaxyx(stdscr, *rows, *cols);
+}
+
+int tui_term_key(int timeout_ms)
+{
+    timeout(timeout_ms);
+    int k = getch();
+    switch (k) {
+    case ERR: return TUI_KEY_NONE;
+    case KEY_UP: return TUI_KEY_UP;
+    case KEY_DOWN: return TUI_KEY_DOWN;
+    case KEY_LEFT: return TUI_KEY_LEFT;
+    case KEY_RIGHT: return TUI_KEY_RIGHT;
+    case KEY_PPAGE: return TUI_KEY_PGUP;
+    case KEY_NPAGE: return TUI_KEY_PGDN;
+    case KEY_BACKSPACE: case 127: case 8: return TUI_KEY_BACKSPACE;
+    case KEY_ENTER: case '\r': case '\n': return TUI_KEY_ENTER;
+    case KEY_RESIZE: return TUI_KEY_RESIZE;
+    default: return k >= 0 && k < 256 ? k : TUI_KEY_NONE;
+    }
+}
+
+void tui_term_clear(void)
+{
+    erase();
+}
+
+void tui_term_put(int y, int x, int role, const char *s, int maxw)
+{
+    int rows, cols;
+    getmaxyx(stdscr, rows, cols);
+    if (y < 0 || y >= rows || x >= cols)
+        return;
+    int room = cols - x;
+    if (maxw < 0 || maxw > room)
+        maxw = room;
+    /* count columns by code points: every glyph the explorer uses is one
+     * column wide */
+    int n = 0;
+    size_t bytes = 0;
+    while (s[bytes] && n < maxw) {
+        unsigned char c = (unsigned char)s[bytes];
+        size_t len = c < 0x80 ? 1 : c < 0xE0 ? 2 : c < 0xF0 ? 3 : 4;
+        for (size_t k = 1; k < len; k++)
+            if (!s[bytes + k])
+                len = k;
+        if (x + n < 0) {
+            bytes += len;
+            n++;
+            continue;
+        }
+        bytes += len;
+        n++;
+    }
+    int skip = x < 0 ? -x : 0;
+    const char *p = s;
+    for (int k = 0; k < skip && *p; k++) {
+        p++;
+        while ((*p & 0xC0) == 0x80)
+            p++;
+    }
+    attrset(term_attr[role]);
+    mvaddnstr(y, x + skip, p, (int)(bytes - (size_t)(p - s)));
+    attrset(A_NORMAL);
+}
+
+void tui_term_show(void)
+{
+    refresh();
+}

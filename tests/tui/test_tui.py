@@ -1,0 +1,224 @@
+#!/usr/bin/env python3
+"""The explorer end to end in a real terminal: tmux on a private socket,
+a fixed size, keys sent, the pane captured and polled (no fixed sleeps).
+Checks: the scene name; N step keys give iteration N and a falling kkt;
+switching method, parameter and friction keeps "factorised: 1"; the
+contact strip shows stick and slip on 'slider' with Tresca; '?' shows the
+help; a resize to 40x12 says "terminal too small" and back redraws; 'q'
+and Ctrl-C exit 0 with the terminal restored; ASCII without a UTF-8
+locale."""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+exe = os.path.abspath(sys.argv[1])
+failures = 0
+checks = 0
+if not shutil.which("tmux"):
+    print("tmux not found (scripts/bootstrap.sh installs it)")
+    sys.exit(1)
+
+# one private server per start: a new server on a socket whose server was
+# just killed can fail with "server exited unexpectedly"
+sock = None
+nstarts = 0
+conf = tempfile.NamedTemporaryFile("w", suffix=".conf", delete=False)
+conf.write("set -g remain-on-exit on\nset -g status off\n")
+conf.close()
+workdir = tempfile.mkdtemp(prefix="signorini-tui-")
+
+
+def tmux(*args, check=True):
+    r = subprocess.run(["tmux", "-L", sock, "-f", conf.name, *args], capture_output=True, text=True, timeout=30)
+    if check and r.returncode != 0:
+        raise RuntimeError(f"tmux {args}: {r.stderr}")
+    return r.stdout
+
+
+def check(cond, what):
+    global failures, checks
+    checks += 1
+    if not cond:
+        failures += 1
+        print(f"FAIL: {what}")
+        print(screen())
+
+
+def screen():
+    if not sock:
+        return ""
+    return tmux("capture-pane", "-t", "t", "-p", check=False)
+
+
+def wait_for(pred, what, timeout=30.0):
+    """Poll the pane until pred(text) holds; False after the timeout."""
+    end = time.time() + timeout
+    while time.time() < end:
+        text = screen()
+        if pred(text):
+            return True
+        time.sleep(0.05)
+    state = tmux("display-message", "-p", "-t", "t",
+                 "dead=#{pane_dead} status=#{pane_dead_status} signal=#{pane_dead_signal}", check=False)
+    check(False, f"timed out waiting for {what} ({state.strip()})")
+    return False
+
+
+def has(s):
+    return lambda text: s in text
+
+
+def pane(fmt):
+    return tmux("display-message", "-p", "-t", "t", fmt).strip()
+
+
+rcfile = os.path.join(workdir, "rc")
+
+
+def start(cmd, lang="C.UTF-8", x=80, y=24):
+    """Run cmd in a new pane; its exit status goes to rcfile (tmux's own
+    pane_dead_status is not always filled in when run under meson)."""
+    global sock, nstarts
+    if sock:
+        tmux("kill-server", check=False)
+    nstarts += 1
+    sock = f"signorini-tui-{os.getpid()}-{nstarts}"
+    if os.path.exists(rcfile):
+        os.unlink(rcfile)
+    env = f"LANG={lang} LC_ALL={lang} SIGNORINI_SCENES={os.environ.get('SIGNORINI_SCENES', '')}"
+    tmux("new-session", "-d", "-s", "t", "-x", str(x), "-y", str(y), "-c", workdir,
+         f"env {env} {cmd}; echo $? > {rcfile}.tmp && mv {rcfile}.tmp {rcfile}")
+
+
+def keys(*k):
+    tmux("send-keys", "-t", "t", *k)
+
+
+def steps(text):
+    """(iteration, kkt) of the rows of the step table."""
+    rows = []
+    for line in text.splitlines():
+        m = re.match(r".{23}\s+(\d+) (\d\.\de[+-]\d\d) ", line)
+        if m:
+            rows.append((int(m.group(1)), float(m.group(2))))
+    return rows
+
+
+def exited_cleanly(how):
+    if wait_for(lambda t: os.path.exists(rcfile), f"the explorer to exit after {how}", 30):
+        with open(rcfile) as f:
+            rc = f.read().strip()
+        check(rc == "0", f"exit status 0 after {how}, got {rc}")
+        check(pane("#{alternate_on}") == "0", f"the terminal left the alternate screen after {how}")
+
+
+# ---- bad options: one line on stderr, exit 1, before the screen opens ----
+for args, needle in [(["tui", "--nope"], "unknown option '--nope'"),
+                     (["tui", "--level"], "'--level' needs a value"),
+                     (["tui", "hertz", "--level", "99999"], "allows 1 to 2048"),
+                     (["tui", "nope"], "unknown scene 'nope'"),
+                     (["tui", "--method", "nope"], "unknown method 'nope'"),
+                     (["tui", "--friction", "x"], "expected none, tresca or coulomb")]:
+    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 1 and len(lines) == 1 and needle in r.stderr, f"{args}: {r.returncode} {r.stderr!r}")
+# with no terminal, no argument prints the usage
+r = subprocess.run([exe], capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL)
+check(r.returncode == 0 and "usage:" in r.stdout, f"no argument without a terminal: {r.stdout!r}")
+
+try:
+    # ---- 'signorini' alone: the explorer on hertz --------------------------
+    start(exe)
+    wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
+    check("factorised: 1" in screen(), "factorised: 1 after the build")
+
+    # ---- N step keys: iteration N, the kkt falls ---------------------------
+    for _ in range(5):
+        keys("s")
+    wait_for(lambda t: any(i == 5 for i, _ in steps(t)), "iteration 5")
+    rows = dict(steps(screen()))
+    check(max(rows) == 5, f"iteration counter 5: {sorted(rows)}")
+    check(rows.get(5, 1) < rows.get(1, 0), f"kkt falls from step 1 to 5: {rows}")
+
+    # ---- method, parameter, friction: factorised once -----------------------
+    keys("m")                     # next method that fits
+    wait_for(lambda t: "ready (nothing reassembled)" in t or "the only method" in t, "the method switch")
+    check("factorised: 1" in screen(), "factorised: 1 after a method switch")
+    keys("Down", "Down", "Down", "Right")   # method -> tol -> max iter -> rho, x2
+    wait_for(lambda t: re.search(r"rho\s+.0\.002", t) is not None, "rho 0.002")
+    keys("f")                     # Tresca
+    wait_for(lambda t: "tresca" in t.splitlines()[0], "Tresca in the header")
+    keys("r")
+    wait_for(has("converged"), "the Tresca run to converge")
+    check("factorised: 1" in screen(), "factorised: 1 after parameter and friction changes")
+
+    # ---- help ----------------------------------------------------------------
+    keys("?")
+    wait_for(has("help: keys of the explorer"), "the help overlay")
+    check("quit" in screen() and "one iteration" in screen(), "the help lists the keys")
+    keys("Escape")
+    wait_for(lambda t: "help: keys" not in t, "the help to close")
+
+    # ---- resize down and back -------------------------------------------------
+    tmux("resize-window", "-t", "t", "-x", "40", "-y", "12")
+    wait_for(has("terminal too small"), "'terminal too small' at 40x12")
+    tmux("resize-window", "-t", "t", "-x", "80", "-y", "24")
+    wait_for(has("factorised: 1"), "the full screen back at 80x24")
+    check(pane("#{pane_dead}") == "0", "alive after the resizes")
+
+    # ---- export ----------------------------------------------------------------
+    keys("e")
+    wait_for(has("runs written to"), "the export")
+    check(os.path.exists(os.path.join(workdir, "signorini-hertz-L32-runs.csv")), "the CSV is written")
+    check(os.path.exists(os.path.join(workdir, "signorini-hertz-L32-runs.json")), "the JSON is written")
+
+    # ---- slider with Tresca: stick and slip in the strip --------------------------
+    keys("n")                     # the next scene: slider
+    wait_for(lambda t: "slider L4" in t and "built in" in t, "slider to be built")
+    keys("r")
+    wait_for(has("converged"), "the slider run to converge")
+    strip = [l for l in screen().splitlines() if "pts" in l and "dofs" not in l]
+    check(len(strip) == 1 and "●" in strip[0] and ("▶" in strip[0] or "◀" in strip[0]),
+          f"stick and slip symbols in the strip: {strip}")
+
+    # ---- q: exit 0, terminal restored -------------------------------------------
+    keys("q")
+    exited_cleanly("q")
+
+    # ---- Ctrl-C on a large terminal, monochrome ---------------------------------------
+    start(f"{exe} tui slider --mono", x=160, y=48)
+    wait_for(has("built in"), "slider at 160x48")
+    check("deformed mesh" in screen(), "the mesh view beside the plot on a wide terminal")
+    keys("C-c")
+    exited_cleanly("Ctrl-C")
+
+    # ---- scripted sessions end by themselves ------------------------------------
+    start(f"{exe} tui slider --keys rq")
+    exited_cleanly("the scripted keys 'rq'")
+    start(f"{exe} tui slider --frames 3")
+    exited_cleanly("--frames 3")
+
+    # ---- no UTF-8 locale: ASCII -------------------------------------------------
+    start(f"{exe} tui slider", lang="C")
+    wait_for(has("built in"), "slider in the C locale")
+    keys("r")
+    wait_for(has("converged"), "the run in ASCII")
+    text = screen()
+    strip = [l for l in text.splitlines() if "pts" in l and "dofs" not in l]
+    check(len(strip) == 1 and "o" in strip[0] and (">" in strip[0] or "<" in strip[0]),
+          f"ASCII stick and slip symbols: {strip}")
+    check(all(ord(c) < 128 for c in text), "only ASCII on the screen")
+    keys("q")
+    exited_cleanly("q in ASCII")
+finally:
+    if sock:
+        tmux("kill-server", check=False)
+    os.unlink(conf.name)
+    shutil.rmtree(workdir, ignore_errors=True)
+
+print(f"tui: {checks} checks, {failures} failed")
+sys.exit(1 if failures else 0)
