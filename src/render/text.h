@@ -3,7 +3,9 @@
 #ifndef CX_RENDER_TEXT_H
 #define CX_RENDER_TEXT_H
 
-#include <cairo.h>
+/* cairo's own typedef (C11 allows repeating it), so this header does not
+ * need cairo's include path. */
+typedef struct _cairo cairo_t;
 
 /* Draw s with its anchor point at (x, y): ax = 0 left, 0.5 centre, 1 right;
  * ay = 0 top, 0.5 middle, 1 baseline-ish bottom. Returns the text width. */
