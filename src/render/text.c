@@ -1,6 +1,8 @@
 /* Anchored text with cairo's toy font API (enough for labels and titles). */
 #include "render/text.h"
 
+#include <cairo.h>
+
 static void text_font(cairo_t *cr, double size, int bold)
 {
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
