@@ -1,0 +1,306 @@
+/* The cairo layer over the GL image: title, colour bar with nice ticks,
+ * the undeformed outline, the 2D obstacle, contact points by status (slip
+ * with its direction), the pressure along the contact boundary, and notes
+ * (displacement scale, status legend). */
+#include "render/render_impl.h"
+
+#include <cairo.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "render/axis.h"
+#include "render/text.h"
+
+static double ov_scale(const rd_scene *sc)
+{
+    return fmin(sc->w / 1200.0, sc->h / 900.0);
+}
+
+static void ov_rgb(cairo_t *cr, const unsigned char c[3])
+{
+    cairo_set_source_rgb(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0);
+}
+
+static void ov_title(const rd_scene *sc, cairo_t *cr, double s)
+{
+    const cx_render_state *st = sc->st;
+    const cx_problem *p = sc->p;
+    char line[512], fr[96];
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    snprintf(line, sizeof line, "%s — %s", st->title && st->title[0] ? st->title : st->scene,
+             cx_field_label(sc->o->field));
+    cx_text(cr, line, 20 * s, 14 * s, 22 * s, 1, 0, 0);
+    if (p->friction == CX_FRICTION_COULOMB)
+        snprintf(fr, sizeof fr, "Coulomb F = %g", p->F);
+    else if (p->friction == CX_FRICTION_TRESCA)
+        snprintf(fr, sizeof fr, "Tresca slip bound %g", p->slip_bound);
+    else
+        snprintf(fr, sizeof fr, "frictionless");
+    snprintf(line, sizeof line, "scene %s, level %d, %d dofs, %d contact points · %s%s%s · %s · kkt error %.2e",
+             st->scene, st->level, p->n, p->m, st->method, st->params && st->params[0] ? " " : "",
+             st->params ? st->params : "", fr, st->kkt);
+    cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
+    cx_text(cr, line, 20 * s, 46 * s, 15 * s, 0, 0, 0);
+}
+
+static const char *ov_units(int f)
+{
+    if (f >= CX_FIELD_UMAG && f <= CX_FIELD_UZ)
+        return "length units";
+    return "units of E";
+}
+
+static void ov_colorbar(const rd_scene *sc, cairo_t *cr, double s)
+{
+    cx_render_layout l;
+    cx_render_layout_get(sc->w, sc->h, &l);
+    double x = l.bar[0], y = l.bar[1], bw = l.bar[2], bh = l.bar[3];
+    int div = cx_field_is_signed(sc->o->field);
+    int nb = (int)ceil(bh);
+    for (int i = 0; i < nb; i++) {
+        unsigned char c[3];
+        cx_colormap(div, 1.0 - (i + 0.5) / nb, c);
+        ov_rgb(cr, c);
+        cairo_rectangle(cr, x, y + bh * i / nb, bw, bh / nb + 0.6);
+        cairo_fill(cr);
+    }
+    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+    cairo_set_line_width(cr, 1.0 * s);
+    cairo_rectangle(cr, x, y, bw, bh);
+    cairo_stroke(cr);
+    cx_axis ax;
+    cx_axis_make(&ax, sc->lo, sc->hi, 0, 6, 0);
+    char lab[64];
+    for (int i = 0; i < ax.nticks; i++) {
+        double ty = y + bh * (1 - cx_axis_frac(&ax, ax.ticks[i]));
+        cairo_move_to(cr, x + bw, ty);
+        cairo_line_to(cr, x + bw + 6 * s, ty);
+        cairo_stroke(cr);
+        cx_axis_label(&ax, ax.ticks[i], lab, sizeof lab);
+        cx_text(cr, lab, x + bw + 9 * s, ty, 14 * s, 0, 0, 0.5);
+    }
+    char title[128];
+    snprintf(title, sizeof title, "%s [%s]", cx_field_label(sc->o->field), ov_units(sc->o->field));
+    cx_text_vertical(cr, title, sc->w - 16 * s, y + 0.5 * bh, 15 * s, 0);
+}
+
+/* 2D obstacle: a hatched strip beyond the plane, or the disc. */
+static void ov_obstacle2d(const rd_scene *sc, cairo_t *cr, double s)
+{
+    const cx_obstacle *ob = sc->st->obstacle;
+    if (!ob)
+        return;
+    cx_render_layout l;
+    cx_render_layout_get(sc->w, sc->h, &l);
+    cairo_save(cr);
+    cairo_rectangle(cr, l.area[0], l.area[1], l.area[2], l.area[3]);
+    cairo_clip(cr);
+    if (ob->kind == CX_OBST_PLANE) {
+        /* the plane's line in pixels, and the side away from the normal */
+        double t[2] = {-ob->normal[1], ob->normal[0]}, big = 4.0 * (sc->w + sc->h) / sc->k;
+        double a[3] = {ob->point[0] - big * t[0], ob->point[1] - big * t[1], 0};
+        double b[3] = {ob->point[0] + big * t[0], ob->point[1] + big * t[1], 0};
+        double c[3] = {b[0] - big * ob->normal[0], b[1] - big * ob->normal[1], 0};
+        double e[3] = {a[0] - big * ob->normal[0], a[1] - big * ob->normal[1], 0};
+        double pa[2], pb[2], pc[2], pe[2];
+        rd_project(sc, a, pa);
+        rd_project(sc, b, pb);
+        rd_project(sc, c, pc);
+        rd_project(sc, e, pe);
+        cairo_move_to(cr, pa[0], pa[1]);
+        cairo_line_to(cr, pb[0], pb[1]);
+        cairo_line_to(cr, pc[0], pc[1]);
+        cairo_line_to(cr, pe[0], pe[1]);
+        cairo_close_path(cr);
+        cairo_set_source_rgb(cr, 0.86, 0.84, 0.80);
+        cairo_fill_preserve(cr);
+        cairo_clip(cr);
+        cairo_set_source_rgb(cr, 0.62, 0.58, 0.52);
+        cairo_set_line_width(cr, 1.2 * s);
+        for (double q = -(double)sc->h; q < sc->w + sc->h; q += 14 * s) {
+            cairo_move_to(cr, q, 0);
+            cairo_line_to(cr, q - sc->h, sc->h);
+        }
+        cairo_stroke(cr);
+        cairo_reset_clip(cr);
+        cairo_rectangle(cr, l.area[0], l.area[1], l.area[2], l.area[3]);
+        cairo_clip(cr);
+        cairo_set_source_rgb(cr, 0.35, 0.32, 0.28);
+        cairo_set_line_width(cr, 2.0 * s);
+        cairo_move_to(cr, pa[0], pa[1]);
+        cairo_line_to(cr, pb[0], pb[1]);
+        cairo_stroke(cr);
+    } else if (ob->kind == CX_OBST_DISC) {
+        double c[2];
+        rd_project(sc, ob->point, c);
+        cairo_arc(cr, c[0], c[1], ob->radius * sc->k, 0, 2 * CX_PI);
+        cairo_set_source_rgb(cr, 0.86, 0.84, 0.80);
+        cairo_fill_preserve(cr);
+        cairo_set_source_rgb(cr, 0.35, 0.32, 0.28);
+        cairo_set_line_width(cr, 2.0 * s);
+        cairo_stroke(cr);
+    }
+    cairo_restore(cr);
+}
+
+static void ov_outline(const rd_scene *sc, cairo_t *cr, const double *X, double width,
+                       double r, double g, double b, double a)
+{
+    cairo_set_source_rgba(cr, r, g, b, a);
+    cairo_set_line_width(cr, width);
+    for (int i = 0; i < sc->nbedges; i++) {
+        const int *e = sc->bedges + 3 * i;
+        double p[2];
+        rd_project(sc, X + 3 * e[0], p);
+        cairo_move_to(cr, p[0], p[1]);
+        if (e[1] >= 0) {
+            rd_project(sc, X + 3 * e[1], p);
+            cairo_line_to(cr, p[0], p[1]);
+        }
+        rd_project(sc, X + 3 * e[2], p);
+        cairo_line_to(cr, p[0], p[1]);
+    }
+    cairo_stroke(cr);
+}
+
+/* The pressure along the 2D contact boundary: a thick coloured band
+ * through the contact points (ordered along the boundary). */
+static void ov_pressure2d(const rd_scene *sc, cairo_t *cr, double s)
+{
+    const cx_contact_set *cs = &sc->p->contact;
+    cairo_set_line_width(cr, 7 * s);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+    for (int i = 0; i + 1 < cs->m; i++) {
+        int a = cs->node[i], b = cs->node[i + 1];
+        double pa[2], pb[2];
+        rd_project(sc, sc->xd + 3 * a, pa);
+        rd_project(sc, sc->xd + 3 * b, pb);
+        double v = 0.5 * (sc->val[a] + sc->val[b]);
+        unsigned char c[3];
+        cx_colormap(0, (v - sc->lo) / (sc->hi - sc->lo), c);
+        ov_rgb(cr, c);
+        cairo_move_to(cr, pa[0], pa[1]);
+        cairo_line_to(cr, pb[0], pb[1]);
+        cairo_stroke(cr);
+    }
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+}
+
+/* Contact points coloured by status; slipping points get an arrow in the
+ * direction of slip, which is that of lT (DESIGN.md §2: T u = c lT). */
+static void ov_status(const rd_scene *sc, cairo_t *cr, double s, double r)
+{
+    const cx_contact_set *cs = &sc->p->contact;
+    const cx_render_state *st = sc->st;
+    int dim = sc->dim, dt = dim - 1;
+    for (int i = 0; i < cs->m; i++) {
+        int code = st->status ? st->status[i] : CX_PT_FREE;
+        double p[2];
+        rd_project(sc, sc->xd + 3 * cs->node[i], p);
+        unsigned char c[3];
+        cx_status_color(code, c);
+        if ((code == CX_PT_SLIP_POS || code == CX_PT_SLIP_NEG) && st->lT) {
+            /* the friction force on the body is -T' lT, opposing the slip */
+            double dir[3] = {0, 0, 0}, q0[3], q1[3], a[2], b[2];
+            for (int k = 0; k < dim; k++)
+                for (int j = 0; j < dt; j++)
+                    dir[k] += st->lT[dt * i + j] * cs->tangent[dim * (dt * i + j) + k];
+            double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+            if (len > 0) {
+                for (int k = 0; k < 3; k++) {
+                    q0[k] = sc->xd[3 * cs->node[i] + k];
+                    q1[k] = q0[k] + dir[k] / len;
+                }
+                rd_project(sc, q0, a);
+                rd_project(sc, q1, b);
+                double ux = b[0] - a[0], uy = b[1] - a[1], ul = hypot(ux, uy);
+                if (ul > 0) {
+                    ux /= ul;
+                    uy /= ul;
+                    double L = 4.2 * r, tip[2] = {p[0] + L * ux, p[1] + L * uy};
+                    ov_rgb(cr, c);
+                    cairo_set_line_width(cr, 1.6 * s);
+                    cairo_move_to(cr, p[0], p[1]);
+                    cairo_line_to(cr, tip[0], tip[1]);
+                    cairo_stroke(cr);
+                    cairo_move_to(cr, tip[0], tip[1]);
+                    cairo_line_to(cr, tip[0] - 1.8 * r * ux + 1.0 * r * uy, tip[1] - 1.8 * r * uy - 1.0 * r * ux);
+                    cairo_line_to(cr, tip[0] - 1.8 * r * ux - 1.0 * r * uy, tip[1] - 1.8 * r * uy + 1.0 * r * ux);
+                    cairo_close_path(cr);
+                    cairo_fill(cr);
+                }
+            }
+        }
+        cairo_new_sub_path(cr);
+        cairo_arc(cr, p[0], p[1], r, 0, 2 * CX_PI);
+        ov_rgb(cr, c);
+        cairo_fill_preserve(cr);
+        cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+        cairo_set_line_width(cr, 0.8 * s);
+        cairo_stroke(cr);
+    }
+}
+
+static void ov_notes(const rd_scene *sc, cairo_t *cr, double s, int legend)
+{
+    char line[256];
+    double y = sc->h - 30 * s;
+    cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+    if (sc->o->scale > 0)
+        snprintf(line, sizeof line, "displacement × %.3g (set), max |u| = %.3g", sc->scale, sc->umax);
+    else
+        snprintf(line, sizeof line, "displacement × %.3g (auto: max |u| = %.3g drawn as 7 %% of the body size)",
+                 sc->scale, sc->umax);
+    cx_text(cr, line, 20 * s, y, 14 * s, 0, 0, 0.5);
+    if (!legend)
+        return;
+    static const int codes[4] = {CX_PT_FREE, CX_PT_CONTACT, CX_PT_STICK, CX_PT_SLIP_POS};
+    static const char *names[4] = {"free", "contact", "stick", "slip"};
+    double x = sc->w - 20 * s;
+    for (int i = 3; i >= 0; i--) {
+        if (sc->p->friction == CX_FRICTION_NONE ? i >= 2 : i == 1)
+            continue;
+        unsigned char c[3];
+        cx_status_color(codes[i], c);
+        x -= cx_text_width(cr, names[i], 14 * s, 0);
+        cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+        cx_text(cr, names[i], x, y, 14 * s, 0, 0, 0.5);
+        x -= 12 * s;
+        cairo_new_sub_path(cr);
+        cairo_arc(cr, x, y, 5 * s, 0, 2 * CX_PI);
+        ov_rgb(cr, c);
+        cairo_fill(cr);
+        x -= 22 * s;
+    }
+}
+
+void rd_underlay(const rd_scene *sc, cairo_t *cr)
+{
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    if (sc->dim == 2)
+        ov_obstacle2d(sc, cr, ov_scale(sc));
+}
+
+void rd_overlay(const rd_scene *sc, cairo_t *cr)
+{
+    double s = ov_scale(sc);
+    int f = sc->o->field;
+    int markers = sc->dim == 2 || f == CX_FIELD_STATUS;
+    if (sc->dim == 2) {
+        ov_outline(sc, cr, sc->x0, 1.2 * s, 0.3, 0.3, 0.3, 0.35);
+        ov_outline(sc, cr, sc->xd, 1.2 * s, 0.1, 0.1, 0.1, 0.9);
+        if (f == CX_FIELD_PRESSURE)
+            ov_pressure2d(sc, cr, s);
+    }
+    if (markers) {
+        /* few points: big markers; thousands: small ones */
+        double r = sc->p->m > 400 ? 2.6 * s : 4.0 * s;
+        ov_status(sc, cr, s, f == CX_FIELD_STATUS ? 1.4 * r : r);
+    }
+    ov_title(sc, cr, s);
+    if (f != CX_FIELD_STATUS)
+        ov_colorbar(sc, cr, s);
+    ov_notes(sc, cr, s, markers);
+}
