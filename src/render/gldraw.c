@@ -127,10 +127,11 @@ typedef struct gl_uniforms {
 } gl_uniforms;
 
 static void gl_draw(const gl_mesh *g, GLenum prim, const gl_uniforms *u, int colormap,
-                    const float *color, int lit)
+                    const float *color, int lit, int *calls)
 {
     if (g->n == 0)
         return;
+    (*calls)++;
     glUniform1i(u->mode, colormap ? 0 : 1);
     if (color)
         glUniform4fv(u->color, 1, color);
@@ -139,7 +140,7 @@ static void gl_draw(const gl_mesh *g, GLenum prim, const gl_uniforms *u, int col
     glDrawArrays(prim, 0, g->n);
 }
 
-static void gl_draw_scene(const rd_scene *sc, GLuint prog)
+static void gl_draw_scene(const rd_scene *sc, GLuint prog, int *calls)
 {
     float mvp[16], rot[9];
     rd_camera_gl(sc, mvp, rot);
@@ -183,14 +184,14 @@ static void gl_draw_scene(const rd_scene *sc, GLuint prog)
     }
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
-    gl_draw(&obst, GL_TRIANGLES, &u, 0, obst_col, 1);
-    gl_draw(&body, GL_TRIANGLES, &u, sc->colored, lit ? grey3d : grey2d, lit);
+    gl_draw(&obst, GL_TRIANGLES, &u, 0, obst_col, 1, calls);
+    gl_draw(&body, GL_TRIANGLES, &u, sc->colored, lit ? grey3d : grey2d, lit, calls);
     glPolygonOffset(-1.0f, -1.0f);
-    gl_draw(&over, GL_TRIANGLES, &u, 1, NULL, lit);
+    gl_draw(&over, GL_TRIANGLES, &u, 1, NULL, lit, calls);
     glDisable(GL_POLYGON_OFFSET_FILL);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    gl_draw(&lines, GL_LINES, &u, 0, lit ? edge3d : edge2d, 0);
+    gl_draw(&lines, GL_LINES, &u, 0, lit ? edge3d : edge2d, 0, calls);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
     gl_free(&body);
@@ -200,7 +201,8 @@ static void gl_draw_scene(const rd_scene *sc, GLuint prog)
     glDeleteTextures(1, &t);
 }
 
-int rd_gl_draw(const rd_scene *sc, unsigned char *argb, int stride, double *t_context, cx_diag *d)
+int rd_gl_draw(const rd_scene *sc, unsigned char *argb, int stride, double *t_context,
+               int *draw_calls, cx_diag *d)
 {
     double t0 = cx_clock_now();
     cx_gl *ctx = NULL;
@@ -231,7 +233,8 @@ int rd_gl_draw(const rd_scene *sc, unsigned char *argb, int stride, double *t_co
         glViewport(0, 0, sc->w, sc->h);
         glClearColor(0, 0, 0, 0);   /* transparent: composited by cairo */
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        gl_draw_scene(sc, prog);
+        *draw_calls = 0;
+        gl_draw_scene(sc, prog, draw_calls);
         if (fbo) {
             glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
             glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);

@@ -153,6 +153,29 @@ static int img_check(const cx_render_state *st, const cx_render_opts *o, cx_diag
     return CX_OK;
 }
 
+int cx_render_project(const cx_render_state *st, const cx_render_opts *o, const double *x,
+                      double px[2], cx_diag *d)
+{
+    CX_TRY(img_check(st, o, d));
+    rd_scene sc;
+    memset(&sc, 0, sizeof sc);
+    sc.st = st;
+    sc.o = o;
+    sc.p = st->p;
+    sc.w = o->width;
+    sc.h = o->height;
+    double tf;
+    int rc = img_prepare(&sc, &tf, d);
+    if (rc == CX_OK) {
+        double x3[3] = {0, 0, 0};
+        for (int k = 0; k < st->p->dim; k++)
+            x3[k] = x[k];
+        rd_project(&sc, x3, px);
+    }
+    img_clear(&sc);
+    return rc;
+}
+
 int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char *path,
                   cx_render_timing *t, cx_diag *d)
 {
@@ -176,7 +199,7 @@ int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char
     }
     if (rc == CX_OK) {
         double t0 = cx_clock_now();
-        rc = rd_gl_draw(&sc, gl, stride, &tm.context, d);
+        rc = rd_gl_draw(&sc, gl, stride, &tm.context, &tm.draw_calls, d);
         tm.draw = cx_clock_now() - t0 - tm.context;
     }
     if (rc == CX_OK) {

@@ -105,6 +105,7 @@ typedef struct cx_render_timing {
     double draw;      /* GL drawing until glFinish, read back */
     double text;      /* cairo overlays */
     double png;       /* PNG encoding and writing */
+    int draw_calls;   /* glDrawArrays calls (independent of the number of bodies) */
 } cx_render_timing;
 
 /* The automatic displacement scale: largest displacement drawn as 7 % of
@@ -119,6 +120,12 @@ typedef struct cx_render_layout {
     double bar[4];    /* x, y, w, h of the colour bar gradient */
 } cx_render_layout;
 void cx_render_layout_get(int w, int h, cx_render_layout *l);
+
+/* The pixel (top-left origin) where the world point x (dim coordinates,
+ * in the drawn frame: deformed points are x + scale u) appears in the image
+ * that cx_render_png would draw with these options. No GL is involved. */
+int cx_render_project(const cx_render_state *st, const cx_render_opts *o, const double *x,
+                      double px[2], cx_diag *d);
 
 /* Render and write a PNG (temporary file + rename) with tEXt chunks scene,
  * level, method, friction, F, parameters, kkt error, field, scale and

@@ -54,7 +54,7 @@ void rd_camera_gl(const rd_scene *sc, float mvp[16], float rot[9]);
 /* gldraw.c: draw the vertex arrays with OpenGL into argb (cairo ARGB32,
  * premultiplied, transparent background), timing context creation apart. */
 int rd_gl_draw(const rd_scene *sc, unsigned char *argb, int stride, double *t_context,
-               cx_diag *d);
+               int *draw_calls, cx_diag *d);
 /* overlay.c: what goes under the GL image (the 2D obstacle) and over it
  * (title, colour bar, outlines, markers, notes). */
 void rd_underlay(const rd_scene *sc, cairo_t *cr);

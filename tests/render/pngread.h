@@ -15,7 +15,7 @@ typedef struct test_png {
     char value[32][512];
 } test_png;
 
-static int test_png_read(test_png *img, const char *path)
+static inline int test_png_read(test_png *img, const char *path)
 {
     memset(img, 0, sizeof *img);
     FILE *fp = fopen(path, "rb");
@@ -57,13 +57,13 @@ static int test_png_read(test_png *img, const char *path)
     return 0;
 }
 
-static void test_png_free(test_png *img)
+static inline void test_png_free(test_png *img)
 {
     free(img->rgb);
     img->rgb = NULL;
 }
 
-static const char *test_png_text(const test_png *img, const char *key)
+static inline const char *test_png_text(const test_png *img, const char *key)
 {
     for (int i = 0; i < img->ntext; i++)
         if (strcmp(img->key[i], key) == 0)
@@ -71,13 +71,13 @@ static const char *test_png_text(const test_png *img, const char *key)
     return NULL;
 }
 
-static const unsigned char *test_png_px(const test_png *img, int x, int y)
+static inline const unsigned char *test_png_px(const test_png *img, int x, int y)
 {
     return img->rgb + ((size_t)y * img->w + x) * 3;
 }
 
 /* Pixels within tol (per channel) of colour c. */
-static long test_png_count(const test_png *img, int r, int g, int b, int tol)
+static inline long test_png_count(const test_png *img, int r, int g, int b, int tol)
 {
     long n = 0;
     for (long i = 0; i < (long)img->w * img->h; i++) {
@@ -88,7 +88,7 @@ static long test_png_count(const test_png *img, int r, int g, int b, int tol)
 }
 
 /* Number of distinct colours (capped), to tell an image from a blank one. */
-static int test_png_colours(const test_png *img)
+static inline int test_png_colours(const test_png *img)
 {
     static unsigned char seen[1 << 15];
     memset(seen, 0, sizeof seen);
@@ -104,7 +104,7 @@ static int test_png_colours(const test_png *img)
     return n;
 }
 
-static int test_files_equal(const char *a, const char *b)
+static inline int test_files_equal(const char *a, const char *b)
 {
     FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
     int eq = fa && fb;
