@@ -19,7 +19,7 @@ int cli_solve_as(const char *cmd, int argc, char **argv);
 /* The rendering options shared by solve and render (cli/render.c). */
 typedef struct cli_render_args {
     const char *png, *vtu, *field_name;
-    int plot;            /* 0 none, 1 pressure, 2 convergence */
+    int plot;            /* 0 none, 1 pressure, 2 convergence, 3 work */
     double scale;        /* 0: auto */
     int w, h, view, edges, vtu_ascii, timing;
 } cli_render_args;

@@ -26,10 +26,12 @@ static const char render_usage[] =
     "  --edges              draw the mesh edges\n"
     "  --vtu FILE           also write a VTK XML UnstructuredGrid (ParaView)\n"
     "  --vtu-ascii          ASCII instead of base64 binary data in the VTU\n"
-    "  --plot pressure|convergence  a line plot instead of the image: the contact\n"
-    "                       pressure along the boundary (with Hertz's where the\n"
-    "                       scene has it), or the kkt error per iteration of every\n"
-    "                       method of the scene\n"
+    "  --plot pressure|convergence|work  a line plot instead of the image: the\n"
+    "                       contact pressure along the boundary (with Hertz's where\n"
+    "                       the scene has it); the kkt error per iteration of every\n"
+    "                       method of the scene (semilog); or work-precision: the\n"
+    "                       kkt error against the time spent (log-log), with the\n"
+    "                       baseline (one factorisation + solve of K) marked\n"
     "  --timing             print the time of each rendering stage\n";
 
 void cli_render_args_init(cli_render_args *r)
@@ -55,8 +57,8 @@ int cli_render_option(int argc, char **argv, int *i, cli_render_args *r, cx_diag
         return k;
     }
     if ((k = cli_option(argc, argv, i, "--plot", &v, d)) != 0) {
-        if (k > 0 && (r->plot = (int)cx_parse_choice(v, "pressure|convergence") + 1) <= 0) {
-            cx_diag_set(d, CX_EINVAL, "--plot '%s': expected pressure or convergence", v);
+        if (k > 0 && (r->plot = (int)cx_parse_choice(v, "pressure|convergence|work") + 1) <= 0) {
+            cx_diag_set(d, CX_EINVAL, "--plot '%s': expected pressure, convergence or work", v);
             return -1;
         }
         return k;
@@ -168,7 +170,7 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
 
 typedef struct conv_rec {
     int n, cap;
-    double *it, *kkt;
+    double *it, *kkt, *time;
 } conv_rec;
 
 static int render_conv_observe(void *ctx, const cx_session *s, const cx_iterate *it)
@@ -185,46 +187,77 @@ static int render_conv_observe(void *ctx, const cx_session *s, const cx_iterate 
         if (!b)
             return 1;
         c->kkt = b;
+        double *t = cx_realloc(c->time, sizeof(double) * (size_t)cap);
+        if (!t)
+            return 1;
+        c->time = t;
         c->cap = cap;
     }
+    c->time[c->n] = it->time;
     c->it[c->n] = it->iter;
     c->kkt[c->n++] = it->kkt;
     return 0;
 }
 
 /* The kkt error per iteration of every method of the scene that supports
- * the problem, on one semilog plot (the session keeps the operators). */
+ * the problem, on one semilog plot (the session keeps the operators); or
+ * (work) the kkt error against the time spent, log-log, with the baseline
+ * time as a vertical line. */
 static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc, cx_session *s,
-                                   int level, cx_diag *d)
+                                   int level, int work, cx_diag *d)
 {
     conv_rec rec[CX_SCENE_MAX_METHODS];
     memset(rec, 0, sizeof rec);
     char title[200];
-    snprintf(title, sizeof title, "%s level %d, friction %s: convergence", sc->id, level,
-             cx_friction_name(cx_session_problem(s)->friction));
+    snprintf(title, sizeof title, "%s level %d, friction %s: %s", sc->id, level,
+             cx_friction_name(cx_session_problem(s)->friction), work ? "work-precision" : "convergence");
     cx_plot pl;
-    cx_plot_init(&pl, title, "iteration", "kkt error");
+    cx_plot_init(&pl, title, work ? "time [s] (setup included)" : "iteration", "kkt error");
     pl.logy = 1;
+    pl.logx = work;
     cx_options opt = *cx_session_options(s);
     int rc = CX_OK;
+    const cx_problem *p0 = cx_session_problem(s);
     for (int k = 0; k < sc->nmethods && rc == CX_OK; k++) {
         const cx_method *m = cx_method_find(sc->methods[k]);
-        if (!m || cx_method_check(m, cx_session_problem(s), NULL) != CX_OK)
+        if (!m || cx_method_check(m, p0, NULL) != CX_OK)
             continue;
-        if (cx_session_set_method(s, m, NULL, &opt, d) != CX_OK)
-            continue;
-        rc = cx_solver_solve(s, render_conv_observe, &rec[k], d);
-        if (rc == CX_OK)
-            cx_plot_add_series(&pl, m->id, rec[k].n, rec[k].it, rec[k].kkt,
-                               CX_PLOT_LINE | CX_PLOT_MARKERS | (k % 2 ? CX_PLOT_DASHED : 0));
+        /* work-precision: a fresh session per method, so that each pays
+         * for its own factorisations (the session's cache would hide them) */
+        cx_session *run = s, *fresh = NULL;
+        if (work) {
+            cx_problem *q = NULL;
+            double value = p0->friction == CX_FRICTION_COULOMB ? p0->F : p0->slip_bound;
+            if ((rc = cx_scene_build(sc, level, &q, d)) != CX_OK)
+                break;
+            q->F = p0->F;
+            q->slip_bound = p0->slip_bound;
+            if ((rc = cx_problem_set_friction(q, p0->friction, value, d)) != CX_OK ||
+                (rc = cx_session_create(&fresh, &q, d)) != CX_OK) {
+                cx_problem_destroy(&q);
+                break;
+            }
+            run = fresh;
+        }
+        if (cx_session_set_method(run, m, NULL, &opt, d) == CX_OK) {
+            rc = cx_solver_solve(run, render_conv_observe, &rec[k], d);
+            if (rc == CX_OK)
+                cx_plot_add_series(&pl, m->id, rec[k].n, work ? rec[k].time : rec[k].it, rec[k].kkt,
+                                   CX_PLOT_LINE | CX_PLOT_MARKERS | (k % 2 ? CX_PLOT_DASHED : 0));
+        }
+        cx_session_destroy(&fresh);
     }
     cx_plot_add_hline(&pl, opt.tol, "tolerance");
+    double t_base = 0;
+    if (work && rc == CX_OK && (rc = cx_problem_baseline(cx_session_problem(s), &t_base, d)) == CX_OK)
+        cx_plot_add_vline(&pl, t_base, "baseline: factorise + solve K");
     cx_plot_add_text(&pl, "scene", sc->id);
     if (rc == CX_OK)
         rc = cx_plot_write_png(&pl, r->png, r->w, r->h, d);
     for (int k = 0; k < CX_SCENE_MAX_METHODS; k++) {
         cx_free(rec[k].it);
         cx_free(rec[k].kkt);
+        cx_free(rec[k].time);
     }
     return rc;
 }
@@ -246,8 +279,8 @@ int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session 
         return CX_OK;
     if (r->plot == 1)
         return render_plot_pressure(r, sc, s, &st, d);
-    if (r->plot == 2)
-        return render_plot_convergence(r, sc, s, level, d);
+    if (r->plot >= 2)
+        return render_plot_convergence(r, sc, s, level, r->plot == 3, d);
     cx_render_opts o;
     cx_render_opts_default(&o);
     o.width = r->w;

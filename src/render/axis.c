@@ -75,7 +75,12 @@ static void axis_make_log(cx_axis *a, double lo, double hi, int target, int expa
         if (every == 1 && decades <= 8)
             for (int m = 2; m <= 9 && a->nminor < CX_AXIS_MAX_TICKS; m++) {
                 double u = m * v;
-                if (u > lo && u < hi)
+                if (!(u > lo && u < hi))
+                    continue;
+                /* one or two decades: label 2 and 5 too */
+                if (decades <= 2 && (m == 2 || m == 5) && a->nticks < CX_AXIS_MAX_TICKS)
+                    a->ticks[a->nticks++] = u;
+                else
                     a->minor[a->nminor++] = u;
             }
     }
@@ -118,6 +123,10 @@ void cx_axis_label(const cx_axis *a, double v, char *buf, size_t len)
 {
     if (a->log) {
         int e = (int)floor(log10(v) + 0.5);
+        if (fabs(v / pow(10.0, e) - 1.0) > 1e-9) {   /* 2 or 5 x 10^k */
+            snprintf(buf, len, "%g", v);
+            return;
+        }
         if (e == 0 || e == 1) {
             snprintf(buf, len, "%g", pow(10.0, e));
             return;

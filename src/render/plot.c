@@ -342,6 +342,16 @@ static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
                 hits += x >= bx && x <= bx + bw && y >= by && y <= by + bh;
             }
         }
+        /* a reference line (and its label) through the box counts as much
+         * as many points */
+        for (int k = 0; k < p->nrefs; k++) {
+            const cx_plot_ref *r = &p->refs[k];
+            if (!plot_ok(r->value, r->vertical ? p->logx : p->logy))
+                continue;
+            double v = r->vertical ? plot_px(f, r->value) : plot_py(f, r->value);
+            double a = r->vertical ? bx - 20 * s : by - 20 * s, b = r->vertical ? bx + bw : by + bh + 4 * s;
+            hits += (v >= a && v <= b) ? 50 : 0;
+        }
         if (best < 0 || hits < best) {
             best = hits;
             best_x = bx;

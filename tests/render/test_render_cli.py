@@ -128,7 +128,7 @@ with tempfile.TemporaryDirectory() as tmp:
     check(arr["stress"][0] == 6 and set(arr["types"][1]) == {12}, "3D: 6 stresses, hexahedra")
 
     # plots
-    for kind in ["pressure", "convergence"]:
+    for kind in ["pressure", "convergence", "work"]:
         p = os.path.join(tmp, kind + ".png")
         code, out, err = run("render", "hertz", "--level", "8", "--quiet", "--png", p, "--plot", kind,
                              "--size", "400x300")
