@@ -30,9 +30,11 @@ void main()
             n = -n;
         vec3 l = normalize(vec3(0.35, 0.55, 0.75));
         vec3 h = normalize(l + vec3(0.0, 0.0, 1.0));
-        float diff = 0.55 * max(dot(n, l), 0.0) + 0.25 * n.z;
-        float spec = 0.18 * pow(max(dot(n, h), 0.0), 40.0);
-        base = base * (0.30 + diff) + vec3(spec);
+        // soft: the darkest face keeps half its colour, so the colormap
+        // stays readable on every side
+        float diff = 0.35 * max(dot(n, l), 0.0) + 0.25 * n.z;
+        float spec = 0.12 * pow(max(dot(n, h), 0.0), 40.0);
+        base = base * (0.50 + diff) + vec3(spec);
     }
     frag = vec4(base, alpha);
 }

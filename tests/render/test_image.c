@@ -399,6 +399,7 @@ int main(void)
     test_hertz();
     test_block3d();
     test_multibody();
-    remove(OUT);
+    if (!getenv("CX_TEST_KEEP"))   /* keep the last image (six blocks) to look at */
+        remove(OUT);
     return check_finish("render_image");
 }
