@@ -134,7 +134,9 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     const cx_problem *p = st->p;
     const cx_contact_set *cs = &p->contact;
     int m = cs->m, dim = p->dim;
-    double *x = CX_NEW(double, 3 * (size_t)m + 1), *y = x + m, *yh = y + m;
+    enum { NH = 400 };
+    double *x = CX_NEW(double, 3 * (size_t)m + 2 * NH), *y = x + m, *yh = y + m;
+    double *hx = yh + m, *hy = hx + NH;
     if (!x)
         return cx_diag_set(d, CX_ENOMEM, "plot: out of memory");
     for (int i = 0; i < m; i++) {
@@ -150,8 +152,6 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     cx_plot_add_series(&pl, "computed (nodal force / lumped length)", m, x, y, CX_PLOT_MARKERS);
     if (sc->has_hertz) {
         /* the analytical curve on a fine grid, so that it is smooth */
-        enum { NH = 400 };
-        static double hx[NH], hy[NH];
         double x1 = x[m - 1] > x[0] ? x[m - 1] : x[0];
         for (int i = 0; i < NH; i++) {
             hx[i] = x1 * i / (NH - 1);

@@ -164,19 +164,27 @@ static void ov_outline(const rd_scene *sc, cairo_t *cr, const double *X, double 
     cairo_stroke(cr);
 }
 
-/* The pressure along the 2D contact boundary: a thick coloured band
- * through the contact points (ordered along the boundary). */
+/* The pressure along the 2D contact boundary: a thick coloured band on
+ * every boundary edge whose two ends are contact points (so that points of
+ * different bodies are never joined). */
 static void ov_pressure2d(const rd_scene *sc, cairo_t *cr, double s)
 {
     const cx_contact_set *cs = &sc->p->contact;
+    unsigned char *is_c = CX_NEW(unsigned char, sc->p->mesh->nnodes);
+    if (!is_c)
+        return;
+    for (int i = 0; i < cs->m; i++)
+        is_c[cs->node[i]] = 1;
     cairo_set_line_width(cr, 7 * s);
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-    for (int i = 0; i + 1 < cs->m; i++) {
-        int a = cs->node[i], b = cs->node[i + 1];
+    for (int i = 0; i < sc->nbedges; i++) {
+        const int *e = sc->bedges + 3 * i;
+        if (!is_c[e[0]] || !is_c[e[2]])
+            continue;
         double pa[2], pb[2];
-        rd_project(sc, sc->xd + 3 * a, pa);
-        rd_project(sc, sc->xd + 3 * b, pb);
-        double v = 0.5 * (sc->val[a] + sc->val[b]);
+        rd_project(sc, sc->xd + 3 * e[0], pa);
+        rd_project(sc, sc->xd + 3 * e[2], pb);
+        double v = 0.5 * (sc->val[e[0]] + sc->val[e[2]]);
         unsigned char c[3];
         cx_colormap(0, (v - sc->lo) / (sc->hi - sc->lo), c);
         ov_rgb(cr, c);
@@ -185,16 +193,25 @@ static void ov_pressure2d(const rd_scene *sc, cairo_t *cr, double s)
         cairo_stroke(cr);
     }
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+    cx_free(is_c);
 }
 
 /* Contact points coloured by status; slipping points get an arrow in the
  * direction of slip, which is that of lT (DESIGN.md §2: T u = c lT). */
-static void ov_status(const rd_scene *sc, cairo_t *cr, double s, double r)
+static int ov_status(const rd_scene *sc, cairo_t *cr, double s, double r)
 {
     const cx_contact_set *cs = &sc->p->contact;
     const cx_render_state *st = sc->st;
-    int dim = sc->dim, dt = dim - 1;
+    int dim = sc->dim, dt = dim - 1, shown = 0;
     for (int i = 0; i < cs->m; i++) {
+        /* 3D: only points whose outward normal (towards the obstacle)
+         * faces the viewer (row 2 of R points to the eye) */
+        if (dim == 3 && sc->o->view == CX_VIEW_BODY) {
+            const double *n = cs->normal + 3 * i;
+            if (n[0] * sc->R[6] + n[1] * sc->R[7] + n[2] * sc->R[8] <= 0)
+                continue;
+        }
+        shown++;
         int code = st->status ? st->status[i] : CX_PT_FREE;
         double p[2];
         rd_project(sc, sc->xd + 3 * cs->node[i], p);
@@ -240,9 +257,10 @@ static void ov_status(const rd_scene *sc, cairo_t *cr, double s, double r)
         cairo_set_line_width(cr, 0.8 * s);
         cairo_stroke(cr);
     }
+    return shown;
 }
 
-static void ov_notes(const rd_scene *sc, cairo_t *cr, double s, int legend)
+static void ov_notes(const rd_scene *sc, cairo_t *cr, double s, int legend, int hidden)
 {
     char line[256];
     double y = sc->h - 30 * s;
@@ -253,6 +271,9 @@ static void ov_notes(const rd_scene *sc, cairo_t *cr, double s, int legend)
         snprintf(line, sizeof line, "displacement × %.3g (auto: max |u| = %.3g drawn as 7 %% of the body size)",
                  sc->scale, sc->umax);
     cx_text(cr, line, 20 * s, y, 14 * s, 0, 0, 0.5);
+    if (hidden)
+        cx_text(cr, "the contact faces are hidden from here: --view contact shows them",
+                20 * s, y - 20 * s, 14 * s, 0, 0, 0.5);
     if (!legend)
         return;
     static const int codes[4] = {CX_PT_FREE, CX_PT_CONTACT, CX_PT_STICK, CX_PT_SLIP_POS};
@@ -294,13 +315,16 @@ void rd_overlay(const rd_scene *sc, cairo_t *cr)
         if (f == CX_FIELD_PRESSURE)
             ov_pressure2d(sc, cr, s);
     }
+    int shown = 0;
     if (markers) {
         /* few points: big markers; thousands: small ones */
         double r = sc->p->m > 400 ? 2.6 * s : 4.0 * s;
-        ov_status(sc, cr, s, f == CX_FIELD_STATUS ? 1.4 * r : r);
+        shown = ov_status(sc, cr, s, f == CX_FIELD_STATUS ? 1.4 * r : r);
     }
+    int hidden = sc->dim == 3 && sc->o->view == CX_VIEW_BODY && sc->p->m > 0 &&
+                 (f == CX_FIELD_PRESSURE || (f == CX_FIELD_STATUS && shown == 0));
     ov_title(sc, cr, s);
     if (f != CX_FIELD_STATUS)
         ov_colorbar(sc, cr, s);
-    ov_notes(sc, cr, s, markers);
+    ov_notes(sc, cr, s, markers, hidden);
 }
