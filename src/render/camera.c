@@ -1,7 +1,7 @@
 /* The camera: a rotation into view space and an orthographic fit of the
  * body (and the obstacle near it) into the drawing area of the layout. The
- * same mapping serves GL (rd_camera_gl) and the cairo overlays
- * (rd_project), so markers sit exactly on the drawn mesh. */
+ * same mapping serves GL (cx_render_camera_gl) and the cairo overlays
+ * (cx_render_scene_project), so markers sit exactly on the drawn mesh. */
 #include "render/render_impl.h"
 
 #include <math.h>
@@ -68,15 +68,15 @@ static void cam_add(cam_box *b, const double *R, const double *x)
     }
 }
 
-static void cam_add_array(cam_box *b, const double *R, const rd_array *a)
+static void cam_add_array(cam_box *b, const double *R, const cx_render_array *a)
 {
     for (long i = 0; i < a->n; i++) {
-        double x[3] = {a->v[RD_VFLOATS * i], a->v[RD_VFLOATS * i + 1], a->v[RD_VFLOATS * i + 2]};
+        double x[3] = {a->v[CX_RENDER_VFLOATS * i], a->v[CX_RENDER_VFLOATS * i + 1], a->v[CX_RENDER_VFLOATS * i + 2]};
         cam_add(b, R, x);
     }
 }
 
-void rd_camera(rd_scene *sc)
+void cx_render_camera(cx_render_scene *sc)
 {
     cx_render_layout l;
     cx_render_layout_get(sc->w, sc->h, &l);
@@ -142,7 +142,7 @@ void rd_camera(rd_scene *sc)
     sc->zmax = b.hi[2] + 0.05 * dz;
 }
 
-void rd_project(const rd_scene *sc, const double x[3], double px[2])
+void cx_render_scene_project(const cx_render_scene *sc, const double x[3], double px[2])
 {
     double v[3];
     cam_view(sc->R, x, v);
@@ -150,7 +150,7 @@ void rd_project(const rd_scene *sc, const double x[3], double px[2])
     px[1] = sc->cy - sc->k * v[1];
 }
 
-void rd_camera_gl(const rd_scene *sc, float mvp[16], float rot[9])
+void cx_render_camera_gl(const cx_render_scene *sc, float mvp[16], float rot[9])
 {
     double sx = 2 * sc->k / sc->w, sy = 2 * sc->k / sc->h, sz = -2 / (sc->zmax - sc->zmin);
     double row[3][4];

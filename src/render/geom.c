@@ -7,17 +7,17 @@
 #include <math.h>
 #include <string.h>
 
-int rd_array_push(rd_array *a, const double x[3], const double nrm[3], double value)
+int cx_render_array_push(cx_render_array *a, const double x[3], const double nrm[3], double value)
 {
     if (a->n == a->cap) {
         long cap = a->cap ? 2 * a->cap : 1024;
-        float *v = cx_realloc(a->v, sizeof(float) * RD_VFLOATS * (size_t)cap);
+        float *v = cx_realloc(a->v, sizeof(float) * CX_RENDER_VFLOATS * (size_t)cap);
         if (!v)
             return CX_ENOMEM;
         a->v = v;
         a->cap = cap;
     }
-    float *q = a->v + RD_VFLOATS * a->n++;
+    float *q = a->v + CX_RENDER_VFLOATS * a->n++;
     for (int k = 0; k < 3; k++) {
         q[k] = (float)x[k];
         q[3 + k] = (float)nrm[k];
@@ -26,13 +26,13 @@ int rd_array_push(rd_array *a, const double x[3], const double nrm[3], double va
     return CX_OK;
 }
 
-void rd_array_clear(rd_array *a)
+void cx_render_array_clear(cx_render_array *a)
 {
     cx_free(a->v);
     memset(a, 0, sizeof *a);
 }
 
-static double geom_val(const rd_scene *sc, int node)
+static double geom_val(const cx_render_scene *sc, int node)
 {
     return sc->val ? sc->val[node] : 0.0;
 }
@@ -52,25 +52,25 @@ static void geom_normal(const double *a, const double *b, const double *c, doubl
         n[k] = l > 0 ? n[k] / l : (k == 2);
 }
 
-static int geom_tri(const rd_scene *sc, rd_array *a, int i, int j, int k)
+static int geom_tri(const cx_render_scene *sc, cx_render_array *a, int i, int j, int k)
 {
     const double *X = sc->xd;
     double n[3];
     geom_normal(X + 3 * i, X + 3 * j, X + 3 * k, n);
-    CX_TRY(rd_array_push(a, X + 3 * i, n, geom_val(sc, i)));
-    CX_TRY(rd_array_push(a, X + 3 * j, n, geom_val(sc, j)));
-    return rd_array_push(a, X + 3 * k, n, geom_val(sc, k));
+    CX_TRY(cx_render_array_push(a, X + 3 * i, n, geom_val(sc, i)));
+    CX_TRY(cx_render_array_push(a, X + 3 * j, n, geom_val(sc, j)));
+    return cx_render_array_push(a, X + 3 * k, n, geom_val(sc, k));
 }
 
-static int geom_line(const rd_scene *sc, int i, int j)
+static int geom_line(const cx_render_scene *sc, int i, int j)
 {
     static const double n[3] = {0, 0, 1};
-    CX_TRY(rd_array_push((rd_array *)&sc->lines, sc->xd + 3 * i, n, 0));
-    return rd_array_push((rd_array *)&sc->lines, sc->xd + 3 * j, n, 0);
+    CX_TRY(cx_render_array_push((cx_render_array *)&sc->lines, sc->xd + 3 * i, n, 0));
+    return cx_render_array_push((cx_render_array *)&sc->lines, sc->xd + 3 * j, n, 0);
 }
 
 /* A polygon face (3 or 4 nodes) as triangles, and its edges. */
-static int geom_face(rd_scene *sc, rd_array *a, const int *f, int nf, int edges)
+static int geom_face(cx_render_scene *sc, cx_render_array *a, const int *f, int nf, int edges)
 {
     CX_TRY(geom_tri(sc, a, f[0], f[1], f[2]));
     if (nf == 4)
@@ -169,7 +169,7 @@ static void geom_hash_add(geom_hash *h, const int *nodes, int n, long tag)
     }
 }
 
-static int geom_2d(rd_scene *sc)
+static int geom_2d(cx_render_scene *sc)
 {
     const cx_mesh *m = sc->p->mesh;
     const int *c;
@@ -250,7 +250,7 @@ static int geom_faces3d(const cx_mesh *m, int e, int out[6][4])
 }
 
 /* The contact facets: boundary facets whose nodes are all contact nodes. */
-static int geom_contact_faces(rd_scene *sc, rd_array *a, int edges)
+static int geom_contact_faces(cx_render_scene *sc, cx_render_array *a, int edges)
 {
     const cx_mesh *m = sc->p->mesh;
     const cx_contact_set *cs = &sc->p->contact;
@@ -275,7 +275,7 @@ static int geom_contact_faces(rd_scene *sc, rd_array *a, int edges)
     return rc;
 }
 
-static int geom_3d(rd_scene *sc)
+static int geom_3d(cx_render_scene *sc)
 {
     const cx_mesh *m = sc->p->mesh;
     if (sc->o->view == CX_VIEW_CONTACT)
@@ -307,7 +307,7 @@ static int geom_3d(rd_scene *sc)
 
 /* ---- the 3D obstacle ------------------------------------------------------- */
 
-static int geom_quad(rd_array *a, const double *c, const double *e1, const double *e2,
+static int geom_quad(cx_render_array *a, const double *c, const double *e1, const double *e2,
                      const double *n)
 {
     double q[4][3];
@@ -319,12 +319,12 @@ static int geom_quad(rd_array *a, const double *c, const double *e1, const doubl
     }
     static const int t[6] = {0, 1, 2, 0, 2, 3};
     for (int i = 0; i < 6; i++)
-        CX_TRY(rd_array_push(a, q[t[i]], n, 0));
+        CX_TRY(cx_render_array_push(a, q[t[i]], n, 0));
     return CX_OK;
 }
 
 /* A plane patch under the body, or the sphere / cylinder surface. */
-static int geom_obstacle3d(rd_scene *sc)
+static int geom_obstacle3d(cx_render_scene *sc)
 {
     const cx_obstacle *ob = sc->st->obstacle;
     if (!ob)
@@ -393,13 +393,13 @@ static int geom_obstacle3d(rd_scene *sc)
                 }
                 static const int tt[6] = {0, 1, 2, 0, 2, 3};
                 for (int z = 0; z < 6; z++)
-                    CX_TRY(rd_array_push(&sc->obst, P[tt[z]], N[tt[z]], 0));
+                    CX_TRY(cx_render_array_push(&sc->obst, P[tt[z]], N[tt[z]], 0));
             }
     }
     return CX_OK;
 }
 
-int rd_geometry(rd_scene *sc)
+int cx_render_geometry(cx_render_scene *sc)
 {
     if (sc->dim == 2)
         return geom_2d(sc);

@@ -99,16 +99,16 @@ typedef struct gl_mesh {
     GLsizei n;
 } gl_mesh;
 
-static void gl_upload(gl_mesh *g, const rd_array *a)
+static void gl_upload(gl_mesh *g, const cx_render_array *a)
 {
     g->n = (GLsizei)a->n;
     glGenVertexArrays(1, &g->vao);
     glGenBuffers(1, &g->vbo);
     glBindVertexArray(g->vao);
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * RD_VFLOATS * (size_t)a->n),
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * CX_RENDER_VFLOATS * (size_t)a->n),
                  a->n ? a->v : NULL, GL_STATIC_DRAW);
-    GLsizei stride = sizeof(float) * RD_VFLOATS;
+    GLsizei stride = sizeof(float) * CX_RENDER_VFLOATS;
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, (void *)0);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, (void *)(3 * sizeof(float)));
     glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, stride, (void *)(6 * sizeof(float)));
@@ -140,10 +140,10 @@ static void gl_draw(const gl_mesh *g, GLenum prim, const gl_uniforms *u, int col
     glDrawArrays(prim, 0, g->n);
 }
 
-static void gl_draw_scene(const rd_scene *sc, GLuint prog, int *calls)
+static void gl_draw_scene(const cx_render_scene *sc, GLuint prog, int *calls)
 {
     float mvp[16], rot[9];
-    rd_camera_gl(sc, mvp, rot);
+    cx_render_camera_gl(sc, mvp, rot);
     glUseProgram(prog);
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_mvp"), 1, GL_FALSE, mvp);
     glUniformMatrix3fv(glGetUniformLocation(prog, "u_normal_mat"), 1, GL_TRUE, rot);
@@ -201,7 +201,7 @@ static void gl_draw_scene(const rd_scene *sc, GLuint prog, int *calls)
     glDeleteTextures(1, &t);
 }
 
-int rd_gl_draw(const rd_scene *sc, unsigned char *argb, int stride, double *t_context,
+int cx_render_gl_draw(const cx_render_scene *sc, unsigned char *argb, int stride, double *t_context,
                int *draw_calls, cx_diag *d)
 {
     double t0 = cx_clock_now();

@@ -53,22 +53,22 @@ double cx_render_auto_scale(const cx_problem *p, const double *uall)
     return umax > 0 ? 0.07 * img_body_size(p->mesh) / umax : 1.0;
 }
 
-static void img_clear(rd_scene *sc)
+static void img_clear(cx_render_scene *sc)
 {
     cx_free(sc->uall);
     cx_free(sc->x0);
     cx_free(sc->xd);
     cx_free(sc->val);
     cx_free(sc->bedges);
-    rd_array_clear(&sc->tris);
-    rd_array_clear(&sc->overlay);
-    rd_array_clear(&sc->lines);
-    rd_array_clear(&sc->obst);
+    cx_render_array_clear(&sc->tris);
+    cx_render_array_clear(&sc->overlay);
+    cx_render_array_clear(&sc->lines);
+    cx_render_array_clear(&sc->obst);
 }
 
 /* The colour range: magnitudes [0, max], signed fields [-M, M]; over the
  * contact nodes for the pressure and the contact view. */
-static void img_range(rd_scene *sc)
+static void img_range(cx_render_scene *sc)
 {
     const cx_mesh *m = sc->p->mesh;
     const cx_contact_set *cs = &sc->p->contact;
@@ -96,7 +96,7 @@ static void img_range(rd_scene *sc)
     }
 }
 
-static int img_prepare(rd_scene *sc, double *t_fields, cx_diag *d)
+static int img_prepare(cx_render_scene *sc, double *t_fields, cx_diag *d)
 {
     double t0 = cx_clock_now();
     const cx_problem *p = sc->p;
@@ -133,9 +133,9 @@ static int img_prepare(rd_scene *sc, double *t_fields, cx_diag *d)
      * on the whole body */
     sc->colored = f != CX_FIELD_STATUS &&
                   (f != CX_FIELD_PRESSURE || (dim == 3 && sc->o->view == CX_VIEW_CONTACT));
-    if (rd_geometry(sc) != CX_OK)
+    if (cx_render_geometry(sc) != CX_OK)
         return cx_diag_set(d, CX_ENOMEM, "render: out of memory");
-    rd_camera(sc);
+    cx_render_camera(sc);
     *t_fields = cx_clock_now() - t0;
     return CX_OK;
 }
@@ -157,7 +157,7 @@ int cx_render_project(const cx_render_state *st, const cx_render_opts *o, const 
                       double px[2], cx_diag *d)
 {
     CX_TRY(img_check(st, o, d));
-    rd_scene sc;
+    cx_render_scene sc;
     memset(&sc, 0, sizeof sc);
     sc.st = st;
     sc.o = o;
@@ -170,7 +170,7 @@ int cx_render_project(const cx_render_state *st, const cx_render_opts *o, const 
         double x3[3] = {0, 0, 0};
         for (int k = 0; k < st->p->dim; k++)
             x3[k] = x[k];
-        rd_project(&sc, x3, px);
+        cx_render_scene_project(&sc, x3, px);
     }
     img_clear(&sc);
     return rc;
@@ -181,7 +181,7 @@ int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char
 {
     cx_render_timing tm = {0};
     CX_TRY(img_check(st, o, d));
-    rd_scene sc;
+    cx_render_scene sc;
     memset(&sc, 0, sizeof sc);
     sc.st = st;
     sc.o = o;
@@ -199,7 +199,7 @@ int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char
     }
     if (rc == CX_OK) {
         double t0 = cx_clock_now();
-        rc = rd_gl_draw(&sc, gl, stride, &tm.context, &tm.draw_calls, d);
+        rc = cx_render_gl_draw(&sc, gl, stride, &tm.context, &tm.draw_calls, d);
         tm.draw = cx_clock_now() - t0 - tm.context;
     }
     if (rc == CX_OK) {
@@ -207,10 +207,10 @@ int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char
         cairo_surface_t *so = cairo_image_surface_create_for_data(out, CAIRO_FORMAT_RGB24, sc.w, sc.h, stride);
         cairo_surface_t *sg = cairo_image_surface_create_for_data(gl, CAIRO_FORMAT_ARGB32, sc.w, sc.h, stride);
         cairo_t *cr = cairo_create(so);
-        rd_underlay(&sc, cr);
+        cx_render_underlay(&sc, cr);
         cairo_set_source_surface(cr, sg, 0, 0);
         cairo_paint(cr);
-        rd_overlay(&sc, cr);
+        cx_render_overlay(&sc, cr);
         if (cairo_status(cr) != CAIRO_STATUS_SUCCESS)
             rc = cx_diag_set(d, CX_EEXTERNAL, "cairo: %s", cairo_status_to_string(cairo_status(cr)));
         cairo_destroy(cr);

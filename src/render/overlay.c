@@ -12,7 +12,7 @@
 #include "render/axis.h"
 #include "render/text.h"
 
-static double ov_scale(const rd_scene *sc)
+static double ov_scale(const cx_render_scene *sc)
 {
     return fmin(sc->w / 1200.0, sc->h / 900.0);
 }
@@ -22,7 +22,7 @@ static void ov_rgb(cairo_t *cr, const unsigned char c[3])
     cairo_set_source_rgb(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0);
 }
 
-static void ov_title(const rd_scene *sc, cairo_t *cr, double s)
+static void ov_title(const cx_render_scene *sc, cairo_t *cr, double s)
 {
     const cx_render_state *st = sc->st;
     const cx_problem *p = sc->p;
@@ -51,7 +51,7 @@ static const char *ov_units(int f)
     return "units of E";
 }
 
-static void ov_colorbar(const rd_scene *sc, cairo_t *cr, double s)
+static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
 {
     cx_render_layout l;
     cx_render_layout_get(sc->w, sc->h, &l);
@@ -86,7 +86,7 @@ static void ov_colorbar(const rd_scene *sc, cairo_t *cr, double s)
 }
 
 /* 2D obstacle: a hatched strip beyond the plane, or the disc. */
-static void ov_obstacle2d(const rd_scene *sc, cairo_t *cr, double s)
+static void ov_obstacle2d(const cx_render_scene *sc, cairo_t *cr, double s)
 {
     const cx_obstacle *ob = sc->st->obstacle;
     if (!ob)
@@ -104,10 +104,10 @@ static void ov_obstacle2d(const rd_scene *sc, cairo_t *cr, double s)
         double c[3] = {b[0] - big * ob->normal[0], b[1] - big * ob->normal[1], 0};
         double e[3] = {a[0] - big * ob->normal[0], a[1] - big * ob->normal[1], 0};
         double pa[2], pb[2], pc[2], pe[2];
-        rd_project(sc, a, pa);
-        rd_project(sc, b, pb);
-        rd_project(sc, c, pc);
-        rd_project(sc, e, pe);
+        cx_render_scene_project(sc, a, pa);
+        cx_render_scene_project(sc, b, pb);
+        cx_render_scene_project(sc, c, pc);
+        cx_render_scene_project(sc, e, pe);
         cairo_move_to(cr, pa[0], pa[1]);
         cairo_line_to(cr, pb[0], pb[1]);
         cairo_line_to(cr, pc[0], pc[1]);
@@ -133,7 +133,7 @@ static void ov_obstacle2d(const rd_scene *sc, cairo_t *cr, double s)
         cairo_stroke(cr);
     } else if (ob->kind == CX_OBST_DISC) {
         double c[2];
-        rd_project(sc, ob->point, c);
+        cx_render_scene_project(sc, ob->point, c);
         cairo_arc(cr, c[0], c[1], ob->radius * sc->k, 0, 2 * CX_PI);
         cairo_set_source_rgb(cr, 0.86, 0.84, 0.80);
         cairo_fill_preserve(cr);
@@ -144,7 +144,7 @@ static void ov_obstacle2d(const rd_scene *sc, cairo_t *cr, double s)
     cairo_restore(cr);
 }
 
-static void ov_outline(const rd_scene *sc, cairo_t *cr, const double *X, double width,
+static void ov_outline(const cx_render_scene *sc, cairo_t *cr, const double *X, double width,
                        double r, double g, double b, double a)
 {
     cairo_set_source_rgba(cr, r, g, b, a);
@@ -152,13 +152,13 @@ static void ov_outline(const rd_scene *sc, cairo_t *cr, const double *X, double 
     for (int i = 0; i < sc->nbedges; i++) {
         const int *e = sc->bedges + 3 * i;
         double p[2];
-        rd_project(sc, X + 3 * e[0], p);
+        cx_render_scene_project(sc, X + 3 * e[0], p);
         cairo_move_to(cr, p[0], p[1]);
         if (e[1] >= 0) {
-            rd_project(sc, X + 3 * e[1], p);
+            cx_render_scene_project(sc, X + 3 * e[1], p);
             cairo_line_to(cr, p[0], p[1]);
         }
-        rd_project(sc, X + 3 * e[2], p);
+        cx_render_scene_project(sc, X + 3 * e[2], p);
         cairo_line_to(cr, p[0], p[1]);
     }
     cairo_stroke(cr);
@@ -167,7 +167,7 @@ static void ov_outline(const rd_scene *sc, cairo_t *cr, const double *X, double 
 /* The pressure along the 2D contact boundary: a thick coloured band on
  * every boundary edge whose two ends are contact points (so that points of
  * different bodies are never joined). */
-static void ov_pressure2d(const rd_scene *sc, cairo_t *cr, double s)
+static void ov_pressure2d(const cx_render_scene *sc, cairo_t *cr, double s)
 {
     const cx_contact_set *cs = &sc->p->contact;
     unsigned char *is_c = CX_NEW(unsigned char, sc->p->mesh->nnodes);
@@ -182,8 +182,8 @@ static void ov_pressure2d(const rd_scene *sc, cairo_t *cr, double s)
         if (!is_c[e[0]] || !is_c[e[2]])
             continue;
         double pa[2], pb[2];
-        rd_project(sc, sc->xd + 3 * e[0], pa);
-        rd_project(sc, sc->xd + 3 * e[2], pb);
+        cx_render_scene_project(sc, sc->xd + 3 * e[0], pa);
+        cx_render_scene_project(sc, sc->xd + 3 * e[2], pb);
         double v = 0.5 * (sc->val[e[0]] + sc->val[e[2]]);
         unsigned char c[3];
         cx_colormap(0, (v - sc->lo) / (sc->hi - sc->lo), c);
@@ -198,7 +198,7 @@ static void ov_pressure2d(const rd_scene *sc, cairo_t *cr, double s)
 
 /* Contact points coloured by status; slipping points get an arrow in the
  * direction of slip, which is that of lT (DESIGN.md §2: T u = c lT). */
-static int ov_status(const rd_scene *sc, cairo_t *cr, double s, double r)
+static int ov_status(const cx_render_scene *sc, cairo_t *cr, double s, double r)
 {
     const cx_contact_set *cs = &sc->p->contact;
     const cx_render_state *st = sc->st;
@@ -214,7 +214,7 @@ static int ov_status(const rd_scene *sc, cairo_t *cr, double s, double r)
         shown++;
         int code = st->status ? st->status[i] : CX_PT_FREE;
         double p[2];
-        rd_project(sc, sc->xd + 3 * cs->node[i], p);
+        cx_render_scene_project(sc, sc->xd + 3 * cs->node[i], p);
         unsigned char c[3];
         cx_status_color(code, c);
         if ((code == CX_PT_SLIP_POS || code == CX_PT_SLIP_NEG) && st->lT) {
@@ -229,8 +229,8 @@ static int ov_status(const rd_scene *sc, cairo_t *cr, double s, double r)
                     q0[k] = sc->xd[3 * cs->node[i] + k];
                     q1[k] = q0[k] + dir[k] / len;
                 }
-                rd_project(sc, q0, a);
-                rd_project(sc, q1, b);
+                cx_render_scene_project(sc, q0, a);
+                cx_render_scene_project(sc, q1, b);
                 double ux = b[0] - a[0], uy = b[1] - a[1], ul = hypot(ux, uy);
                 if (ul > 0) {
                     ux /= ul;
@@ -260,7 +260,7 @@ static int ov_status(const rd_scene *sc, cairo_t *cr, double s, double r)
     return shown;
 }
 
-static void ov_notes(const rd_scene *sc, cairo_t *cr, double s, int legend, int hidden)
+static void ov_notes(const cx_render_scene *sc, cairo_t *cr, double s, int legend, int hidden)
 {
     char line[256];
     double y = sc->h - 30 * s;
@@ -296,7 +296,7 @@ static void ov_notes(const rd_scene *sc, cairo_t *cr, double s, int legend, int 
     }
 }
 
-void rd_underlay(const rd_scene *sc, cairo_t *cr)
+void cx_render_underlay(const cx_render_scene *sc, cairo_t *cr)
 {
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
@@ -304,7 +304,7 @@ void rd_underlay(const rd_scene *sc, cairo_t *cr)
         ov_obstacle2d(sc, cr, ov_scale(sc));
 }
 
-void rd_overlay(const rd_scene *sc, cairo_t *cr)
+void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr)
 {
     double s = ov_scale(sc);
     int f = sc->o->field;

@@ -9,7 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
-typedef struct png_job {
+typedef struct pngfile_job {
     FILE *fp;
     const unsigned char *buf;
     int w, h, stride;
@@ -17,16 +17,16 @@ typedef struct png_job {
     int ntext;
     unsigned char *row;       /* 3 w bytes */
     char err[200];
-} png_job;
+} pngfile_job;
 
-static void png_on_error(png_structp png, png_const_charp msg)
+static void pngfile_on_error(png_structp png, png_const_charp msg)
 {
-    png_job *job = png_get_error_ptr(png);
+    pngfile_job *job = png_get_error_ptr(png);
     snprintf(job->err, sizeof job->err, "%s", msg);
     longjmp(png_jmpbuf(png), 1);
 }
 
-static void png_on_warning(png_structp png, png_const_charp msg)
+static void pngfile_on_warning(png_structp png, png_const_charp msg)
 {
     (void)png;
     (void)msg;
@@ -34,10 +34,10 @@ static void png_on_warning(png_structp png, png_const_charp msg)
 
 /* Encode job into job->fp; 0 on success. Kept apart so that setjmp only
  * sees variables that do not change after it. */
-static int png_encode(png_job *job)
+static int pngfile_encode(pngfile_job *job)
 {
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, job, png_on_error,
-                                              png_on_warning);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, job, pngfile_on_error,
+                                              pngfile_on_warning);
     if (!png) {
         snprintf(job->err, sizeof job->err, "libpng: cannot create the write struct");
         return -1;
@@ -99,7 +99,7 @@ int cx_png_write_xrgb(const char *path, const unsigned char *buf, int w, int h, 
     char tmp[4096];
     if (snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid()) >= (int)sizeof tmp)
         return cx_diag_set(d, CX_EINVAL, "%s: file name too long", path);
-    png_job job = {0};
+    pngfile_job job = {0};
     job.buf = buf;
     job.w = w;
     job.h = h;
@@ -115,7 +115,7 @@ int cx_png_write_xrgb(const char *path, const unsigned char *buf, int w, int h, 
         cx_free(job.row);
         return cx_diag_set(d, CX_EIO, "%s: cannot write: %s", path, strerror(e));
     }
-    int rc = png_encode(&job);
+    int rc = pngfile_encode(&job);
     cx_free(job.row);
     int e = 0;
     if (fflush(job.fp) != 0 || ferror(job.fp))

@@ -8,18 +8,18 @@
 typedef struct _cairo cairo_t;
 
 /* A vertex: position, normal, scalar value. */
-#define RD_VFLOATS 7
+#define CX_RENDER_VFLOATS 7
 
-typedef struct rd_array {
-    float *v;       /* RD_VFLOATS per vertex */
+typedef struct cx_render_array {
+    float *v;       /* CX_RENDER_VFLOATS per vertex */
     long n, cap;    /* vertices */
-} rd_array;
+} cx_render_array;
 
-int rd_array_push(rd_array *a, const double x[3], const double nrm[3], double value);
-void rd_array_clear(rd_array *a);
+int cx_render_array_push(cx_render_array *a, const double x[3], const double nrm[3], double value);
+void cx_render_array_clear(cx_render_array *a);
 
 /* Everything one image needs, in world coordinates (z = 0 in 2D). */
-typedef struct rd_scene {
+typedef struct cx_render_scene {
     const cx_render_state *st;
     const cx_render_opts *o;
     const cx_problem *p;
@@ -31,10 +31,10 @@ typedef struct rd_scene {
     double umax;         /* largest |u| */
     double lo, hi;       /* colour range */
     int colored;         /* body coloured by val (else flat grey) */
-    rd_array tris;       /* body (or contact faces) */
-    rd_array overlay;    /* 3D: contact faces coloured on the body */
-    rd_array lines;      /* edges */
-    rd_array obst;       /* 3D obstacle triangles */
+    cx_render_array tris;       /* body (or contact faces) */
+    cx_render_array overlay;    /* 3D: contact faces coloured on the body */
+    cx_render_array lines;      /* edges */
+    cx_render_array obst;       /* 3D obstacle triangles */
     int *bedges;         /* 2D boundary edges: 3 node ids (a, mid or -1, b) */
     int nbedges;
     /* camera: world -> view rotation R (rows: right, up, towards the eye),
@@ -42,22 +42,22 @@ typedef struct rd_scene {
     double R[9];
     double k, cx, cy, zmin, zmax;
     int w, h;
-} rd_scene;
+} cx_render_scene;
 
 /* geom.c: vertex arrays of the body, its edges and the obstacle. */
-int rd_geometry(rd_scene *sc);
+int cx_render_geometry(cx_render_scene *sc);
 /* camera.c: frame the body (and obstacle) in the layout's drawing area. */
-void rd_camera(rd_scene *sc);
-void rd_project(const rd_scene *sc, const double x[3], double px[2]);
+void cx_render_camera(cx_render_scene *sc);
+void cx_render_scene_project(const cx_render_scene *sc, const double x[3], double px[2]);
 /* The GL matrices of the camera: column-major mvp, row-major 3x3 rotation. */
-void rd_camera_gl(const rd_scene *sc, float mvp[16], float rot[9]);
+void cx_render_camera_gl(const cx_render_scene *sc, float mvp[16], float rot[9]);
 /* gldraw.c: draw the vertex arrays with OpenGL into argb (cairo ARGB32,
  * premultiplied, transparent background), timing context creation apart. */
-int rd_gl_draw(const rd_scene *sc, unsigned char *argb, int stride, double *t_context,
+int cx_render_gl_draw(const cx_render_scene *sc, unsigned char *argb, int stride, double *t_context,
                int *draw_calls, cx_diag *d);
 /* overlay.c: what goes under the GL image (the 2D obstacle) and over it
  * (title, colour bar, outlines, markers, notes). */
-void rd_underlay(const rd_scene *sc, cairo_t *cr);
-void rd_overlay(const rd_scene *sc, cairo_t *cr);
+void cx_render_underlay(const cx_render_scene *sc, cairo_t *cr);
+void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr);
 
 #endif
