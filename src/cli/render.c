@@ -20,7 +20,7 @@ static const char render_usage[] =
     "  --field F            von-mises (default), sxx, syy, sxy, szz, syz, sxz (3D),\n"
     "                       u, ux, uy, uz, pressure, status\n"
     "  --scale S            displacement magnification (default: auto, the largest\n"
-    "                       displacement drawn as 7 %% of the body size)\n"
+    "                       displacement drawn as 7 % of the body size)\n"
     "  --size WxH           image size in pixels (default 1200x900)\n"
     "  --view body|contact  3D: the whole body, or the contact faces alone\n"
     "  --edges              draw the mesh edges\n"
@@ -339,7 +339,7 @@ int cli_render(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            printf(render_usage);
+            fputs(render_usage, stdout);
             return CLI_EXIT_OK;
         }
     int png = 0;
