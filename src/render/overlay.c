@@ -164,100 +164,194 @@ static void ov_outline(const cx_render_scene *sc, cairo_t *cr, const double *X, 
     cairo_stroke(cr);
 }
 
-/* The pressure along the 2D contact boundary: a thick coloured band on
- * every boundary edge whose two ends are contact points (so that points of
- * different bodies are never joined). */
-static void ov_pressure2d(const cx_render_scene *sc, cairo_t *cr, double s)
+/* The pressure (or the status) along the 2D contact boundary: a thick
+ * coloured band on every boundary edge whose two ends are contact points
+ * (so that points of different bodies are never joined); it stays
+ * readable when the points are too dense for markers. */
+static void ov_band2d(const cx_render_scene *sc, cairo_t *cr, double s)
 {
     const cx_contact_set *cs = &sc->p->contact;
-    unsigned char *is_c = CX_NEW(unsigned char, sc->p->mesh->nnodes);
-    if (!is_c)
+    int status = sc->o->field == CX_FIELD_STATUS;
+    /* contact index + 1 of each node (0: not a contact point) */
+    int *ci = CX_NEW(int, sc->p->mesh->nnodes);
+    if (!ci)
         return;
     for (int i = 0; i < cs->m; i++)
-        is_c[cs->node[i]] = 1;
-    cairo_set_line_width(cr, 7 * s);
+        ci[cs->node[i]] = i + 1;
+    cairo_set_line_width(cr, (status ? 5 : 7) * s);
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
     for (int i = 0; i < sc->nbedges; i++) {
         const int *e = sc->bedges + 3 * i;
-        if (!is_c[e[0]] || !is_c[e[2]])
+        if (!ci[e[0]] || !ci[e[2]])
             continue;
         double pa[2], pb[2];
         cx_render_scene_project(sc, sc->xd + 3 * e[0], pa);
         cx_render_scene_project(sc, sc->xd + 3 * e[2], pb);
-        double v = 0.5 * (sc->val[e[0]] + sc->val[e[2]]);
         unsigned char c[3];
-        cx_colormap(0, (v - sc->lo) / (sc->hi - sc->lo), c);
+        if (status) {
+            /* the segment takes the status of its ends when they agree,
+             * else that of the free end (the boundary of the zone) */
+            int a = sc->st->status ? sc->st->status[ci[e[0]] - 1] : CX_PT_FREE;
+            int b = sc->st->status ? sc->st->status[ci[e[2]] - 1] : CX_PT_FREE;
+            cx_status_color(a == b ? a : CX_PT_FREE, c);
+        } else {
+            double v = 0.5 * (sc->val[e[0]] + sc->val[e[2]]);
+            cx_colormap(0, (v - sc->lo) / (sc->hi - sc->lo), c);
+        }
         ov_rgb(cr, c);
         cairo_move_to(cr, pa[0], pa[1]);
         cairo_line_to(cr, pb[0], pb[1]);
         cairo_stroke(cr);
     }
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
-    cx_free(is_c);
+    cx_free(ci);
 }
 
-/* Contact points coloured by status; slipping points get an arrow in the
- * direction of slip, which is that of lT (DESIGN.md §2: T u = c lT). */
+/* Is contact point i seen? 3D body view: only where its outward normal
+ * (towards the obstacle) faces the viewer (row 2 of R points to the eye). */
+static int ov_visible(const cx_render_scene *sc, int i)
+{
+    if (sc->dim != 3 || sc->o->view != CX_VIEW_BODY)
+        return 1;
+    const double *n = sc->p->contact.normal + 3 * i;
+    return n[0] * sc->R[6] + n[1] * sc->R[7] + n[2] * sc->R[8] > 0;
+}
+
+/* The slip direction of point i on the image (unit, pixels), that of lT
+ * (DESIGN.md §2: T u = c lT; the friction force on the body is -T' lT). */
+static int ov_slip_dir(const cx_render_scene *sc, int i, double u[2])
+{
+    const cx_contact_set *cs = &sc->p->contact;
+    int dim = sc->dim, dt = dim - 1;
+    double dir[3] = {0, 0, 0}, q0[3], q1[3], a[2], b[2];
+    for (int k = 0; k < dim; k++)
+        for (int j = 0; j < dt; j++)
+            dir[k] += sc->st->lT[dt * i + j] * cs->tangent[dim * (dt * i + j) + k];
+    double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    if (!(len > 0))
+        return 0;
+    for (int k = 0; k < 3; k++) {
+        q0[k] = sc->xd[3 * cs->node[i] + k];
+        q1[k] = q0[k] + dir[k] / len;
+    }
+    cx_render_scene_project(sc, q0, a);
+    cx_render_scene_project(sc, q1, b);
+    u[0] = b[0] - a[0];
+    u[1] = b[1] - a[1];
+    double ul = hypot(u[0], u[1]);
+    if (!(ul > 0))
+        return 0;
+    u[0] /= ul;
+    u[1] /= ul;
+    return 1;
+}
+
+/* Contact points coloured by status, then arrows in the direction of slip
+ * (at every k-th slipping point, so that arrows never overlap). */
 static int ov_status(const cx_render_scene *sc, cairo_t *cr, double s, double r)
 {
     const cx_contact_set *cs = &sc->p->contact;
     const cx_render_state *st = sc->st;
-    int dim = sc->dim, dt = dim - 1, shown = 0;
+    int shown = 0;
     for (int i = 0; i < cs->m; i++) {
-        /* 3D: only points whose outward normal (towards the obstacle)
-         * faces the viewer (row 2 of R points to the eye) */
-        if (dim == 3 && sc->o->view == CX_VIEW_BODY) {
-            const double *n = cs->normal + 3 * i;
-            if (n[0] * sc->R[6] + n[1] * sc->R[7] + n[2] * sc->R[8] <= 0)
-                continue;
-        }
+        if (!ov_visible(sc, i))
+            continue;
         shown++;
-        int code = st->status ? st->status[i] : CX_PT_FREE;
         double p[2];
         cx_render_scene_project(sc, sc->xd + 3 * cs->node[i], p);
         unsigned char c[3];
-        cx_status_color(code, c);
-        if ((code == CX_PT_SLIP_POS || code == CX_PT_SLIP_NEG) && st->lT) {
-            /* the friction force on the body is -T' lT, opposing the slip */
-            double dir[3] = {0, 0, 0}, q0[3], q1[3], a[2], b[2];
-            for (int k = 0; k < dim; k++)
-                for (int j = 0; j < dt; j++)
-                    dir[k] += st->lT[dt * i + j] * cs->tangent[dim * (dt * i + j) + k];
-            double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-            if (len > 0) {
-                for (int k = 0; k < 3; k++) {
-                    q0[k] = sc->xd[3 * cs->node[i] + k];
-                    q1[k] = q0[k] + dir[k] / len;
-                }
-                cx_render_scene_project(sc, q0, a);
-                cx_render_scene_project(sc, q1, b);
-                double ux = b[0] - a[0], uy = b[1] - a[1], ul = hypot(ux, uy);
-                if (ul > 0) {
-                    ux /= ul;
-                    uy /= ul;
-                    double L = 4.2 * r, tip[2] = {p[0] + L * ux, p[1] + L * uy};
-                    ov_rgb(cr, c);
-                    cairo_set_line_width(cr, 1.6 * s);
-                    cairo_move_to(cr, p[0], p[1]);
-                    cairo_line_to(cr, tip[0], tip[1]);
-                    cairo_stroke(cr);
-                    cairo_move_to(cr, tip[0], tip[1]);
-                    cairo_line_to(cr, tip[0] - 1.8 * r * ux + 1.0 * r * uy, tip[1] - 1.8 * r * uy - 1.0 * r * ux);
-                    cairo_line_to(cr, tip[0] - 1.8 * r * ux - 1.0 * r * uy, tip[1] - 1.8 * r * uy + 1.0 * r * ux);
-                    cairo_close_path(cr);
-                    cairo_fill(cr);
-                }
-            }
-        }
+        cx_status_color(st->status ? st->status[i] : CX_PT_FREE, c);
         cairo_new_sub_path(cr);
         cairo_arc(cr, p[0], p[1], r, 0, 2 * CX_PI);
         ov_rgb(cr, c);
         cairo_fill_preserve(cr);
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        cairo_set_line_width(cr, 0.8 * s);
+        cairo_set_line_width(cr, fmin(0.8 * s, 0.25 * r));
         cairo_stroke(cr);
     }
+    if (!st->status || !st->lT)
+        return shown;
+    double L = fmax(5.0 * r, 18 * s), h = fmax(1.6 * r, 5 * s);
+    double last[2] = {-1e30, -1e30};
+    unsigned char c[3];
+    cx_status_color(CX_PT_SLIP_POS, c);
+    for (int i = 0; i < cs->m; i++) {
+        double p[2], u[2];
+        if ((st->status[i] != CX_PT_SLIP_POS && st->status[i] != CX_PT_SLIP_NEG) ||
+            !ov_visible(sc, i) || !ov_slip_dir(sc, i, u))
+            continue;
+        cx_render_scene_project(sc, sc->xd + 3 * cs->node[i], p);
+        if (hypot(p[0] - last[0], p[1] - last[1]) < 1.3 * L)
+            continue;
+        last[0] = p[0];
+        last[1] = p[1];
+        if (sc->dim == 2) {
+            /* beside the markers, on the obstacle's side */
+            double q[3], a[2];
+            for (int k = 0; k < 3; k++)
+                q[k] = sc->xd[3 * cs->node[i] + k] + (k < 2 ? cs->normal[2 * i + k] : 0);
+            cx_render_scene_project(sc, q, a);
+            double nx = a[0] - p[0], ny = a[1] - p[1], nl = hypot(nx, ny);
+            if (nl > 0) {
+                p[0] += (r + 6 * s) * nx / nl;
+                p[1] += (r + 6 * s) * ny / nl;
+            }
+        }
+        double tip[2] = {p[0] + L * u[0], p[1] + L * u[1]};
+        ov_rgb(cr, c);
+        cairo_set_line_width(cr, 2.0 * s);
+        cairo_move_to(cr, p[0], p[1]);
+        cairo_line_to(cr, tip[0] - 0.5 * h * u[0], tip[1] - 0.5 * h * u[1]);
+        cairo_stroke(cr);
+        cairo_move_to(cr, tip[0], tip[1]);
+        cairo_line_to(cr, tip[0] - 1.8 * h * u[0] + 0.8 * h * u[1], tip[1] - 1.8 * h * u[1] - 0.8 * h * u[0]);
+        cairo_line_to(cr, tip[0] - 1.8 * h * u[0] - 0.8 * h * u[1], tip[1] - 1.8 * h * u[1] + 0.8 * h * u[0]);
+        cairo_close_path(cr);
+        cairo_fill(cr);
+    }
     return shown;
+}
+
+/* Marker radius: about 0.4 of the spacing of the contact points on the
+ * image (2D: mean length of the boundary edges between contact points;
+ * 3D: from the projected area they cover), between 1.2 and 4 (x s) pixels. */
+static double ov_marker_radius(const cx_render_scene *sc, double s)
+{
+    const cx_contact_set *cs = &sc->p->contact;
+    double spacing = 0;
+    if (sc->dim == 2) {
+        unsigned char *is_c = CX_NEW(unsigned char, sc->p->mesh->nnodes);
+        int n = 0;
+        if (is_c) {
+            for (int i = 0; i < cs->m; i++)
+                is_c[cs->node[i]] = 1;
+            for (int i = 0; i < sc->nbedges; i++) {
+                const int *e = sc->bedges + 3 * i;
+                if (!is_c[e[0]] || !is_c[e[2]])
+                    continue;
+                double a[2], b[2];
+                cx_render_scene_project(sc, sc->xd + 3 * e[0], a);
+                cx_render_scene_project(sc, sc->xd + 3 * e[2], b);
+                spacing += hypot(b[0] - a[0], b[1] - a[1]);
+                n++;
+            }
+            cx_free(is_c);
+        }
+        spacing = n > 0 ? spacing / n : 0;
+    } else if (cs->m > 0) {
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        for (int i = 0; i < cs->m; i++) {
+            double p[2];
+            cx_render_scene_project(sc, sc->xd + 3 * cs->node[i], p);
+            for (int k = 0; k < 2; k++) {
+                lo[k] = fmin(lo[k], p[k]);
+                hi[k] = fmax(hi[k], p[k]);
+            }
+        }
+        spacing = sqrt(fmax(hi[0] - lo[0], 1.0) * fmax(hi[1] - lo[1], 1.0) / cs->m);
+    }
+    double r = spacing > 0 ? 0.42 * spacing : 4 * s;
+    return fmin(fmax(r, 1.2 * s), 4 * s);
 }
 
 static void ov_notes(const cx_render_scene *sc, cairo_t *cr, double s, int legend, int hidden)
@@ -312,14 +406,13 @@ void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr)
     if (sc->dim == 2) {
         ov_outline(sc, cr, sc->x0, 1.2 * s, 0.3, 0.3, 0.3, 0.35);
         ov_outline(sc, cr, sc->xd, 1.2 * s, 0.1, 0.1, 0.1, 0.9);
-        if (f == CX_FIELD_PRESSURE)
-            ov_pressure2d(sc, cr, s);
+        if (f == CX_FIELD_PRESSURE || f == CX_FIELD_STATUS)
+            ov_band2d(sc, cr, s);
     }
     int shown = 0;
     if (markers) {
-        /* few points: big markers; thousands: small ones */
-        double r = sc->p->m > 400 ? 2.6 * s : 4.0 * s;
-        shown = ov_status(sc, cr, s, f == CX_FIELD_STATUS ? 1.4 * r : r);
+        double r = ov_marker_radius(sc, s);
+        shown = ov_status(sc, cr, s, f == CX_FIELD_STATUS ? fmin(1.4 * r, 4 * s) : r);
     }
     int hidden = sc->dim == 3 && sc->o->view == CX_VIEW_BODY && sc->p->m > 0 &&
                  (f == CX_FIELD_PRESSURE || (f == CX_FIELD_STATUS && shown == 0));
