@@ -90,9 +90,10 @@ static void img_range(cx_render_scene *sc)
         sc->lo = fmin(lo, 0.0);
         sc->hi = hi;
     }
-    if (!(sc->hi > sc->lo)) {
-        sc->lo = sc->lo - 1;
-        sc->hi = sc->lo + 2;
+    if (!(sc->hi > sc->lo)) {   /* a constant field: a unit range around it */
+        double c = sc->lo;
+        sc->lo = cx_field_is_signed(sc->o->field) || c != 0 ? c - 1 : 0;
+        sc->hi = sc->lo + (c != 0 || cx_field_is_signed(sc->o->field) ? 2 : 1);
     }
 }
 

@@ -389,6 +389,32 @@ static void test_multibody(void)
         CX_CHECK(colour_dist(test_png_px(&img, (int)px[0], (int)px[1]), want) < 40);
     }
     test_png_free(&img);
+
+    /* every 2D field renders; von Mises analytically: body b has strain
+     * exx = 0.01 (b + 1) and E = 1000 (b + 1), so its stress is (b + 1)^2
+     * times body 0's, and its colour sits at t = ((b + 1) / 6)^2 */
+    for (int fld = 0; fld < CX_FIELD_COUNT; fld++) {
+        if (cx_field_check(fld, 2, NULL) != CX_OK)
+            continue;
+        opt.field = fld;
+        if (render_read(&st, &opt, &img, &t) != 0) {
+            CX_CHECK(0);
+            continue;
+        }
+        CX_CHECK(test_png_colours(&img) > 10);
+        CX_CHECK(t.draw_calls == 2);
+        if (fld != CX_FIELD_STATUS)
+            check_bar(&img, fld);
+        for (int b = 0; b < NB && fld == CX_FIELD_VON_MISES; b++) {
+            int c = b * NPB + 4;
+            double x[2] = {p->mesh->x[2 * c] + 0.125 + u[2 * c], p->mesh->x[2 * c + 1] + 0.125}, px[2];
+            cx_render_project(&st, &opt, x, px, NULL);
+            unsigned char want[3];
+            cx_colormap(0, (b + 1) * (b + 1) / 36.0, want);
+            CX_CHECK(colour_dist(test_png_px(&img, (int)px[0], (int)px[1]), want) < 30);
+        }
+        test_png_free(&img);
+    }
     cx_free(u);
     cx_free(lN);
     cx_problem_destroy(&p);
