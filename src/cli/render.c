@@ -95,38 +95,6 @@ int cli_render_option(int argc, char **argv, int *i, cli_render_args *r, cx_diag
 
 #if CX_HAVE_RENDER
 
-static void render_params(const cx_session *s, char *buf, size_t len)
-{
-    const cx_param_values *pv = cx_session_params(s);
-    size_t n = 0;
-    buf[0] = '\0';
-    for (int k = 0; k < pv->n && n + 2 < len; k++) {
-        char v[64];
-        cx_param_format(pv, k, v, sizeof v);
-        n += (size_t)snprintf(buf + n, len - n, "%s%s=%s", k ? " " : "", pv->table[k].key, v);
-    }
-}
-
-static void render_state(cx_render_state *st, const cx_scene *sc, const cx_session *s, int level,
-                         char *params, size_t len)
-{
-    const cx_iterate *it = cx_session_iterate(s);
-    memset(st, 0, sizeof *st);
-    st->p = cx_session_problem(s);
-    st->u = it->u;
-    st->lN = it->lN;
-    st->lT = it->lT;
-    st->status = it->status;
-    st->obstacle = &sc->obstacle;
-    st->scene = sc->id;
-    st->title = sc->title;
-    st->level = level;
-    st->method = cx_session_method(s)->id;
-    render_params(s, params, len);
-    st->params = params;
-    st->kkt = it->kkt;
-}
-
 /* The contact pressure lN / weight along the boundary, with Hertz's. */
 static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, const cx_session *s,
                                 const cx_render_state *st, cx_diag *d)
@@ -269,7 +237,7 @@ int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session 
         return CX_OK;
     char params[256];
     cx_render_state st;
-    render_state(&st, sc, s, level, params, sizeof params);
+    cx_render_state_init(&st, sc, s, level, params, sizeof params);
     if (r->vtu) {
         CX_TRY(cx_vtu_write(&st, r->vtu, r->vtu_ascii, d));
         if (!quiet)

@@ -10,6 +10,37 @@
 #include "cx_config.h"
 #include "render/pngfile.h"
 
+void cx_render_state_init(cx_render_state *st, const cx_scene *sc, const cx_session *s, int level,
+                          char *params, size_t len)
+{
+    const cx_iterate *it = cx_session_iterate(s);
+    const cx_param_values *pv = cx_session_params(s);
+    memset(st, 0, sizeof *st);
+    st->p = cx_session_problem(s);
+    st->u = it->u;
+    st->lN = it->lN;
+    st->lT = it->lT;
+    st->status = it->status;
+    st->obstacle = &sc->obstacle;
+    st->scene = sc->id;
+    st->title = sc->title;
+    st->level = level;
+    st->method = cx_session_method(s) ? cx_session_method(s)->id : "";
+    st->kkt = it->kkt;
+    size_t n = 0;
+    if (len > 0)
+        params[0] = '\0';
+    for (int k = 0; pv && k < pv->n && n + 2 < len; k++) {
+        char v[64];
+        cx_param_format(pv, k, v, sizeof v);
+        int w = snprintf(params + n, len - n, "%s%s=%s", k ? " " : "", pv->table[k].key, v);
+        if (w < 0 || (size_t)w >= len - n)
+            break;
+        n += (size_t)w;
+    }
+    st->params = params;
+}
+
 void cx_render_opts_default(cx_render_opts *o)
 {
     memset(o, 0, sizeof *o);

@@ -21,6 +21,7 @@
 
 #include "base/base.h"
 #include "solve/solve.h"
+#include "scene/scene.h"
 #include "render/plot.h"
 
 /* ---- fields -------------------------------------------------------------- */
@@ -86,6 +87,13 @@ typedef struct cx_render_state {
     const char *params;           /* "rho=1e-3 ..." ("" = none) */
     double kkt;                   /* the solution's kkt error */
 } cx_render_state;
+
+/* Fill st from a session's current iterate (u, lN, lT, status, kkt,
+ * method and its parameters written into params[len] as "key=value ...")
+ * and its scene (id, title, obstacle). Everything stays borrowed: st is
+ * valid until the session steps again or sc goes away. */
+void cx_render_state_init(cx_render_state *st, const cx_scene *sc, const cx_session *s, int level,
+                          char *params, size_t len);
 
 typedef struct cx_render_opts {
     int width, height;            /* pixels (default 1200 x 900) */
