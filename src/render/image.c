@@ -128,9 +128,16 @@ static void img_range(cx_render_scene *sc)
     }
 }
 
-static int img_prepare(cx_render_scene *sc, double *t_fields, cx_diag *d)
+static int img_prepare(cx_render_scene *sc, const cx_render_state *st, const cx_render_opts *o,
+                       double *t_fields, cx_diag *d)
 {
     double t0 = cx_clock_now();
+    memset(sc, 0, sizeof *sc);
+    sc->st = st;
+    sc->o = o;
+    sc->p = st->p;
+    sc->w = o->width;
+    sc->h = o->height;
     const cx_problem *p = sc->p;
     const cx_mesh *m = p->mesh;
     int dim = m->dim, nn = m->nnodes, f = sc->o->field;
@@ -190,14 +197,8 @@ int cx_render_project(const cx_render_state *st, const cx_render_opts *o, const 
 {
     CX_TRY(img_check(st, o, d));
     cx_render_scene sc;
-    memset(&sc, 0, sizeof sc);
-    sc.st = st;
-    sc.o = o;
-    sc.p = st->p;
-    sc.w = o->width;
-    sc.h = o->height;
     double tf;
-    int rc = img_prepare(&sc, &tf, d);
+    int rc = img_prepare(&sc, st, o, &tf, d);
     if (rc == CX_OK) {
         double x3[3] = {0, 0, 0};
         for (int k = 0; k < st->p->dim; k++)
@@ -214,13 +215,7 @@ int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char
     cx_render_timing tm = {0};
     CX_TRY(img_check(st, o, d));
     cx_render_scene sc;
-    memset(&sc, 0, sizeof sc);
-    sc.st = st;
-    sc.o = o;
-    sc.p = st->p;
-    sc.w = o->width;
-    sc.h = o->height;
-    int rc = img_prepare(&sc, &tm.fields, d);
+    int rc = img_prepare(&sc, st, o, &tm.fields, d);
     int stride = cairo_format_stride_for_width(CAIRO_FORMAT_ARGB32, sc.w);
     unsigned char *gl = NULL, *out = NULL;
     if (rc == CX_OK) {

@@ -1,13 +1,12 @@
 /* PNG writing with libpng (see pngfile.h). */
 #include "render/pngfile.h"
+#include "render/outfile.h"
 
-#include <errno.h>
 #include <png.h>
 #include <setjmp.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
 typedef struct pngfile_job {
     FILE *fp;
@@ -92,13 +91,8 @@ static int pngfile_encode(pngfile_job *job)
 int cx_png_write_xrgb(const char *path, const unsigned char *buf, int w, int h, int stride,
                       const cx_png_text *text, int ntext, cx_diag *d)
 {
-    if (!path || !path[0])
-        return cx_diag_set(d, CX_EINVAL, "PNG output: empty file name");
     if (w < 1 || h < 1 || stride < 4 * w)
-        return cx_diag_set(d, CX_EINVAL, "%s: bad image size %dx%d", path, w, h);
-    char tmp[4096];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid()) >= (int)sizeof tmp)
-        return cx_diag_set(d, CX_EINVAL, "%s: file name too long", path);
+        return cx_diag_set(d, CX_EINVAL, "%s: bad image size %dx%d", path ? path : "PNG", w, h);
     pngfile_job job = {0};
     job.buf = buf;
     job.w = w;
@@ -108,30 +102,16 @@ int cx_png_write_xrgb(const char *path, const unsigned char *buf, int w, int h, 
     job.ntext = ntext;
     job.row = cx_malloc((size_t)w * 3);
     if (!job.row)
-        return cx_diag_set(d, CX_ENOMEM, "%s: out of memory", path);
-    job.fp = fopen(tmp, "wb");
-    if (!job.fp) {
-        int e = errno;
-        cx_free(job.row);
-        return cx_diag_set(d, CX_EIO, "%s: cannot write: %s", path, strerror(e));
+        return cx_diag_set(d, CX_ENOMEM, "%s: out of memory", path ? path : "PNG");
+    cx_outfile out;
+    int rc = cx_outfile_open(&out, path, d);
+    if (rc == CX_OK) {
+        job.fp = out.f;
+        int enc = pngfile_encode(&job);
+        rc = cx_outfile_close(&out, enc == 0, d);
+        if (enc != 0)
+            rc = cx_diag_set(d, CX_EEXTERNAL, "%s: %s", path, job.err);
     }
-    int rc = pngfile_encode(&job);
     cx_free(job.row);
-    int e = 0;
-    if (fflush(job.fp) != 0 || ferror(job.fp))
-        e = errno ? errno : EIO;
-    if (fclose(job.fp) != 0 && !e)
-        e = errno;
-    if (rc != 0 || e) {
-        remove(tmp);
-        if (rc != 0)
-            return cx_diag_set(d, CX_EEXTERNAL, "%s: %s", path, job.err);
-        return cx_diag_set(d, CX_EIO, "%s: cannot write: %s", path, strerror(e));
-    }
-    if (rename(tmp, path) != 0) {
-        e = errno;
-        remove(tmp);
-        return cx_diag_set(d, CX_EIO, "%s: cannot write: %s", path, strerror(e));
-    }
-    return CX_OK;
+    return rc;
 }

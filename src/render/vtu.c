@@ -2,12 +2,11 @@
  * data as base64 with a UInt64 byte-count header per array (uncompressed).
  * Written to a temporary file and renamed. */
 #include "render/render.h"
+#include "render/outfile.h"
 
-#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
 typedef struct vtu_out {
     FILE *f;
@@ -173,25 +172,12 @@ done:
 
 int cx_vtu_write(const cx_render_state *st, const char *path, int ascii, cx_diag *d)
 {
-    if (!path || !path[0])
-        return cx_diag_set(d, CX_EINVAL, "VTU output: empty file name");
-    char tmp[4096];
-    if (snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid()) >= (int)sizeof tmp)
-        return cx_diag_set(d, CX_EINVAL, "%s: file name too long", path);
-    vtu_out o = {fopen(tmp, "w"), ascii};
-    if (!o.f)
-        return cx_diag_set(d, CX_EIO, "%s: cannot write: %s", path, strerror(errno));
+    cx_outfile out;
+    CX_TRY(cx_outfile_open(&out, path, d));
+    vtu_out o = {out.f, ascii};
     int rc = vtu_body(&o, st);
-    int e = ferror(o.f) ? (errno ? errno : EIO) : 0;
-    if (fclose(o.f) != 0 && !e)
-        e = errno;
-    if (rc != CX_OK || e || rename(tmp, path) != 0) {
-        if (!e && rc == CX_OK)
-            e = errno;
-        remove(tmp);
-        if (rc != CX_OK)
-            return cx_diag_set(d, rc, "%s: %s", path, cx_status_str(rc));
-        return cx_diag_set(d, CX_EIO, "%s: cannot write: %s", path, strerror(e));
-    }
-    return CX_OK;
+    int rc2 = cx_outfile_close(&out, rc == CX_OK, d);
+    if (rc != CX_OK)
+        return cx_diag_set(d, rc, "%s: %s", path, cx_status_str(rc));
+    return rc2;
 }
