@@ -183,35 +183,30 @@ static void plot_marker(cairo_t *cr, int shape, double x, double y, double r)
     }
 }
 
+static void plot_grid(cairo_t *cr, const plot_frame *f, const double *xs, int nx, const double *ys,
+                      int ny, double grey)
+{
+    cairo_set_source_rgb(cr, grey, grey, grey);
+    for (int i = 0; i < nx; i++) {
+        double x = floor(plot_px(f, xs[i])) + 0.5;
+        cairo_move_to(cr, x, f->y0);
+        cairo_line_to(cr, x, f->y1);
+    }
+    for (int i = 0; i < ny; i++) {
+        double y = floor(plot_py(f, ys[i])) + 0.5;
+        cairo_move_to(cr, f->x0, y);
+        cairo_line_to(cr, f->x1, y);
+    }
+    cairo_stroke(cr);
+}
+
 static void plot_axes(cairo_t *cr, const cx_plot *p, const plot_frame *f, double s)
 {
     char lab[64];
-    /* grid: minor then major */
+    /* grid: minor then major, on pixel centres for crisp 1-px lines */
     cairo_set_line_width(cr, 1.0);
-    cairo_set_source_rgb(cr, 0.93, 0.93, 0.93);
-    for (int i = 0; i < f->ax.nminor; i++) {
-        double x = floor(plot_px(f, f->ax.minor[i])) + 0.5;
-        cairo_move_to(cr, x, f->y0);
-        cairo_line_to(cr, x, f->y1);
-    }
-    for (int i = 0; i < f->ay.nminor; i++) {
-        double y = floor(plot_py(f, f->ay.minor[i])) + 0.5;
-        cairo_move_to(cr, f->x0, y);
-        cairo_line_to(cr, f->x1, y);
-    }
-    cairo_stroke(cr);
-    cairo_set_source_rgb(cr, 0.82, 0.82, 0.82);
-    for (int i = 0; i < f->ax.nticks; i++) {
-        double x = floor(plot_px(f, f->ax.ticks[i])) + 0.5;
-        cairo_move_to(cr, x, f->y0);
-        cairo_line_to(cr, x, f->y1);
-    }
-    for (int i = 0; i < f->ay.nticks; i++) {
-        double y = floor(plot_py(f, f->ay.ticks[i])) + 0.5;
-        cairo_move_to(cr, f->x0, y);
-        cairo_line_to(cr, f->x1, y);
-    }
-    cairo_stroke(cr);
+    plot_grid(cr, f, f->ax.minor, f->ax.nminor, f->ay.minor, f->ay.nminor, 0.93);
+    plot_grid(cr, f, f->ax.ticks, f->ax.nticks, f->ay.ticks, f->ay.nticks, 0.82);
     /* frame and tick labels */
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
     cairo_set_line_width(cr, 1.2 * s);
