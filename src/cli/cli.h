@@ -18,6 +18,25 @@ int cli_paper_000(int argc, char **argv);  /* cli/paper_000.c */
  * than included, so that cli/ and tui/ stay independent). argv[0] is the
  * command name; returns the exit status. */
 int tui_main(int argc, char **argv);
+int cli_render(int argc, char **argv);  /* cli/render.c */
+/* 'solve' under another command name (render: the same options and more). */
+int cli_solve_as(const char *cmd, int argc, char **argv);
+
+/* The rendering options shared by solve and render (cli/render.c). */
+typedef struct cli_render_args {
+    const char *png, *vtu, *field_name;
+    int plot;            /* 0 none, 1 pressure, 2 convergence, 3 work */
+    double scale;        /* 0: auto */
+    int w, h, view, edges, vtu_ascii, timing;
+} cli_render_args;
+void cli_render_args_init(cli_render_args *r);
+/* 1 if argv[*i] was a rendering option (consumed), 0 if not, -1 on error. */
+int cli_render_option(int argc, char **argv, int *i, cli_render_args *r, cx_diag *d);
+/* Check the options against the problem's dimension before solving. */
+int cli_render_check(const cli_render_args *r, int dim, cx_diag *d);
+/* Write what was asked (VTU, PNG image or plot) for a solved session. */
+int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, int level,
+                       int quiet, cx_diag *d);
 
 /* Print "signorini CMD: message" on stderr and return CLI_EXIT_ERROR. */
 int cli_fail(const char *cmd, const char *msg);

@@ -16,6 +16,7 @@ static const char usage[] =
     "  list [--json]            scenes and methods, with what each supports and its parameters\n"
     "  solve SCENE [options]    solve a scene and print a summary (or --json)\n"
     "  bench KIND [options]     benchmarks and the papers' tables (bench --help)\n"
+    "  render SCENE --png FILE  solve and draw a field, a plot or a VTU file (render --help)\n"
     "  version                  print the version\n"
     "\n"
     "'signorini <command> --help' describes a command's options.\n";
@@ -37,6 +38,8 @@ int main(int argc, char **argv)
         return cli_solve(argc - 1, argv + 1);
     if (strcmp(cmd, "tui") == 0)
         return tui_main(argc - 1, argv + 1);
+    if (strcmp(cmd, "render") == 0)
+        return cli_render(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
         return cli_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "version") == 0 || strcmp(cmd, "--version") == 0) {

@@ -25,6 +25,9 @@ static const char solve_usage[] =
     "  --json               print one JSON object on stdout instead of the summary\n"
     "  --baseline           also time one factorisation + solve of K alone\n"
     "  --quiet              no per-iteration lines\n"
+    "  --png FILE           also draw the solution (see 'signorini render --help'\n"
+    "                       for --field, --scale, --size, --view, --edges)\n"
+    "  --vtu FILE           also write a VTK XML UnstructuredGrid for ParaView\n"
     "\n"
     "Exit status: 0 converged, 1 error, 3 not converged.\n";
 
@@ -38,6 +41,7 @@ typedef struct {
     const char *sets[CX_PARAM_MAX];
     int nsets;
     int json, baseline, quiet;
+    cli_render_args render;   /* --png, --vtu and the drawing options (cli/render.c) */
 } solve_args;
 
 enum { OPT_METHOD, OPT_FRICTION, OPT_F, OPT_SLIP, OPT_LEVEL, OPT_TOL, OPT_MAXIT, OPT_STOP, OPT_SET };
@@ -48,7 +52,13 @@ static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
 {
     memset(a, 0, sizeof *a);
     cx_options_default(&a->opt);
+    cli_render_args_init(&a->render);
     for (int i = 1; i < argc; i++) {
+        int r = cli_render_option(argc, argv, &i, &a->render, d);
+        if (r < 0)
+            return CX_EINVAL;
+        if (r)
+            continue;
         if (strcmp(argv[i], "--json") == 0) { a->json = 1; continue; }
         if (strcmp(argv[i], "--baseline") == 0) { a->baseline = 1; continue; }
         if (strcmp(argv[i], "--quiet") == 0) { a->quiet = 1; continue; }
@@ -253,6 +263,11 @@ static void solve_write_text(const cx_scene *sc, const cx_session *s, double t_a
 
 int cli_solve(int argc, char **argv)
 {
+    return cli_solve_as("solve", argc, argv);
+}
+
+int cli_solve_as(const char *cmd, int argc, char **argv)
+{
     for (int i = 1; i < argc; i++)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(solve_usage, stdout);
@@ -262,19 +277,19 @@ int cli_solve(int argc, char **argv)
     cx_diag_clear(&d);
     solve_args a;
     if (solve_parse(argc, argv, &a, &d))
-        return cli_fail("solve", d.msg);
+        return cli_fail(cmd, d.msg);
 
     double t0 = cx_clock_now();
     cx_scene sc;
     if (cli_load_scene(a.scene, &sc, &d))
-        return cli_fail("solve", d.msg);
+        return cli_fail(cmd, d.msg);
 
     /* method, friction and parameters are checked before anything is built */
     const char *mid = a.method ? a.method : (sc.nmethods > 0 ? sc.methods[0] : "ssn-tresca");
     const cx_method *m = cx_method_find(mid);
     if (!m) {
         cx_diag_set(&d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", mid);
-        return cli_fail("solve", d.msg);
+        return cli_fail(cmd, d.msg);
     }
     cx_param_values pv;
     cx_param_default(&pv, m->params);
@@ -282,41 +297,45 @@ int cli_solve(int argc, char **argv)
     snprintf(owner, sizeof owner, "method '%s'", m->id);
     for (int k = 0; k < a.nsets; k++)
         if (cx_param_set_pair(&pv, a.sets[k], owner, &d))
-            return cli_fail("solve", d.msg);
+            return cli_fail(cmd, d.msg);
     int law = sc.friction;
     if (a.friction && (law = cx_friction_from_name(a.friction)) < 0) {
         cx_diag_set(&d, CX_EINVAL, "--friction '%s': expected none, tresca or coulomb", a.friction);
-        return cli_fail("solve", d.msg);
+        return cli_fail(cmd, d.msg);
     }
     double F = sc.F, slip = sc.slip_bound;
     if (a.F && (cx_parse_double(a.F, &F) || F < 0)) {
         cx_diag_set(&d, CX_EINVAL, "--F '%s': expected a non-negative number", a.F);
-        return cli_fail("solve", d.msg);
+        return cli_fail(cmd, d.msg);
     }
     if (a.slip && (cx_parse_double(a.slip, &slip) || slip < 0)) {
         cx_diag_set(&d, CX_EINVAL, "--slip '%s': expected a non-negative number", a.slip);
-        return cli_fail("solve", d.msg);
+        return cli_fail(cmd, d.msg);
     }
 
     cx_problem *p = NULL;
     if (cx_scene_build(&sc, a.level, &p, &d))
-        return cli_fail("solve", d.msg);
+        return cli_fail(cmd, d.msg);
     double t_assemble = cx_clock_now() - t0;
+    if (cli_render_check(&a.render, p->dim, &d)) {
+        cx_problem_destroy(&p);
+        return cli_fail(cmd, d.msg);
+    }
     p->F = F;
     p->slip_bound = slip;
     if (cx_problem_set_friction(p, (cx_friction)law, law == CX_FRICTION_COULOMB ? F : slip, &d)) {
         cx_problem_destroy(&p);
-        return cli_fail("solve", d.msg);
+        return cli_fail(cmd, d.msg);
     }
 
     cx_session *s = NULL;
     if (cx_session_create(&s, &p, &d)) {
         cx_problem_destroy(&p);
-        return cli_fail("solve", d.msg);
+        return cli_fail(cmd, d.msg);
     }
     int code = CLI_EXIT_ERROR;
     if (cx_session_set_method(s, m, &pv, &a.opt, &d)) {
-        cli_fail("solve", d.msg);
+        cli_fail(cmd, d.msg);
         goto done;
     }
     const cx_problem *cp = cx_session_problem(s);
@@ -328,13 +347,13 @@ int cli_solve(int argc, char **argv)
     }
     solve_watch w = {a.json || a.quiet};
     if (cx_solver_solve(s, solve_print_step, &w, &d)) {
-        cli_fail("solve", d.msg);
+        cli_fail(cmd, d.msg);
         goto done;
     }
     double t_total = cx_clock_now() - t0;
     double t_base = 0;
     if (a.baseline && cx_problem_baseline(cp, &t_base, &d)) {
-        cli_fail("solve", d.msg);
+        cli_fail(cmd, d.msg);
         goto done;
     }
     const cx_iterate *it = cx_session_iterate(s);
@@ -346,6 +365,8 @@ int cli_solve(int argc, char **argv)
     else
         solve_write_text(&sc, s, t_assemble, t_total, a.baseline, t_base, has_p, p_abs, p_rel, msg);
     code = it->reason > 0 ? CLI_EXIT_OK : CLI_EXIT_NOT_CONVERGED;
+    if (cli_render_outputs(&a.render, &sc, s, a.level > 0 ? a.level : sc.level, a.json, &d))
+        code = cli_fail(cmd, d.msg);
 done:
     cx_session_destroy(&s);
     return code;

@@ -1,0 +1,40 @@
+#version 330 core
+// The scalar is interpolated and only then mapped to a colour (a 1D
+// colormap texture), so colours between vertices stay on the colormap.
+in vec3 v_normal;
+in float v_value;
+
+uniform sampler2D u_cmap;   // 256 x 1 RGBA colormap
+uniform vec2 u_range;       // value at t = 0 and t = 1
+uniform int u_mode;         // 0: colormap, 1: flat u_color
+uniform vec4 u_color;
+uniform int u_lit;          // 1: Phong lighting (3D)
+
+out vec4 frag;
+
+void main()
+{
+    vec3 base;
+    float alpha = 1.0;
+    if (u_mode == 0) {
+        float t = clamp((v_value - u_range.x) / (u_range.y - u_range.x), 0.0, 1.0);
+        base = texture(u_cmap, vec2((t * 255.0 + 0.5) / 256.0, 0.5)).rgb;
+    } else {
+        base = u_color.rgb;
+        alpha = u_color.a;
+    }
+    if (u_lit == 1) {
+        // two-sided Phong: a headlight from the viewer plus a key light
+        vec3 n = normalize(v_normal);
+        if (n.z < 0.0)
+            n = -n;
+        vec3 l = normalize(vec3(0.35, 0.55, 0.75));
+        vec3 h = normalize(l + vec3(0.0, 0.0, 1.0));
+        // soft: the darkest face keeps half its colour, so the colormap
+        // stays readable on every side
+        float diff = 0.35 * max(dot(n, l), 0.0) + 0.25 * n.z;
+        float spec = 0.12 * pow(max(dot(n, h), 0.0), 40.0);
+        base = base * (0.50 + diff) + vec3(spec);
+    }
+    frag = vec4(base, alpha);
+}

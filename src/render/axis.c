@@ -1,0 +1,158 @@
+/* Nice ticks: steps of 1, 2 or 5 times a power of ten (linear axes), whole
+ * decades (log axes). */
+#include "render/axis.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static double axis_nice_step(double span, int target)
+{
+    double raw = span / (target > 1 ? target : 1);
+    double p = pow(10.0, floor(log10(raw)));
+    double f = raw / p;
+    double nice = f <= 1.0 ? 1.0 : f <= 2.0 ? 2.0 : f <= 2.5 ? 2.5 : f <= 5.0 ? 5.0 : 10.0;
+    return nice * p;
+}
+
+static void axis_make_linear(cx_axis *a, double lo, double hi, int target, int expand)
+{
+    if (!(hi > lo)) {
+        double c = lo, w = fabs(lo) > 0 ? 0.1 * fabs(lo) : 1.0;
+        lo = c - w;
+        hi = c + w;
+    }
+    double step = axis_nice_step(hi - lo, target);
+    double t0 = floor(lo / step + 1e-9) * step;
+    double t1 = ceil(hi / step - 1e-9) * step;
+    if (expand) {
+        lo = t0;
+        hi = t1;
+    }
+    a->lo = lo;
+    a->hi = hi;
+    a->step = step;
+    a->nticks = 0;
+    double eps = 1e-9 * step;
+    for (long k = (long)floor(t0 / step + 0.5); a->nticks < CX_AXIS_MAX_TICKS; k++) {
+        double v = (double)k * step;
+        if (v > hi + eps)
+            break;
+        if (v < lo - eps)
+            continue;
+        if (fabs(v) < eps)
+            v = 0.0;
+        a->ticks[a->nticks++] = v;
+    }
+}
+
+static void axis_make_log(cx_axis *a, double lo, double hi, int target, int expand)
+{
+    if (!(lo > 0))
+        lo = hi > 0 ? hi * 1e-3 : 1e-3;
+    if (!(hi > lo))
+        hi = lo * 10.0;
+    double e0 = floor(log10(lo) + 1e-9), e1 = ceil(log10(hi) - 1e-9);
+    if (e1 <= e0)
+        e1 = e0 + 1;
+    if (expand) {
+        lo = pow(10.0, e0);
+        hi = pow(10.0, e1);
+    }
+    a->lo = lo;
+    a->hi = hi;
+    int decades = (int)(e1 - e0);
+    int every = 1;
+    while (decades / every > (target > 1 ? target + 2 : 3))
+        every++;
+    a->step = every;
+    a->nticks = a->nminor = 0;
+    for (int e = (int)e0; e <= (int)e1; e++) {
+        double v = pow(10.0, e);
+        if ((e - (int)e0) % every == 0 && v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9) &&
+            a->nticks < CX_AXIS_MAX_TICKS)
+            a->ticks[a->nticks++] = v;
+        if (every == 1 && decades <= 8)
+            for (int m = 2; m <= 9 && a->nminor < CX_AXIS_MAX_TICKS; m++) {
+                double u = m * v;
+                if (!(u > lo && u < hi))
+                    continue;
+                /* one or two decades: label 2 and 5 too */
+                if (decades <= 2 && (m == 2 || m == 5) && a->nticks < CX_AXIS_MAX_TICKS)
+                    a->ticks[a->nticks++] = u;
+                else
+                    a->minor[a->nminor++] = u;
+            }
+    }
+}
+
+void cx_axis_make(cx_axis *a, double lo, double hi, int log, int target, int expand)
+{
+    memset(a, 0, sizeof *a);
+    a->log = log;
+    if (log)
+        axis_make_log(a, lo, hi, target, expand);
+    else
+        axis_make_linear(a, lo, hi, target, expand);
+}
+
+double cx_axis_frac(const cx_axis *a, double v)
+{
+    if (a->log)
+        return (log10(v) - log10(a->lo)) / (log10(a->hi) - log10(a->lo));
+    return (v - a->lo) / (a->hi - a->lo);
+}
+
+/* Append the UTF-8 superscript form of an integer exponent. */
+static void axis_superscript(int e, char *buf, size_t len)
+{
+    static const char *digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+    char plain[16];
+    snprintf(plain, sizeof plain, "%d", e);
+    size_t n = strlen(buf);
+    for (const char *c = plain; *c && n + 4 < len; c++) {
+        const char *s = *c == '-' ? "⁻" : digits[*c - '0'];
+        size_t k = strlen(s);
+        memcpy(buf + n, s, k);
+        n += k;
+    }
+    buf[n] = '\0';
+}
+
+void cx_axis_label(const cx_axis *a, double v, char *buf, size_t len)
+{
+    if (a->log) {
+        int e = (int)floor(log10(v) + 0.5);
+        if (fabs(v / pow(10.0, e) - 1.0) > 1e-9) {   /* 2 or 5 x 10^k */
+            snprintf(buf, len, "%g", v);
+            return;
+        }
+        if (e == 0 || e == 1) {
+            snprintf(buf, len, "%g", pow(10.0, e));
+            return;
+        }
+        snprintf(buf, len, "10");
+        axis_superscript(e, buf, len);
+        return;
+    }
+    double mag = fmax(fabs(a->lo), fabs(a->hi));
+    if (v == 0.0) {
+        snprintf(buf, len, "0");
+    } else if (mag >= 1e5 || mag < 1e-3) {
+        /* scientific with as many digits as the step needs */
+        int digits = (int)ceil(log10(mag / a->step) - 1e-9) + 1;
+        if (digits < 1)
+            digits = 1;
+        if (digits > 6)
+            digits = 6;
+        snprintf(buf, len, "%.*g", digits, v);
+    } else {
+        int dec = (int)ceil(-log10(a->step) - 1e-9);
+        if (dec < 0)
+            dec = 0;
+        /* 2.5-steps need one more decimal */
+        if (fabs(a->step / pow(10.0, floor(log10(a->step))) - 2.5) < 1e-9)
+            dec++;
+        snprintf(buf, len, "%.*f", dec, v);
+    }
+}

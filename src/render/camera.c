@@ -1,0 +1,172 @@
+/* The camera: a rotation into view space and an orthographic fit of the
+ * body (and the obstacle near it) into the drawing area of the layout. The
+ * same mapping serves GL (cx_render_camera_gl) and the cairo overlays
+ * (cx_render_scene_project), so markers sit exactly on the drawn mesh. */
+#include "render/render_impl.h"
+
+#include <math.h>
+
+void cx_render_layout_get(int w, int h, cx_render_layout *l)
+{
+    double s = fmin(w / 1200.0, h / 900.0);
+    l->area[0] = 20 * s;
+    l->area[1] = 84 * s;
+    l->area[2] = w - 190 * s - l->area[0];
+    l->area[3] = h - 56 * s - l->area[1];
+    l->bar[0] = w - 150 * s;
+    l->bar[1] = l->area[1] + 40 * s;
+    l->bar[2] = 28 * s;
+    l->bar[3] = l->area[3] - 80 * s;
+}
+
+static void cam_cross(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void cam_unit(double *a)
+{
+    double l = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (int k = 0; k < 3; k++)
+        a[k] /= l;
+}
+
+/* Rows of R: right, up, towards the eye (e). */
+static void cam_rotation(double *R, const double *e_in, const double *up)
+{
+    double e[3] = {e_in[0], e_in[1], e_in[2]}, r[3], u[3];
+    cam_unit(e);
+    cam_cross(up, e, r);
+    cam_unit(r);
+    cam_cross(e, r, u);
+    for (int k = 0; k < 3; k++) {
+        R[k] = r[k];
+        R[3 + k] = u[k];
+        R[6 + k] = e[k];
+    }
+}
+
+static void cam_view(const double *R, const double *x, double *v)
+{
+    for (int i = 0; i < 3; i++)
+        v[i] = R[3 * i] * x[0] + R[3 * i + 1] * x[1] + R[3 * i + 2] * x[2];
+}
+
+typedef struct cam_box {
+    double lo[3], hi[3];
+} cam_box;
+
+static void cam_add(cam_box *b, const double *R, const double *x)
+{
+    double v[3];
+    cam_view(R, x, v);
+    for (int k = 0; k < 3; k++) {
+        b->lo[k] = fmin(b->lo[k], v[k]);
+        b->hi[k] = fmax(b->hi[k], v[k]);
+    }
+}
+
+static void cam_add_array(cam_box *b, const double *R, const cx_render_array *a)
+{
+    for (long i = 0; i < a->n; i++) {
+        double x[3] = {a->v[CX_RENDER_VFLOATS * i], a->v[CX_RENDER_VFLOATS * i + 1], a->v[CX_RENDER_VFLOATS * i + 2]};
+        cam_add(b, R, x);
+    }
+}
+
+void cx_render_camera(cx_render_scene *sc)
+{
+    cx_render_layout l;
+    cx_render_layout_get(sc->w, sc->h, &l);
+    const cx_obstacle *ob = sc->st->obstacle;
+    if (sc->dim == 2) {
+        const double e[3] = {0, 0, 1}, up[3] = {0, 1, 0};
+        cam_rotation(sc->R, e, up);
+    } else if (sc->o->view == CX_VIEW_CONTACT) {
+        /* from inside the obstacle, looking at the contact faces */
+        double e[3] = {0, 0, -1}, up[3] = {0, 1, 0};
+        if (ob && ob->kind == CX_OBST_PLANE)
+            for (int k = 0; k < 3; k++)
+                e[k] = -ob->normal[k];
+        else if (sc->p->contact.m > 0)
+            for (int k = 0; k < 3; k++)
+                e[k] = -sc->p->contact.normal[k];
+        if (fabs(e[1]) > 0.9) {
+            up[1] = 0;
+            up[2] = 1;
+        }
+        cam_rotation(sc->R, e, up);
+    } else {
+        const double e[3] = {0.95, -1.35, 0.95}, up[3] = {0, 0, 1};
+        cam_rotation(sc->R, e, up);
+    }
+    cam_box b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    if (sc->dim == 2) {
+        const cx_mesh *m = sc->p->mesh;
+        for (int i = 0; i < m->nnodes; i++) {
+            cam_add(&b, sc->R, sc->xd + 3 * i);
+            cam_add(&b, sc->R, sc->x0 + 3 * i);
+        }
+        /* a disc obstacle is shown whole when it is not much larger than
+         * the body; a plane is seen as the strip below the body */
+        double size = fmax(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
+        if (ob && ob->kind == CX_OBST_DISC && ob->radius < 1.5 * size) {
+            double q[3] = {ob->point[0] - ob->radius, ob->point[1] - ob->radius, 0};
+            cam_add(&b, sc->R, q);
+            q[0] += 2 * ob->radius;
+            q[1] += 2 * ob->radius;
+            cam_add(&b, sc->R, q);
+        } else if (ob && ob->kind == CX_OBST_PLANE) {
+            double lo[2] = {b.lo[0], b.lo[1]}, hi[2] = {b.hi[0], b.hi[1]};
+            for (int c = 0; c < 4; c++) {
+                double q[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], 0}, dist = 0;
+                for (int k = 0; k < 2; k++)
+                    dist += (q[k] - ob->point[k]) * ob->normal[k];
+                for (int k = 0; k < 2; k++)
+                    q[k] -= (dist + 0.06 * size) * ob->normal[k];
+                cam_add(&b, sc->R, q);
+            }
+        }
+    } else {
+        cam_add_array(&b, sc->R, &sc->tris);
+        cam_add_array(&b, sc->R, &sc->obst);
+    }
+    double bw = fmax(b.hi[0] - b.lo[0], 1e-300), bh = fmax(b.hi[1] - b.lo[1], 1e-300);
+    sc->k = fmin(l.area[2] / (1.06 * bw), l.area[3] / (1.06 * bh));
+    sc->cx = l.area[0] + 0.5 * l.area[2] - sc->k * 0.5 * (b.lo[0] + b.hi[0]);
+    sc->cy = l.area[1] + 0.5 * l.area[3] + sc->k * 0.5 * (b.lo[1] + b.hi[1]);
+    double dz = fmax(b.hi[2] - b.lo[2], 1e-3 * fmax(bw, bh));
+    sc->zmin = b.lo[2] - 0.05 * dz;
+    sc->zmax = b.hi[2] + 0.05 * dz;
+}
+
+void cx_render_scene_project(const cx_render_scene *sc, const double x[3], double px[2])
+{
+    double v[3];
+    cam_view(sc->R, x, v);
+    px[0] = sc->cx + sc->k * v[0];
+    px[1] = sc->cy - sc->k * v[1];
+}
+
+void cx_render_camera_gl(const cx_render_scene *sc, float mvp[16], float rot[9])
+{
+    double sx = 2 * sc->k / sc->w, sy = 2 * sc->k / sc->h, sz = -2 / (sc->zmax - sc->zmin);
+    double row[3][4];
+    for (int k = 0; k < 3; k++) {
+        row[0][k] = sx * sc->R[k];
+        row[1][k] = sy * sc->R[3 + k];
+        row[2][k] = sz * sc->R[6 + k];
+    }
+    row[0][3] = 2 * sc->cx / sc->w - 1;
+    row[1][3] = 1 - 2 * sc->cy / sc->h;
+    row[2][3] = 2 * sc->zmin / (sc->zmax - sc->zmin) + 1;
+    for (int c = 0; c < 4; c++) {
+        for (int r = 0; r < 3; r++)
+            mvp[4 * c + r] = (float)row[r][c];
+        mvp[4 * c + 3] = c == 3 ? 1.0f : 0.0f;
+    }
+    for (int i = 0; i < 9; i++)
+        rot[i] = (float)sc->R[i];
+}

@@ -1,0 +1,71 @@
+/* Colormaps: a perceptual one for magnitudes (a polynomial fit of
+ * matplotlib's viridis) and a diverging one for signed fields (Moreland's
+ * cool-warm, control points every 1/8), and the status colours. */
+#include "render/render.h"
+
+#include <math.h>
+
+static unsigned char cmap_byte(double v)
+{
+    v = v < 0 ? 0 : v > 1 ? 1 : v;
+    return (unsigned char)lround(255.0 * v);
+}
+
+static void cmap_viridis(double t, unsigned char rgb[3])
+{
+    /* degree-6 least-squares fit of viridis, per channel */
+    static const double c[7][3] = {
+        {0.2777273272234177, 0.005407344544966578, 0.3340998053353061},
+        {0.1050930431085774, 1.404613529898575, 1.384590162594685},
+        {-0.3308618287255563, 0.214847559468213, 0.09509516302823659},
+        {-4.634230498983486, -5.799100973351585, -19.33244095627987},
+        {6.228269936347081, 14.17993336680509, 56.69055260068105},
+        {4.776384997670288, -13.74514537774601, -65.35303263337234},
+        {-5.435455855934631, 4.645852612178535, 26.3124352495832}};
+    for (int k = 0; k < 3; k++) {
+        double v = c[6][k];
+        for (int i = 5; i >= 0; i--)
+            v = c[i][k] + t * v;
+        rgb[k] = cmap_byte(v);
+    }
+}
+
+static void cmap_coolwarm(double t, unsigned char rgb[3])
+{
+    static const double pts[9][3] = {
+        {59, 76, 192}, {98, 130, 234}, {141, 176, 254}, {184, 208, 249}, {221, 221, 221},
+        {245, 196, 173}, {244, 154, 123}, {222, 96, 77}, {180, 4, 38}};
+    double s = t * 8.0;
+    int i = (int)floor(s);
+    if (i > 7)
+        i = 7;
+    double f = s - i;
+    for (int k = 0; k < 3; k++)
+        rgb[k] = cmap_byte(((1 - f) * pts[i][k] + f * pts[i + 1][k]) / 255.0);
+}
+
+void cx_colormap(int diverging, double t, unsigned char rgb[3])
+{
+    if (!(t >= 0))
+        t = 0;
+    if (t > 1)
+        t = 1;
+    if (diverging)
+        cmap_coolwarm(t, rgb);
+    else
+        cmap_viridis(t, rgb);
+}
+
+void cx_status_color(int status, unsigned char rgb[3])
+{
+    static const unsigned char c[5][3] = {
+        {150, 150, 150},   /* free: grey */
+        {31, 119, 180},    /* contact (frictionless): blue */
+        {44, 160, 44},     /* stick: green */
+        {214, 39, 40},     /* slip +: red */
+        {214, 39, 40}};    /* slip -: red (the arrow tells the direction) */
+    int s = status >= 0 && status <= 4 ? status : 0;
+    rgb[0] = c[s][0];
+    rgb[1] = c[s][1];
+    rgb[2] = c[s][2];
+}

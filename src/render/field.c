@@ -1,0 +1,138 @@
+/* Field names and nodal values. */
+#include "render/render.h"
+
+#include <math.h>
+#include <string.h>
+
+static const struct {
+    const char *name, *label;
+    int dims;        /* bit 2: in 2D, bit 3: in 3D */
+    int stress;      /* Voigt index + 1 of the component, or -1 for von Mises */
+    int disp;        /* component + 1, or -1 for |u| */
+    int is_signed;
+} field_table[CX_FIELD_COUNT] = {
+    [CX_FIELD_VON_MISES] = {"von-mises", "von Mises stress", 12, -1, 0, 0},
+    [CX_FIELD_SXX] = {"sxx", "stress σxx", 12, 0, 0, 1},
+    [CX_FIELD_SYY] = {"syy", "stress σyy", 12, 0, 0, 1},
+    [CX_FIELD_SZZ] = {"szz", "stress σzz", 8, 0, 0, 1},
+    [CX_FIELD_SYZ] = {"syz", "stress σyz", 8, 0, 0, 1},
+    [CX_FIELD_SXZ] = {"sxz", "stress σxz", 8, 0, 0, 1},
+    [CX_FIELD_SXY] = {"sxy", "stress σxy", 12, 0, 0, 1},
+    [CX_FIELD_UMAG] = {"u", "displacement |u|", 12, 0, -1, 0},
+    [CX_FIELD_UX] = {"ux", "displacement ux", 12, 0, 1, 1},
+    [CX_FIELD_UY] = {"uy", "displacement uy", 12, 0, 2, 1},
+    [CX_FIELD_UZ] = {"uz", "displacement uz", 8, 0, 3, 1},
+    [CX_FIELD_PRESSURE] = {"pressure", "contact pressure", 12, 0, 0, 0},
+    [CX_FIELD_STATUS] = {"status", "contact status", 12, 0, 0, 0},
+};
+
+const char *cx_field_name(int f)
+{
+    return f >= 0 && f < CX_FIELD_COUNT ? field_table[f].name : "?";
+}
+
+const char *cx_field_label(int f)
+{
+    return f >= 0 && f < CX_FIELD_COUNT ? field_table[f].label : "?";
+}
+
+int cx_field_from_name(const char *name)
+{
+    for (int f = 0; f < CX_FIELD_COUNT; f++)
+        if (strcmp(name, field_table[f].name) == 0)
+            return f;
+    return -1;
+}
+
+int cx_field_is_stress(int f)
+{
+    return f >= CX_FIELD_VON_MISES && f <= CX_FIELD_SXY;
+}
+
+int cx_field_is_signed(int f)
+{
+    return f >= 0 && f < CX_FIELD_COUNT && field_table[f].is_signed;
+}
+
+int cx_field_check(int f, int dim, cx_diag *d)
+{
+    if (f < 0 || f >= CX_FIELD_COUNT)
+        return cx_diag_set(d, CX_EINVAL, "--field: unknown field");
+    if (!(field_table[f].dims & (1 << dim)))
+        return cx_diag_set(d, CX_EINVAL, "--field %s: only in 3D", field_table[f].name);
+    return CX_OK;
+}
+
+/* Voigt index of a stress field: 2D (xx, yy, xy), 3D (xx, yy, zz, yz, xz, xy). */
+static int field_voigt(int f, int dim)
+{
+    switch (f) {
+    case CX_FIELD_SXX: return 0;
+    case CX_FIELD_SYY: return 1;
+    case CX_FIELD_SZZ: return 2;
+    case CX_FIELD_SYZ: return 3;
+    case CX_FIELD_SXZ: return 4;
+    case CX_FIELD_SXY: return dim == 2 ? 2 : 5;
+    default: return -1;
+    }
+}
+
+int cx_field_nodal(const cx_problem *p, const double *uall, const double *lN,
+                   const unsigned char *status, int f, double *val)
+{
+    const cx_mesh *m = p->mesh;
+    int dim = m->dim, nn = m->nnodes;
+    if (cx_field_is_stress(f)) {
+        int ns = cx_fem_nstress(dim);
+        double *sig = cx_malloc(sizeof(double) * (size_t)ns * nn);
+        int *owner = cx_malloc(sizeof(int) * (size_t)nn);
+        if (!sig || !owner) {
+            cx_free(sig);
+            cx_free(owner);
+            return CX_ENOMEM;
+        }
+        int rc = cx_fem_nodal_stress(m, p->mats, uall, sig);
+        if (rc != CX_OK) {
+            cx_free(sig);
+            cx_free(owner);
+            return rc;
+        }
+        /* the material of a node: that of the body of an element using it */
+        for (int k = 0; k < nn; k++)
+            owner[k] = 0;
+        if (m->body)
+            for (int e = 0; e < m->nelems; e++)
+                for (int a = 0; a < m->npe; a++)
+                    owner[m->conn[m->npe * e + a]] = m->body[e];
+        int c = field_voigt(f, dim);
+        for (int k = 0; k < nn; k++)
+            val[k] = c >= 0 ? sig[ns * k + c] : cx_fem_von_mises(&p->mats[owner[k]], sig + ns * k);
+        cx_free(sig);
+        cx_free(owner);
+        return CX_OK;
+    }
+    if (f == CX_FIELD_PRESSURE || f == CX_FIELD_STATUS) {
+        const cx_contact_set *cs = &p->contact;
+        for (int k = 0; k < nn; k++)
+            val[k] = f == CX_FIELD_STATUS ? -1 : 0;
+        for (int i = 0; i < cs->m; i++) {
+            if (f == CX_FIELD_STATUS)
+                val[cs->node[i]] = status ? status[i] : CX_PT_FREE;
+            else
+                val[cs->node[i]] = cs->weight[i] > 0 && lN ? lN[i] / cs->weight[i] : 0;
+        }
+        return CX_OK;
+    }
+    int c = field_table[f].disp;
+    for (int k = 0; k < nn; k++) {
+        if (c > 0) {
+            val[k] = uall[dim * k + c - 1];
+        } else {
+            double s = 0;
+            for (int j = 0; j < dim; j++)
+                s += uall[dim * k + j] * uall[dim * k + j];
+            val[k] = sqrt(s);
+        }
+    }
+    return CX_OK;
+}

@@ -1,0 +1,410 @@
+/* Vertex arrays of an image: the body's triangles (2D: all elements; 3D:
+ * the boundary faces, found as the faces used by one element only), its
+ * edges, the contact faces, and the 3D obstacle. Every body of the mesh
+ * goes into the same arrays (one draw call per field). */
+#include "render/render_impl.h"
+
+#include <math.h>
+#include <string.h>
+
+int cx_render_array_push(cx_render_array *a, const double x[3], const double nrm[3], double value)
+{
+    if (a->n == a->cap) {
+        long cap = a->cap ? 2 * a->cap : 1024;
+        float *v = cx_realloc(a->v, sizeof(float) * CX_RENDER_VFLOATS * (size_t)cap);
+        if (!v)
+            return CX_ENOMEM;
+        a->v = v;
+        a->cap = cap;
+    }
+    float *q = a->v + CX_RENDER_VFLOATS * a->n++;
+    for (int k = 0; k < 3; k++) {
+        q[k] = (float)x[k];
+        q[3 + k] = (float)nrm[k];
+    }
+    q[6] = (float)value;
+    return CX_OK;
+}
+
+void cx_render_array_clear(cx_render_array *a)
+{
+    cx_free(a->v);
+    memset(a, 0, sizeof *a);
+}
+
+static double geom_val(const cx_render_scene *sc, int node)
+{
+    return sc->val ? sc->val[node] : 0.0;
+}
+
+static void geom_normal(const double *a, const double *b, const double *c, double n[3])
+{
+    double u[3], v[3];
+    for (int k = 0; k < 3; k++) {
+        u[k] = b[k] - a[k];
+        v[k] = c[k] - a[k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; k++)
+        n[k] = l > 0 ? n[k] / l : (k == 2);
+}
+
+static int geom_tri(const cx_render_scene *sc, cx_render_array *a, int i, int j, int k)
+{
+    const double *X = sc->xd;
+    double n[3];
+    geom_normal(X + 3 * i, X + 3 * j, X + 3 * k, n);
+    CX_TRY(cx_render_array_push(a, X + 3 * i, n, geom_val(sc, i)));
+    CX_TRY(cx_render_array_push(a, X + 3 * j, n, geom_val(sc, j)));
+    return cx_render_array_push(a, X + 3 * k, n, geom_val(sc, k));
+}
+
+static int geom_line(const cx_render_scene *sc, int i, int j)
+{
+    static const double n[3] = {0, 0, 1};
+    CX_TRY(cx_render_array_push((cx_render_array *)&sc->lines, sc->xd + 3 * i, n, 0));
+    return cx_render_array_push((cx_render_array *)&sc->lines, sc->xd + 3 * j, n, 0);
+}
+
+/* A polygon face (3 or 4 nodes) as triangles, and its edges. */
+static int geom_face(cx_render_scene *sc, cx_render_array *a, const int *f, int nf, int edges)
+{
+    CX_TRY(geom_tri(sc, a, f[0], f[1], f[2]));
+    if (nf == 4)
+        CX_TRY(geom_tri(sc, a, f[0], f[2], f[3]));
+    if (edges)
+        for (int e = 0; e < nf; e++)
+            CX_TRY(geom_line(sc, f[e], f[(e + 1) % nf]));
+    return CX_OK;
+}
+
+/* ---- 2D ------------------------------------------------------------------ */
+
+/* Corner edges of a 2D element: (a, mid, b) with mid = -1 when none. */
+static int geom_edges2d(const cx_mesh *m, int e, int out[4][3])
+{
+    const int *c = m->conn + (size_t)m->npe * e;
+    if (m->etype == CX_EL_QUAD4) {
+        for (int i = 0; i < 4; i++) {
+            out[i][0] = c[i];
+            out[i][1] = -1;
+            out[i][2] = c[(i + 1) % 4];
+        }
+        return 4;
+    }
+    for (int i = 0; i < 3; i++) {
+        out[i][0] = c[i];
+        out[i][1] = m->etype == CX_EL_TRI6 ? c[3 + i] : -1;
+        out[i][2] = c[(i + 1) % 3];
+    }
+    return 3;
+}
+
+/* Open-addressing table of sorted node tuples with a use count. */
+typedef struct geom_hash {
+    long cap;
+    int width;
+    int *key;        /* width per slot, key[0] = -1 when empty */
+    int *count;
+    long *first;     /* the first (element, local) that used it */
+} geom_hash;
+
+static int geom_hash_init(geom_hash *h, long n, int width)
+{
+    h->cap = 16;
+    while (h->cap < 2 * n)
+        h->cap *= 2;
+    h->width = width;
+    h->key = cx_malloc(sizeof(int) * (size_t)(h->cap * width));
+    h->count = CX_NEW(int, h->cap);
+    h->first = CX_NEW(long, h->cap);
+    if (!h->key || !h->count || !h->first)
+        return CX_ENOMEM;
+    for (long s = 0; s < h->cap; s++)
+        h->key[s * width] = -1;
+    return CX_OK;
+}
+
+static void geom_hash_clear(geom_hash *h)
+{
+    cx_free(h->key);
+    cx_free(h->count);
+    cx_free(h->first);
+}
+
+static void geom_sort(int *k, int n)
+{
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && k[j - 1] > k[j]; j--) {
+            int t = k[j];
+            k[j] = k[j - 1];
+            k[j - 1] = t;
+        }
+}
+
+static void geom_hash_add(geom_hash *h, const int *nodes, int n, long tag)
+{
+    int k[4] = {-1, -1, -1, -1};
+    memcpy(k, nodes, sizeof(int) * (size_t)n);
+    geom_sort(k, n);
+    unsigned long hv = 1469598103934665603ul;
+    for (int i = 0; i < h->width; i++)
+        hv = (hv ^ (unsigned)k[i]) * 1099511628211ul;
+    long s = (long)(hv & (unsigned long)(h->cap - 1));
+    for (;; s = (s + 1) & (h->cap - 1)) {
+        int *q = h->key + s * h->width;
+        if (q[0] == -1) {
+            memcpy(q, k, sizeof(int) * (size_t)h->width);
+            h->count[s] = 1;
+            h->first[s] = tag;
+            return;
+        }
+        if (memcmp(q, k, sizeof(int) * (size_t)h->width) == 0) {
+            h->count[s]++;
+            return;
+        }
+    }
+}
+
+static int geom_2d(cx_render_scene *sc)
+{
+    const cx_mesh *m = sc->p->mesh;
+    const int *c;
+    for (int e = 0; e < m->nelems; e++) {
+        c = m->conn + (size_t)m->npe * e;
+        if (m->etype == CX_EL_TRI3) {
+            CX_TRY(geom_tri(sc, &sc->tris, c[0], c[1], c[2]));
+        } else if (m->etype == CX_EL_QUAD4) {
+            CX_TRY(geom_tri(sc, &sc->tris, c[0], c[1], c[2]));
+            CX_TRY(geom_tri(sc, &sc->tris, c[0], c[2], c[3]));
+        } else {   /* TRI6: four sub-triangles on the mid-edge nodes */
+            CX_TRY(geom_tri(sc, &sc->tris, c[0], c[3], c[5]));
+            CX_TRY(geom_tri(sc, &sc->tris, c[3], c[1], c[4]));
+            CX_TRY(geom_tri(sc, &sc->tris, c[5], c[4], c[2]));
+            CX_TRY(geom_tri(sc, &sc->tris, c[3], c[4], c[5]));
+        }
+    }
+    /* edges once each, and the boundary edges (used by one element) */
+    geom_hash h;
+    int rc = geom_hash_init(&h, 4L * m->nelems, 2);
+    if (rc == CX_OK) {
+        int ed[4][3];
+        for (int e = 0; e < m->nelems; e++) {
+            int ne = geom_edges2d(m, e, ed);
+            for (int i = 0; i < ne; i++) {
+                int ab[2] = {ed[i][0], ed[i][2]};
+                geom_hash_add(&h, ab, 2, 4L * e + i);
+            }
+        }
+        int nb = 0;
+        for (long s = 0; s < h.cap; s++)
+            nb += h.key[2 * s] >= 0 && h.count[s] == 1;
+        sc->bedges = cx_malloc(sizeof(int) * 3 * (size_t)(nb + 1));
+        if (!sc->bedges)
+            rc = CX_ENOMEM;
+        for (long s = 0; s < h.cap && rc == CX_OK; s++) {
+            if (h.key[2 * s] < 0)
+                continue;
+            int e = (int)(h.first[s] / 4), i = (int)(h.first[s] % 4);
+            geom_edges2d(m, e, ed);
+            if (sc->o->edges) {
+                if (ed[i][1] >= 0) {
+                    rc = geom_line(sc, ed[i][0], ed[i][1]);
+                    if (rc == CX_OK)
+                        rc = geom_line(sc, ed[i][1], ed[i][2]);
+                } else {
+                    rc = geom_line(sc, ed[i][0], ed[i][2]);
+                }
+            }
+            if (h.count[s] == 1)
+                memcpy(sc->bedges + 3 * sc->nbedges++, ed[i], sizeof ed[i]);
+        }
+    }
+    geom_hash_clear(&h);
+    return rc;
+}
+
+/* ---- 3D ------------------------------------------------------------------ */
+
+static int geom_faces3d(const cx_mesh *m, int e, int out[6][4])
+{
+    static const int hex[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    static const int tet[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    const int *c = m->conn + (size_t)m->npe * e;
+    if (m->etype == CX_EL_HEX8) {
+        for (int f = 0; f < 6; f++)
+            for (int i = 0; i < 4; i++)
+                out[f][i] = c[hex[f][i]];
+        return 6;
+    }
+    for (int f = 0; f < 4; f++) {
+        for (int i = 0; i < 3; i++)
+            out[f][i] = c[tet[f][i]];
+        out[f][3] = -1;
+    }
+    return 4;
+}
+
+/* The contact facets: boundary facets whose nodes are all contact nodes. */
+static int geom_contact_faces(cx_render_scene *sc, cx_render_array *a, int edges)
+{
+    const cx_mesh *m = sc->p->mesh;
+    const cx_contact_set *cs = &sc->p->contact;
+    unsigned char *is_c = CX_NEW(unsigned char, m->nnodes);
+    if (!is_c)
+        return CX_ENOMEM;
+    for (int i = 0; i < cs->m; i++)
+        is_c[cs->node[i]] = 1;
+    int rc = CX_OK;
+    for (int b = 0; b < m->nbounds && rc == CX_OK; b++) {
+        const cx_boundary *bd = &m->bounds[b];
+        for (int f = 0; f < bd->nfacets && rc == CX_OK; f++) {
+            const int *q = bd->facets + (size_t)bd->npf * f;
+            int all = 1;
+            for (int i = 0; i < bd->npf; i++)
+                all &= is_c[q[i]];
+            if (all && (bd->npf == 3 || bd->npf == 4))
+                rc = geom_face(sc, a, q, bd->npf, edges);
+        }
+    }
+    cx_free(is_c);
+    return rc;
+}
+
+static int geom_3d(cx_render_scene *sc)
+{
+    const cx_mesh *m = sc->p->mesh;
+    if (sc->o->view == CX_VIEW_CONTACT)
+        return geom_contact_faces(sc, &sc->tris, sc->o->edges);
+    int nf = m->etype == CX_EL_HEX8 ? 6 : 4;
+    geom_hash h;
+    int rc = geom_hash_init(&h, (long)nf * m->nelems, m->etype == CX_EL_HEX8 ? 4 : 3);
+    if (rc == CX_OK) {
+        int fc[6][4];
+        for (int e = 0; e < m->nelems; e++) {
+            geom_faces3d(m, e, fc);
+            for (int f = 0; f < nf; f++)
+                geom_hash_add(&h, fc[f], h.width, (long)nf * e + f);
+        }
+        /* in slot order, which depends only on the mesh: deterministic */
+        for (long s = 0; s < h.cap && rc == CX_OK; s++) {
+            if (h.key[h.width * s] < 0 || h.count[s] != 1)
+                continue;
+            int e = (int)(h.first[s] / nf), f = (int)(h.first[s] % nf);
+            geom_faces3d(m, e, fc);
+            rc = geom_face(sc, &sc->tris, fc[f], h.width, sc->o->edges);
+        }
+    }
+    geom_hash_clear(&h);
+    if (rc == CX_OK && sc->o->field == CX_FIELD_PRESSURE)
+        rc = geom_contact_faces(sc, &sc->overlay, 0);
+    return rc;
+}
+
+/* ---- the 3D obstacle ------------------------------------------------------- */
+
+static int geom_quad(cx_render_array *a, const double *c, const double *e1, const double *e2,
+                     const double *n)
+{
+    double q[4][3];
+    for (int k = 0; k < 3; k++) {
+        q[0][k] = c[k] - e1[k] - e2[k];
+        q[1][k] = c[k] + e1[k] - e2[k];
+        q[2][k] = c[k] + e1[k] + e2[k];
+        q[3][k] = c[k] - e1[k] + e2[k];
+    }
+    static const int t[6] = {0, 1, 2, 0, 2, 3};
+    for (int i = 0; i < 6; i++)
+        CX_TRY(cx_render_array_push(a, q[t[i]], n, 0));
+    return CX_OK;
+}
+
+/* A plane patch under the body, or the sphere / cylinder surface. */
+static int geom_obstacle3d(cx_render_scene *sc)
+{
+    const cx_obstacle *ob = sc->st->obstacle;
+    if (!ob)
+        return CX_OK;
+    const cx_mesh *m = sc->p->mesh;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < m->nnodes; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], sc->xd[3 * i + k]);
+            hi[k] = fmax(hi[k], sc->xd[3 * i + k]);
+        }
+    double c[3], diag = 0;
+    for (int k = 0; k < 3; k++) {
+        c[k] = 0.5 * (lo[k] + hi[k]);
+        diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    diag = sqrt(diag);
+    if (ob->kind == CX_OBST_PLANE) {
+        const double *n = ob->normal;
+        double t[6], pc[3], dist = 0;
+        cx_tangent_basis(3, n, t);
+        for (int k = 0; k < 3; k++)
+            dist += (c[k] - ob->point[k]) * n[k];
+        for (int k = 0; k < 3; k++)
+            pc[k] = c[k] - dist * n[k];
+        double e1[3], e2[3], r = 0.85 * diag;
+        for (int k = 0; k < 3; k++) {
+            e1[k] = r * t[k];
+            e2[k] = r * t[3 + k];
+        }
+        return geom_quad(&sc->obst, pc, e1, e2, n);
+    }
+    if (ob->kind == CX_OBST_SPHERE || ob->kind == CX_OBST_CYLINDER) {
+        /* parameterised surface: sphere (theta, phi), cylinder (angle, axial) */
+        const int nu = 64, nv = 32;
+        double R = ob->radius, ax[3] = {0, 0, 1}, t[6];
+        if (ob->kind == CX_OBST_CYLINDER)
+            for (int k = 0; k < 3; k++)
+                ax[k] = ob->normal[k];
+        cx_tangent_basis(3, ax, t);
+        double half = 0.6 * diag;
+        for (int i = 0; i < nu; i++)
+            for (int j = 0; j < nv; j++) {
+                double P[4][3], N[4][3];
+                for (int q = 0; q < 4; q++) {
+                    double a = 2 * CX_PI * (i + (q == 1 || q == 2)) / nu;
+                    double b = (double)(j + (q >= 2)) / nv;
+                    double dir[3], along;
+                    if (ob->kind == CX_OBST_SPHERE) {
+                        double ph = CX_PI * b;
+                        for (int k = 0; k < 3; k++)
+                            dir[k] = sin(ph) * (cos(a) * t[k] + sin(a) * t[3 + k]) + cos(ph) * ax[k];
+                        along = 0;
+                    } else {
+                        for (int k = 0; k < 3; k++)
+                            dir[k] = cos(a) * t[k] + sin(a) * t[3 + k];
+                        double ca = 0;
+                        for (int k = 0; k < 3; k++)
+                            ca += (c[k] - ob->point[k]) * ax[k];
+                        along = ca + (2 * b - 1) * half;
+                    }
+                    for (int k = 0; k < 3; k++) {
+                        P[q][k] = ob->point[k] + R * dir[k] + along * ax[k];
+                        N[q][k] = dir[k];
+                    }
+                }
+                static const int tt[6] = {0, 1, 2, 0, 2, 3};
+                for (int z = 0; z < 6; z++)
+                    CX_TRY(cx_render_array_push(&sc->obst, P[tt[z]], N[tt[z]], 0));
+            }
+    }
+    return CX_OK;
+}
+
+int cx_render_geometry(cx_render_scene *sc)
+{
+    if (sc->dim == 2)
+        return geom_2d(sc);
+    CX_TRY(geom_3d(sc));
+    if (sc->o->view == CX_VIEW_BODY)
+        CX_TRY(geom_obstacle3d(sc));
+    return CX_OK;
+}

@@ -1,0 +1,22 @@
+/* render/glctx.h (internal): the offscreen OpenGL context. The only file
+ * that knows OSMesa is glctx.c, so that an EGL (surfaceless) backend can
+ * replace it where Mesa no longer ships OSMesa. */
+#ifndef CX_RENDER_GLCTX_H
+#define CX_RENDER_GLCTX_H
+
+#include "base/base.h"
+
+typedef struct cx_gl cx_gl;
+
+/* A core-profile context (4.5, else 3.3) drawing into a w x h RGBA buffer
+ * with a 24-bit depth buffer, made current. CX_EEXTERNAL if none can be
+ * made. */
+int cx_gl_create(cx_gl **g, int w, int h, cx_diag *d);
+void cx_gl_destroy(cx_gl **g);
+/* The default framebuffer's pixels: RGBA bytes, rows bottom-up; valid after
+ * glFinish(). */
+const unsigned char *cx_gl_pixels(const cx_gl *g);
+/* "4.5" or "3.3": the version the context was made with. */
+const char *cx_gl_version(const cx_gl *g);
+
+#endif

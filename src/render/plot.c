@@ -1,0 +1,457 @@
+/* Line plots with cairo (see plot.h): axes with nice ticks and a grid,
+ * series with lines/markers, reference lines, a legend in the emptiest
+ * corner, then the PNG through png.c. */
+#include "render/plot.h"
+
+#include <cairo.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cx_config.h"
+#include "render/axis.h"
+#include "render/pngfile.h"
+#include "render/text.h"
+
+static void plot_copy(char *dst, size_t len, const char *src)
+{
+    snprintf(dst, len, "%s", src ? src : "");
+}
+
+void cx_plot_init(cx_plot *p, const char *title, const char *xlabel, const char *ylabel)
+{
+    memset(p, 0, sizeof *p);
+    plot_copy(p->title, sizeof p->title, title);
+    plot_copy(p->xlabel, sizeof p->xlabel, xlabel);
+    plot_copy(p->ylabel, sizeof p->ylabel, ylabel);
+    p->legend = 1;
+}
+
+int cx_plot_add_series(cx_plot *p, const char *label, int n, const double *x,
+                       const double *y, unsigned style)
+{
+    if (p->nseries >= CX_PLOT_MAX_SERIES || n < 0 || (n > 0 && (!x || !y)))
+        return CX_EINVAL;
+    cx_plot_series *s = &p->series[p->nseries];
+    memset(s, 0, sizeof *s);
+    plot_copy(s->label, sizeof s->label, label);
+    s->n = n;
+    s->x = x;
+    s->y = y;
+    s->style = style ? style : CX_PLOT_LINE;
+    s->color = -1;
+    p->nseries++;
+    return CX_OK;
+}
+
+static int plot_add_ref(cx_plot *p, int vertical, double v, const char *label)
+{
+    if (p->nrefs >= CX_PLOT_MAX_REFS)
+        return CX_EINVAL;
+    cx_plot_ref *r = &p->refs[p->nrefs++];
+    r->vertical = vertical;
+    r->value = v;
+    plot_copy(r->label, sizeof r->label, label);
+    return CX_OK;
+}
+
+int cx_plot_add_vline(cx_plot *p, double x, const char *label)
+{
+    return plot_add_ref(p, 1, x, label);
+}
+
+int cx_plot_add_hline(cx_plot *p, double y, const char *label)
+{
+    return plot_add_ref(p, 0, y, label);
+}
+
+int cx_plot_add_text(cx_plot *p, const char *key, const char *value)
+{
+    if (p->ntext >= CX_PLOT_MAX_TEXT || !key || !key[0] || strlen(key) >= sizeof p->text[0].key)
+        return CX_EINVAL;
+    plot_copy(p->text[p->ntext].key, sizeof p->text[0].key, key);
+    plot_copy(p->text[p->ntext].value, sizeof p->text[0].value, value);
+    p->ntext++;
+    return CX_OK;
+}
+
+void cx_plot_set_xrange(cx_plot *p, double lo, double hi)
+{
+    p->fixed_x = 1;
+    p->xmin = lo;
+    p->xmax = hi;
+}
+
+void cx_plot_set_yrange(cx_plot *p, double lo, double hi)
+{
+    p->fixed_y = 1;
+    p->ymin = lo;
+    p->ymax = hi;
+}
+
+/* ---- drawing ------------------------------------------------------------ */
+
+/* A qualitative palette (Tableau 10), readable on white. */
+static const double plot_palette[10][3] = {
+    {0.122, 0.467, 0.706}, {1.000, 0.498, 0.055}, {0.173, 0.627, 0.173},
+    {0.839, 0.153, 0.157}, {0.580, 0.404, 0.741}, {0.549, 0.337, 0.294},
+    {0.890, 0.467, 0.761}, {0.498, 0.498, 0.498}, {0.737, 0.741, 0.133},
+    {0.090, 0.745, 0.812}};
+
+static int plot_ok(double v, int log)
+{
+    return isfinite(v) && (!log || v > 0);
+}
+
+typedef struct plot_frame {
+    double x0, y0, x1, y1;   /* plot area in pixels (y0 top) */
+    cx_axis ax, ay;
+} plot_frame;
+
+static double plot_px(const plot_frame *f, double x)
+{
+    return f->x0 + cx_axis_frac(&f->ax, x) * (f->x1 - f->x0);
+}
+
+static double plot_py(const plot_frame *f, double y)
+{
+    return f->y1 - cx_axis_frac(&f->ay, y) * (f->y1 - f->y0);
+}
+
+/* Data ranges over drawable points and reference lines; 0 if none. */
+static int plot_ranges(const cx_plot *p, double *xr, double *yr)
+{
+    xr[0] = yr[0] = INFINITY;
+    xr[1] = yr[1] = -INFINITY;
+    int any = 0;
+    for (int k = 0; k < p->nseries; k++) {
+        const cx_plot_series *s = &p->series[k];
+        for (int i = 0; i < s->n; i++) {
+            if (!plot_ok(s->x[i], p->logx) || !plot_ok(s->y[i], p->logy))
+                continue;
+            xr[0] = fmin(xr[0], s->x[i]);
+            xr[1] = fmax(xr[1], s->x[i]);
+            yr[0] = fmin(yr[0], s->y[i]);
+            yr[1] = fmax(yr[1], s->y[i]);
+            any = 1;
+        }
+    }
+    for (int k = 0; k < p->nrefs; k++) {
+        const cx_plot_ref *r = &p->refs[k];
+        double *rr = r->vertical ? xr : yr;
+        if (plot_ok(r->value, r->vertical ? p->logx : p->logy)) {
+            rr[0] = fmin(rr[0], r->value);
+            rr[1] = fmax(rr[1], r->value);
+        }
+    }
+    if (!any)
+        return 0;
+    if (p->fixed_x) {
+        xr[0] = p->xmin;
+        xr[1] = p->xmax;
+    }
+    if (p->fixed_y) {
+        yr[0] = p->ymin;
+        yr[1] = p->ymax;
+    }
+    return 1;
+}
+
+static void plot_marker(cairo_t *cr, int shape, double x, double y, double r)
+{
+    switch (shape % 4) {
+    case 0:
+        cairo_new_sub_path(cr);
+        cairo_arc(cr, x, y, r, 0, 2 * CX_PI);
+        break;
+    case 1:
+        cairo_rectangle(cr, x - 0.85 * r, y - 0.85 * r, 1.7 * r, 1.7 * r);
+        break;
+    case 2:
+        cairo_move_to(cr, x, y - 1.15 * r);
+        cairo_line_to(cr, x + r, y + 0.7 * r);
+        cairo_line_to(cr, x - r, y + 0.7 * r);
+        cairo_close_path(cr);
+        break;
+    default:
+        cairo_move_to(cr, x, y - 1.2 * r);
+        cairo_line_to(cr, x + r, y);
+        cairo_line_to(cr, x, y + 1.2 * r);
+        cairo_line_to(cr, x - r, y);
+        cairo_close_path(cr);
+        break;
+    }
+}
+
+static void plot_grid(cairo_t *cr, const plot_frame *f, const double *xs, int nx, const double *ys,
+                      int ny, double grey)
+{
+    cairo_set_source_rgb(cr, grey, grey, grey);
+    for (int i = 0; i < nx; i++) {
+        double x = floor(plot_px(f, xs[i])) + 0.5;
+        cairo_move_to(cr, x, f->y0);
+        cairo_line_to(cr, x, f->y1);
+    }
+    for (int i = 0; i < ny; i++) {
+        double y = floor(plot_py(f, ys[i])) + 0.5;
+        cairo_move_to(cr, f->x0, y);
+        cairo_line_to(cr, f->x1, y);
+    }
+    cairo_stroke(cr);
+}
+
+static void plot_axes(cairo_t *cr, const cx_plot *p, const plot_frame *f, double s)
+{
+    char lab[64];
+    /* grid: minor then major, on pixel centres for crisp 1-px lines */
+    cairo_set_line_width(cr, 1.0);
+    plot_grid(cr, f, f->ax.minor, f->ax.nminor, f->ay.minor, f->ay.nminor, 0.93);
+    plot_grid(cr, f, f->ax.ticks, f->ax.nticks, f->ay.ticks, f->ay.nticks, 0.82);
+    /* frame and tick labels */
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cairo_set_line_width(cr, 1.2 * s);
+    cairo_rectangle(cr, f->x0, f->y0, f->x1 - f->x0, f->y1 - f->y0);
+    cairo_stroke(cr);
+    double fs = 14 * s, tick = 6 * s;
+    for (int i = 0; i < f->ax.nticks; i++) {
+        double x = plot_px(f, f->ax.ticks[i]);
+        cairo_move_to(cr, x, f->y1);
+        cairo_line_to(cr, x, f->y1 - tick);
+        cairo_stroke(cr);
+        cx_axis_label(&f->ax, f->ax.ticks[i], lab, sizeof lab);
+        cx_text(cr, lab, x, f->y1 + 5 * s, fs, 0, 0.5, 0.0);
+    }
+    double maxw = 0;
+    for (int i = 0; i < f->ay.nticks; i++) {
+        double y = plot_py(f, f->ay.ticks[i]);
+        cairo_move_to(cr, f->x0, y);
+        cairo_line_to(cr, f->x0 + tick, y);
+        cairo_stroke(cr);
+        cx_axis_label(&f->ay, f->ay.ticks[i], lab, sizeof lab);
+        double w = cx_text(cr, lab, f->x0 - 7 * s, y, fs, 0, 1.0, 0.5);
+        maxw = fmax(maxw, w);
+    }
+    /* axis labels and title */
+    cx_text(cr, p->xlabel, 0.5 * (f->x0 + f->x1), f->y1 + 30 * s, 16 * s, 0, 0.5, 0.0);
+    cx_text_vertical(cr, p->ylabel, f->x0 - maxw - 24 * s, 0.5 * (f->y0 + f->y1), 16 * s, 0);
+    cx_text(cr, p->title, 0.5 * (f->x0 + f->x1), f->y0 - 14 * s, 18 * s, 1, 0.5, 1.0);
+}
+
+static void plot_refs(cairo_t *cr, const cx_plot *p, const plot_frame *f, double s)
+{
+    double dash[] = {2 * s, 4 * s};
+    for (int k = 0; k < p->nrefs; k++) {
+        const cx_plot_ref *r = &p->refs[k];
+        if (!plot_ok(r->value, r->vertical ? p->logx : p->logy))
+            continue;
+        cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+        cairo_set_line_width(cr, 1.5 * s);
+        cairo_set_dash(cr, dash, 2, 0);
+        if (r->vertical) {
+            double x = plot_px(f, r->value);
+            cairo_move_to(cr, x, f->y0);
+            cairo_line_to(cr, x, f->y1);
+            cairo_stroke(cr);
+            cairo_set_dash(cr, NULL, 0, 0);
+            cx_text_vertical(cr, r->label, x - 9 * s, f->y0 + 10 * s +
+                             0.5 * cx_text_width(cr, r->label, 12 * s, 0), 12 * s, 0);
+        } else {
+            double y = plot_py(f, r->value);
+            cairo_move_to(cr, f->x0, y);
+            cairo_line_to(cr, f->x1, y);
+            cairo_stroke(cr);
+            cairo_set_dash(cr, NULL, 0, 0);
+            cx_text(cr, r->label, f->x1 - 6 * s, y - 3 * s, 12 * s, 0, 1.0, 1.0);
+        }
+    }
+    cairo_set_dash(cr, NULL, 0, 0);
+}
+
+static void plot_series(cairo_t *cr, const cx_plot *p, const plot_frame *f, double s)
+{
+    cairo_save(cr);
+    cairo_rectangle(cr, f->x0, f->y0, f->x1 - f->x0, f->y1 - f->y0);
+    cairo_clip(cr);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    for (int k = 0; k < p->nseries; k++) {
+        const cx_plot_series *sr = &p->series[k];
+        const double *c = plot_palette[(sr->color >= 0 ? sr->color : k) % 10];
+        cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+        if (sr->style & CX_PLOT_LINE) {
+            double dash[] = {8 * s, 5 * s};
+            cairo_set_dash(cr, dash, (sr->style & CX_PLOT_DASHED) ? 2 : 0, 0);
+            cairo_set_line_width(cr, 2.2 * s);
+            int pen = 0;
+            for (int i = 0; i < sr->n; i++) {
+                if (!plot_ok(sr->x[i], p->logx) || !plot_ok(sr->y[i], p->logy)) {
+                    pen = 0;
+                    continue;
+                }
+                double x = plot_px(f, sr->x[i]), y = plot_py(f, sr->y[i]);
+                if (pen)
+                    cairo_line_to(cr, x, y);
+                else
+                    cairo_move_to(cr, x, y);
+                pen = 1;
+            }
+            cairo_stroke(cr);
+            cairo_set_dash(cr, NULL, 0, 0);
+        }
+        if (sr->style & CX_PLOT_MARKERS) {
+            for (int i = 0; i < sr->n; i++)
+                if (plot_ok(sr->x[i], p->logx) && plot_ok(sr->y[i], p->logy))
+                    plot_marker(cr, k, plot_px(f, sr->x[i]), plot_py(f, sr->y[i]), 4.0 * s);
+            cairo_fill(cr);
+        }
+    }
+    cairo_restore(cr);
+}
+
+/* The legend box goes in the corner of the plot area that covers the
+ * fewest data points. */
+static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_frame *f, double s)
+{
+    int n = 0;
+    double wmax = 0, fs = 14 * s;
+    for (int k = 0; k < p->nseries; k++)
+        if (p->series[k].label[0]) {
+            n++;
+            wmax = fmax(wmax, cx_text_width(cr, p->series[k].label, fs, 0));
+        }
+    if (!p->legend || n == 0)
+        return;
+    double row = 22 * s, pad = 8 * s, sample = 34 * s;
+    double bw = pad * 3 + sample + wmax, bh = pad * 2 + row * n;
+    double best_x = f->x1 - bw - pad, best_y = f->y0 + pad;
+    long best = -1;
+    for (int corner = 0; corner < 4; corner++) {
+        double bx = (corner & 1) ? f->x0 + pad : f->x1 - bw - pad;
+        double by = (corner & 2) ? f->y1 - bh - pad : f->y0 + pad;
+        long hits = 0;
+        for (int k = 0; k < p->nseries; k++) {
+            const cx_plot_series *sr = &p->series[k];
+            for (int i = 0; i < sr->n; i++) {
+                if (!plot_ok(sr->x[i], p->logx) || !plot_ok(sr->y[i], p->logy))
+                    continue;
+                double x = plot_px(f, sr->x[i]), y = plot_py(f, sr->y[i]);
+                hits += x >= bx && x <= bx + bw && y >= by && y <= by + bh;
+            }
+        }
+        /* a reference line (and its label) through the box counts as much
+         * as many points */
+        for (int k = 0; k < p->nrefs; k++) {
+            const cx_plot_ref *r = &p->refs[k];
+            if (!plot_ok(r->value, r->vertical ? p->logx : p->logy))
+                continue;
+            double v = r->vertical ? plot_px(f, r->value) : plot_py(f, r->value);
+            double a = r->vertical ? bx - 20 * s : by - 20 * s, b = r->vertical ? bx + bw : by + bh + 4 * s;
+            hits += (v >= a && v <= b) ? 50 : 0;
+        }
+        if (best < 0 || hits < best) {
+            best = hits;
+            best_x = bx;
+            best_y = by;
+        }
+    }
+    cairo_set_source_rgba(cr, 1, 1, 1, 0.9);
+    cairo_rectangle(cr, best_x, best_y, bw, bh);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
+    cairo_set_line_width(cr, 1.0 * s);
+    cairo_stroke(cr);
+    int r = 0;
+    for (int k = 0; k < p->nseries; k++) {
+        const cx_plot_series *sr = &p->series[k];
+        if (!sr->label[0])
+            continue;
+        const double *c = plot_palette[(sr->color >= 0 ? sr->color : k) % 10];
+        double y = best_y + pad + row * (r + 0.5), x = best_x + pad;
+        cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+        if (sr->style & CX_PLOT_LINE) {
+            double dash[] = {8 * s, 5 * s};
+            cairo_set_dash(cr, dash, (sr->style & CX_PLOT_DASHED) ? 2 : 0, 0);
+            cairo_set_line_width(cr, 2.2 * s);
+            cairo_move_to(cr, x, y);
+            cairo_line_to(cr, x + sample, y);
+            cairo_stroke(cr);
+            cairo_set_dash(cr, NULL, 0, 0);
+        }
+        if (sr->style & CX_PLOT_MARKERS) {
+            plot_marker(cr, k, x + 0.5 * sample, y, 4.0 * s);
+            cairo_fill(cr);
+        }
+        cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+        cx_text(cr, sr->label, x + sample + pad, y, fs, 0, 0.0, 0.5);
+        r++;
+    }
+}
+
+static int plot_draw(const cx_plot *p, cairo_surface_t *surf, int w, int h, cx_diag *d)
+{
+    double xr[2], yr[2];
+    if (!plot_ranges(p, xr, yr))
+        return cx_diag_set(d, CX_EINVAL, "plot '%s': no point to draw", p->title);
+    if ((p->logx && !(xr[0] > 0)) || (p->logy && !(yr[0] > 0)))
+        return cx_diag_set(d, CX_EINVAL, "plot '%s': a log axis needs a positive range", p->title);
+    cairo_t *cr = cairo_create(surf);
+    double s = fmin(w / 1200.0, h / 800.0);
+    if (s < 0.4)
+        s = 0.4;
+    plot_frame f;
+    f.x0 = 110 * s;
+    f.x1 = w - 30 * s;
+    f.y0 = 55 * s;
+    f.y1 = h - 70 * s;
+    cx_axis_make(&f.ax, xr[0], xr[1], p->logx, (int)fmax(3, (f.x1 - f.x0) / (110 * s)),
+                 !p->fixed_x);
+    cx_axis_make(&f.ay, yr[0], yr[1], p->logy, (int)fmax(3, (f.y1 - f.y0) / (70 * s)),
+                 !p->fixed_y);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+    plot_axes(cr, p, &f, s);
+    plot_refs(cr, p, &f, s);
+    plot_series(cr, p, &f, s);
+    plot_legend(cr, p, &f, s);
+    cairo_status_t st = cairo_status(cr);
+    cairo_destroy(cr);
+    cairo_surface_flush(surf);
+    if (st != CAIRO_STATUS_SUCCESS)
+        return cx_diag_set(d, CX_EEXTERNAL, "cairo: %s", cairo_status_to_string(st));
+    return CX_OK;
+}
+
+int cx_plot_draw_rgb(const cx_plot *p, unsigned char *buf, int w, int h, int stride, cx_diag *d)
+{
+    if (w < 64 || h < 64 || w > 16384 || h > 16384 || stride < 4 * w)
+        return cx_diag_set(d, CX_EINVAL, "plot size %dx%d: expected 64..16384 pixels each way", w, h);
+    cairo_surface_t *surf = cairo_image_surface_create_for_data(buf, CAIRO_FORMAT_RGB24, w, h, stride);
+    if (cairo_surface_status(surf) != CAIRO_STATUS_SUCCESS) {
+        cairo_surface_destroy(surf);
+        return cx_diag_set(d, CX_EEXTERNAL, "cairo: cannot create a %dx%d surface", w, h);
+    }
+    int rc = plot_draw(p, surf, w, h, d);
+    cairo_surface_destroy(surf);
+    return rc;
+}
+
+int cx_plot_write_png(const cx_plot *p, const char *path, int w, int h, cx_diag *d)
+{
+    if (w < 64 || h < 64 || w > 16384 || h > 16384)
+        return cx_diag_set(d, CX_EINVAL, "plot size %dx%d: expected 64..16384 pixels each way", w, h);
+    int stride = cairo_format_stride_for_width(CAIRO_FORMAT_RGB24, w);
+    unsigned char *buf = cx_calloc((size_t)stride, (size_t)h);
+    if (!buf)
+        return cx_diag_set(d, CX_ENOMEM, "plot %dx%d: out of memory", w, h);
+    int rc = cx_plot_draw_rgb(p, buf, w, h, stride, d);
+    if (rc == CX_OK) {
+        cx_png_text text[CX_PLOT_MAX_TEXT + 2];
+        int nt = 0;
+        text[nt++] = (cx_png_text){"Title", p->title};
+        text[nt++] = (cx_png_text){"Software", "signorini " CX_VERSION};
+        for (int i = 0; i < p->ntext; i++)
+            text[nt++] = (cx_png_text){p->text[i].key, p->text[i].value};
+        rc = cx_png_write_xrgb(path, buf, w, h, stride, text, nt, d);
+    }
+    cx_free(buf);
+    return rc;
+}

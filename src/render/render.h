@@ -1,0 +1,155 @@
+/* render/: images of a solved contact problem (PNG through offscreen Mesa,
+ * with text, colour bar and markers drawn by cairo), VTU files for
+ * ParaView, and line plots (render/plot.h).
+ *
+ * An image shows one field on the deformed body: 2D meshes flat with the
+ * displacement magnified (auto scale: the largest displacement is drawn as
+ * 7 % of the body size, stated on the image), the undeformed outline faint,
+ * the rigid obstacle and the contact points coloured by status; 3D bodies as
+ * their lit surface, or with view CX_VIEW_CONTACT only the contact faces
+ * seen from the obstacle. All bodies of a mesh go into one vertex buffer:
+ * one draw call per field whatever the number of bodies.
+ *
+ * The OpenGL context (OSMesa, render/glctx.c) is created inside
+ * cx_render_png() and destroyed before it returns; nothing is created when
+ * only VTU files or plots are written. Shaders are read at run time from
+ * $SIGNORINI_SHADERS, then the source tree's shaders/, then the installed
+ * share/signorini/shaders. The same state rendered twice gives the same
+ * bytes. */
+#ifndef CX_RENDER_H
+#define CX_RENDER_H
+
+#include "base/base.h"
+#include "solve/solve.h"
+#include "scene/scene.h"
+#include "render/plot.h"
+
+/* ---- fields -------------------------------------------------------------- */
+
+typedef enum cx_field {
+    CX_FIELD_VON_MISES,   /* von Mises stress (magnitude colormap) */
+    CX_FIELD_SXX,         /* stress components (diverging, symmetric about 0) */
+    CX_FIELD_SYY,
+    CX_FIELD_SZZ,         /* 3D only */
+    CX_FIELD_SYZ,         /* 3D only */
+    CX_FIELD_SXZ,         /* 3D only */
+    CX_FIELD_SXY,
+    CX_FIELD_UMAG,        /* |u| (magnitude) */
+    CX_FIELD_UX,          /* displacement components (diverging) */
+    CX_FIELD_UY,
+    CX_FIELD_UZ,          /* 3D only */
+    CX_FIELD_PRESSURE,    /* contact pressure lN / weight on the contact boundary */
+    CX_FIELD_STATUS,      /* contact status markers (no colour bar) */
+    CX_FIELD_COUNT
+} cx_field;
+
+const char *cx_field_name(int f);         /* "von-mises", "sxx", ..., "status" */
+const char *cx_field_label(int f);        /* "von Mises stress", ... */
+int cx_field_from_name(const char *name); /* -1 if unknown */
+int cx_field_is_stress(int f);
+int cx_field_is_signed(int f);            /* diverging colormap */
+/* CX_OK if the field exists in this dimension, else CX_EINVAL with
+ * "--field szz: only in 3D". */
+int cx_field_check(int f, int dim, cx_diag *d);
+
+/* Nodal values of field f (mesh->nnodes values; the pressure is 0 away from
+ * the contact points; status gives the cx_point_status code at contact
+ * nodes, -1 elsewhere). uall: the full displacement (dim * nnodes, see
+ * cx_fem_expand). Stresses are computed here with cx_fem_nodal_stress and
+ * only for stress fields. CX_ENOMEM. */
+int cx_field_nodal(const cx_problem *p, const double *uall, const double *lN,
+                   const unsigned char *status, int f, double *val);
+
+/* ---- colormaps ---------------------------------------------------------- */
+
+/* Colour of t in [0, 1] (clamped): perceptual (viridis-like) for
+ * magnitudes, diverging blue-grey-red for signed fields. rgb in [0, 255]. */
+void cx_colormap(int diverging, double t, unsigned char rgb[3]);
+/* The marker colour of a contact status (cx_point_status). */
+void cx_status_color(int status, unsigned char rgb[3]);
+
+/* ---- images ------------------------------------------------------------- */
+
+typedef enum cx_view { CX_VIEW_BODY, CX_VIEW_CONTACT } cx_view;
+
+/* What to draw: the problem and a solution (borrowed), and the words for
+ * the title and the PNG text chunks. */
+typedef struct cx_render_state {
+    const cx_problem *p;
+    const double *u;              /* n free dofs */
+    const double *lN, *lT;        /* m, nt */
+    const unsigned char *status;  /* m, cx_point_status (NULL: all free) */
+    const cx_obstacle *obstacle;  /* the rigid obstacle drawn (NULL: none) */
+    const char *scene;            /* scene id */
+    const char *title;            /* scene title ("" = none) */
+    int level;
+    const char *method;           /* method id */
+    const char *params;           /* "rho=1e-3 ..." ("" = none) */
+    double kkt;                   /* the solution's kkt error */
+} cx_render_state;
+
+/* Fill st from a session's current iterate (u, lN, lT, status, kkt,
+ * method and its parameters written into params[len] as "key=value ...")
+ * and its scene (id, title, obstacle). Everything stays borrowed: st is
+ * valid until the session steps again or sc goes away. */
+void cx_render_state_init(cx_render_state *st, const cx_scene *sc, const cx_session *s, int level,
+                          char *params, size_t len);
+
+typedef struct cx_render_opts {
+    int width, height;            /* pixels (default 1200 x 900) */
+    int field;                    /* cx_field (default von Mises) */
+    double scale;                 /* displacement magnification, <= 0: auto */
+    int edges;                    /* draw mesh edges */
+    int view;                     /* cx_view */
+    int msaa;                     /* 4 (default) or 0 */
+} cx_render_opts;
+
+void cx_render_opts_default(cx_render_opts *o);
+
+/* Seconds spent in each stage of the last cx_render_png(). */
+typedef struct cx_render_timing {
+    double context;   /* OSMesa context + shaders */
+    double fields;    /* field values, geometry, buffers */
+    double draw;      /* GL drawing until glFinish, read back */
+    double text;      /* cairo overlays */
+    double png;       /* PNG encoding and writing */
+    int draw_calls;   /* glDrawArrays calls (independent of the number of bodies) */
+} cx_render_timing;
+
+/* The automatic displacement scale: largest displacement drawn as 7 % of
+ * the body's bounding-box diagonal (1 when u is zero). */
+double cx_render_auto_scale(const cx_problem *p, const double *uall);
+
+/* Where the overlays go in a w x h image (pixels, top-left origin), so that
+ * tests can sample them: the drawing area and the colour bar (value lo at
+ * the bottom, hi at the top). */
+typedef struct cx_render_layout {
+    double area[4];   /* x, y, w, h of the body's drawing area */
+    double bar[4];    /* x, y, w, h of the colour bar gradient */
+} cx_render_layout;
+void cx_render_layout_get(int w, int h, cx_render_layout *l);
+
+/* The pixel (top-left origin) where the world point x (dim coordinates,
+ * in the drawn frame: deformed points are x + scale u) appears in the image
+ * that cx_render_png would draw with these options. No GL is involved. */
+int cx_render_project(const cx_render_state *st, const cx_render_opts *o, const double *x,
+                      double px[2], cx_diag *d);
+
+/* Render and write a PNG (temporary file + rename) with tEXt chunks scene,
+ * level, method, friction, F, parameters, kkt error, field, scale and
+ * Software. t may be NULL. CX_EINVAL (options, field not in this
+ * dimension), CX_EIO (path: one line, no file left), CX_EEXTERNAL (no GL
+ * context, shader missing or not compiling: the message says which). */
+int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char *path,
+                  cx_render_timing *t, cx_diag *d);
+
+/* ---- VTU -------------------------------------------------------------------- */
+
+/* Write the mesh (undeformed coordinates) with point data "displacement"
+ * (3 components, z = 0 in 2D), "stress" (Voigt: 3 in 2D, 6 in 3D),
+ * "von_mises", "contact_pressure", "contact_status" (-1 away from the
+ * contact points) and cell data "body", as a VTK XML UnstructuredGrid
+ * (ascii = 1: ASCII; 0: base64 binary). Temporary file + rename. */
+int cx_vtu_write(const cx_render_state *st, const char *path, int ascii, cx_diag *d);
+
+#endif

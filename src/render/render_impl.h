@@ -1,0 +1,63 @@
+/* render/render_impl.h (internal): the pieces of an image — geometry
+ * (vertex arrays), the camera, the GL pass and the cairo overlays. */
+#ifndef CX_RENDER_IMPL_H
+#define CX_RENDER_IMPL_H
+
+#include "render/render.h"
+
+typedef struct _cairo cairo_t;
+
+/* A vertex: position, normal, scalar value. */
+#define CX_RENDER_VFLOATS 7
+
+typedef struct cx_render_array {
+    float *v;       /* CX_RENDER_VFLOATS per vertex */
+    long n, cap;    /* vertices */
+} cx_render_array;
+
+int cx_render_array_push(cx_render_array *a, const double x[3], const double nrm[3], double value);
+void cx_render_array_clear(cx_render_array *a);
+
+/* Everything one image needs, in world coordinates (z = 0 in 2D). */
+typedef struct cx_render_scene {
+    const cx_render_state *st;
+    const cx_render_opts *o;
+    const cx_problem *p;
+    int dim;
+    double *uall;        /* dim * nnodes */
+    double *x0, *xd;     /* 3 * nnodes: undeformed, deformed (scaled) */
+    double *val;         /* nnodes: the field, or NULL (status: codes) */
+    double scale;        /* displacement magnification */
+    double umax;         /* largest |u| */
+    double lo, hi;       /* colour range */
+    int colored;         /* body coloured by val (else flat grey) */
+    cx_render_array tris;       /* body (or contact faces) */
+    cx_render_array overlay;    /* 3D: contact faces coloured on the body */
+    cx_render_array lines;      /* edges */
+    cx_render_array obst;       /* 3D obstacle triangles */
+    int *bedges;         /* 2D boundary edges: 3 node ids (a, mid or -1, b) */
+    int nbedges;
+    /* camera: world -> view rotation R (rows: right, up, towards the eye),
+     * then view -> pixel: px = cx + k (R x)_0, py = cy - k (R x)_1 */
+    double R[9];
+    double k, cx, cy, zmin, zmax;
+    int w, h;
+} cx_render_scene;
+
+/* geom.c: vertex arrays of the body, its edges and the obstacle. */
+int cx_render_geometry(cx_render_scene *sc);
+/* camera.c: frame the body (and obstacle) in the layout's drawing area. */
+void cx_render_camera(cx_render_scene *sc);
+void cx_render_scene_project(const cx_render_scene *sc, const double x[3], double px[2]);
+/* The GL matrices of the camera: column-major mvp, row-major 3x3 rotation. */
+void cx_render_camera_gl(const cx_render_scene *sc, float mvp[16], float rot[9]);
+/* gldraw.c: draw the vertex arrays with OpenGL into argb (cairo ARGB32,
+ * premultiplied, transparent background), timing context creation apart. */
+int cx_render_gl_draw(const cx_render_scene *sc, unsigned char *argb, int stride, double *t_context,
+               int *draw_calls, cx_diag *d);
+/* overlay.c: what goes under the GL image (the 2D obstacle) and over it
+ * (title, colour bar, outlines, markers, notes). */
+void cx_render_underlay(const cx_render_scene *sc, cairo_t *cr);
+void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr);
+
+#endif

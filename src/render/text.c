@@ -1,0 +1,44 @@
+/* Anchored text with cairo's toy font API (enough for labels and titles). */
+#include "render/text.h"
+
+#include <cairo.h>
+
+static void text_font(cairo_t *cr, double size, int bold)
+{
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
+                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, size);
+}
+
+double cx_text_width(cairo_t *cr, const char *s, double size, int bold)
+{
+    cairo_text_extents_t te;
+    text_font(cr, size, bold);
+    cairo_text_extents(cr, s, &te);
+    return te.x_advance;
+}
+
+double cx_text(cairo_t *cr, const char *s, double x, double y, double size, int bold,
+               double ax, double ay)
+{
+    cairo_text_extents_t te;
+    cairo_font_extents_t fe;
+    text_font(cr, size, bold);
+    cairo_text_extents(cr, s, &te);
+    cairo_font_extents(cr, &fe);
+    /* vertical anchoring on the font's ascent/descent, not the glyphs', so
+     * that labels of one row line up */
+    double h = fe.ascent + fe.descent;
+    cairo_move_to(cr, x - ax * te.x_advance, y - ay * h + fe.ascent);
+    cairo_show_text(cr, s);
+    return te.x_advance;
+}
+
+void cx_text_vertical(cairo_t *cr, const char *s, double x, double y, double size, int bold)
+{
+    cairo_save(cr);
+    cairo_translate(cr, x, y);
+    cairo_rotate(cr, -1.5707963267948966);
+    cx_text(cr, s, 0, 0, size, bold, 0.5, 0.5);
+    cairo_restore(cr);
+}

@@ -1,0 +1,19 @@
+/* render/text.h (internal): text with cairo, anchored. One font family
+ * (DejaVu Sans through fontconfig), so every image looks the same. */
+#ifndef CX_RENDER_TEXT_H
+#define CX_RENDER_TEXT_H
+
+/* cairo's own typedef (C11 allows repeating it), so this header does not
+ * need cairo's include path. */
+typedef struct _cairo cairo_t;
+
+/* Draw s with its anchor point at (x, y): ax = 0 left, 0.5 centre, 1 right;
+ * ay = 0 top, 0.5 middle, 1 baseline-ish bottom. Returns the text width. */
+double cx_text(cairo_t *cr, const char *s, double x, double y, double size, int bold,
+               double ax, double ay);
+/* Width of s at this size (no drawing). */
+double cx_text_width(cairo_t *cr, const char *s, double size, int bold);
+/* The same, rotated by -90 degrees (reading upwards), centred at (x, y). */
+void cx_text_vertical(cairo_t *cr, const char *s, double x, double y, double size, int bold);
+
+#endif

@@ -1,0 +1,108 @@
+/* Plots (render/plot.h): axis ticks, a plot written, read back and checked
+ * pixel by pixel, text chunks, determinism, bad paths and empty plots. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "pngread.h"
+#include "render/axis.h"
+#include "render/plot.h"
+
+static void test_axis(void)
+{
+    cx_axis a;
+    cx_axis_make(&a, 0.0, 0.97, 0, 5, 1);
+    CX_CHECK(a.nticks == 6);
+    CX_CHECK_NEAR(a.step, 0.2, 0, 1e-15);
+    CX_CHECK_NEAR(a.hi, 1.0, 0, 1e-12);
+    char lab[32];
+    cx_axis_label(&a, a.ticks[3], lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "0.6") == 0);
+    /* colour-bar mode: the range stays, ticks inside it */
+    cx_axis_make(&a, 3.0, 117.0, 0, 5, 0);
+    CX_CHECK(a.lo == 3.0 && a.hi == 117.0);
+    CX_CHECK_NEAR(a.ticks[0], 25.0, 0, 1e-12);
+    CX_CHECK_NEAR(a.ticks[a.nticks - 1], 100.0, 0, 1e-12);
+    /* log: decades, labels with superscripts */
+    cx_axis_make(&a, 3e-11, 0.5, 1, 6, 1);
+    CX_CHECK_NEAR(a.lo, 1e-11, 1e-12, 0);
+    CX_CHECK_NEAR(a.hi, 1.0, 1e-12, 0);
+    CX_CHECK(a.nticks >= 4 && a.nticks <= 12);
+    cx_axis_label(&a, 1e-10, lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "10⁻¹⁰") == 0);
+    /* large values are scientific */
+    cx_axis_make(&a, 0.0, 2.5e6, 0, 5, 1);
+    cx_axis_label(&a, 1.5e6, lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "1.5e+06") == 0);
+}
+
+int main(void)
+{
+    test_axis();
+
+    enum { N = 60 };
+    double x[N], y[N], yh[N];
+    for (int i = 0; i < N; i++) {
+        x[i] = -1.5 + 3.0 * i / (N - 1);
+        y[i] = fabs(x[i]) < 1 ? sqrt(1 - x[i] * x[i]) : 0;
+        yh[i] = y[i] * 1.02;
+    }
+    cx_plot pl;
+    cx_plot_init(&pl, "contact pressure", "x [mm]", "p [MPa]");
+    CX_CHECK_OK(cx_plot_add_series(&pl, "computed", N, x, y, CX_PLOT_MARKERS));
+    CX_CHECK_OK(cx_plot_add_series(&pl, "Hertz", N, x, yh, CX_PLOT_LINE | CX_PLOT_DASHED));
+    CX_CHECK_OK(cx_plot_add_vline(&pl, 1.0, "b"));
+    CX_CHECK_OK(cx_plot_add_text(&pl, "scene", "hertz"));
+    CX_CHECK(cx_plot_add_text(&pl, "", "x") == CX_EINVAL);
+    const char *a = "test_plot_a.png", *b = "test_plot_b.png";
+    cx_diag d;
+    cx_diag_clear(&d);
+    CX_CHECK_OK(cx_plot_write_png(&pl, a, 600, 400, &d));
+    CX_CHECK_OK(cx_plot_write_png(&pl, b, 600, 400, &d));
+    CX_CHECK(test_files_equal(a, b));
+
+    test_png img;
+    CX_CHECK_OK(test_png_read(&img, a));
+    CX_CHECK(img.w == 600 && img.h == 400);
+    CX_CHECK(test_png_colours(&img) > 20);
+    /* series 0 is Tableau blue (31,119,180), series 1 orange (255,127,14) */
+    CX_CHECK(test_png_count(&img, 31, 119, 180, 12) > 200);
+    CX_CHECK(test_png_count(&img, 255, 127, 14, 40) > 50);
+    /* white background in the corner, and the markers where the data say:
+     * the peak (x = 0, y = 1) is at the top-centre of the plot area */
+    const unsigned char *c = test_png_px(&img, 2, 2);
+    CX_CHECK(c[0] == 255 && c[1] == 255 && c[2] == 255);
+    const char *t = test_png_text(&img, "scene");
+    CX_CHECK(t && strcmp(t, "hertz") == 0);
+    t = test_png_text(&img, "Software");
+    CX_CHECK(t && strncmp(t, "signorini ", 10) == 0);
+    t = test_png_text(&img, "Title");
+    CX_CHECK(t && strcmp(t, "contact pressure") == 0);
+    test_png_free(&img);
+
+    /* log-log with a zero and a NaN (skipped), one reference line */
+    double tx[5] = {1e-3, 2e-3, 5e-3, 1e-2, 2e-2}, ty[5] = {1e-2, 1e-5, 0.0, NAN, 1e-12};
+    cx_plot lg;
+    cx_plot_init(&lg, "work-precision", "time [s]", "error");
+    lg.logx = lg.logy = 1;
+    CX_CHECK_OK(cx_plot_add_series(&lg, "m", 5, tx, ty, CX_PLOT_LINE | CX_PLOT_MARKERS));
+    CX_CHECK_OK(cx_plot_add_vline(&lg, 4e-3, "baseline"));
+    CX_CHECK_OK(cx_plot_write_png(&lg, a, 400, 300, &d));
+
+    /* bad path: one line naming it, no file, no temporary */
+    CX_CHECK(cx_plot_write_png(&pl, "no-such-dir/x.png", 300, 200, &d) == CX_EIO);
+    CX_CHECK(strstr(d.msg, "no-such-dir/x.png") != NULL && strchr(d.msg, '\n') == NULL);
+    CX_CHECK(access("no-such-dir", F_OK) != 0);
+    /* a directory as the target: rename fails, the temporary is removed */
+    CX_CHECK(cx_plot_write_png(&pl, ".", 300, 200, &d) == CX_EIO);
+    /* nothing to draw; bad size */
+    cx_plot empty;
+    cx_plot_init(&empty, "e", "x", "y");
+    CX_CHECK(cx_plot_write_png(&empty, b, 300, 200, &d) == CX_EINVAL);
+    CX_CHECK(cx_plot_write_png(&pl, b, 10, 200, &d) == CX_EINVAL);
+    remove(a);
+    remove(b);
+    return check_finish("render_plot");
+}

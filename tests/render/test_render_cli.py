@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""'signorini render' and 'solve --png/--vtu' end to end: the PNG is written
+(signature, size, text chunks), the VTU is well-formed XML with the right
+counts and array sizes (ASCII and base64 binary, decoded), the plots are
+written, and bad paths / options give one line and leave no file."""
+import base64
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+import xml.etree.ElementTree as ET
+import zlib
+
+exe = sys.argv[1]
+failures = 0
+checks = 0
+
+
+def check(cond, what):
+    global failures, checks
+    checks += 1
+    if not cond:
+        failures += 1
+        print(f"FAIL: {what}")
+
+
+def run(*args):
+    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=300)
+    return r.returncode, r.stdout, r.stderr
+
+
+def one_line_error(code, err, *needles):
+    lines = err.strip().splitlines()
+    check(code == 1, f"exit 1 for an error, got {code}: {err!r}")
+    check(len(lines) == 1, f"one line on stderr, got {lines!r}")
+    for n in needles:
+        check(n in err, f"{n!r} in {err!r}")
+
+
+def png_info(path):
+    """(width, height, {tEXt key: value}) of a PNG, chunk by chunk."""
+    with open(path, "rb") as f:
+        data = f.read()
+    check(data[:8] == b"\x89PNG\r\n\x1a\n", "PNG signature")
+    pos, text, size = 8, {}, None
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        crc = struct.unpack(">I", data[pos + 8 + n:pos + 12 + n])[0]
+        check(zlib.crc32(kind + body) == crc, f"CRC of {kind}")
+        if kind == b"IHDR":
+            size = struct.unpack(">II", body[:8])
+        if kind == b"tEXt":
+            k, v = body.split(b"\0", 1)
+            text[k.decode("latin-1")] = v.decode("latin-1")
+        pos += 12 + n
+    return size[0], size[1], text
+
+
+def vtu_arrays(path):
+    """Parse the VTU; return (piece attributes, {name: list of values})."""
+    root = ET.parse(path).getroot()
+    check(root.tag == "VTKFile" and root.get("type") == "UnstructuredGrid", "VTKFile UnstructuredGrid")
+    piece = root.find("UnstructuredGrid/Piece")
+    arrays = {}
+    fmt = {"Float64": "d", "Int64": "q", "Int32": "i", "UInt8": "B"}
+    for da in piece.iter("DataArray"):
+        name = da.get("Name") or "Points"
+        t = da.get("type")
+        if da.get("format") == "ascii":
+            vals = [float(x) if t == "Float64" else int(x) for x in da.text.split()]
+        else:
+            raw = base64.b64decode(da.text.strip())
+            nbytes = struct.unpack("<Q", raw[:8])[0]
+            check(nbytes == len(raw) - 8, f"{name}: header {nbytes} = payload {len(raw) - 8}")
+            vals = list(struct.unpack("<%d%s" % (nbytes // struct.calcsize(fmt[t]), fmt[t]), raw[8:]))
+        arrays[name] = (int(da.get("NumberOfComponents", "1")), vals)
+    return piece.attrib, arrays
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    png = os.path.join(tmp, "h.png")
+    vtu = os.path.join(tmp, "h.vtu")
+
+    # render hertz: PNG with its text chunks
+    code, out, err = run("render", "hertz", "--level", "8", "--png", png, "--size", "320x240",
+                         "--field", "sxy", "--edges", "--quiet")
+    check(code == 0, f"render hertz exit 0 ({err})")
+    w, h, text = png_info(png)
+    check((w, h) == (320, 240), f"size 320x240, got {w}x{h}")
+    for key, want in [("scene", "hertz"), ("level", "8"), ("method", "ssn-tresca"),
+                      ("friction", "none"), ("field", "sxy")]:
+        check(text.get(key) == want, f"tEXt {key} = {want!r}, got {text.get(key)!r}")
+    check(float(text.get("kkt error", "1")) < 1e-10, "tEXt kkt error")
+    check(text.get("Software", "").startswith("signorini "), "tEXt Software")
+    check("rho=" in text.get("parameters", ""), "tEXt parameters")
+
+    # solve --vtu (binary and ASCII) and --png together
+    for ascii_flag in ([], ["--vtu-ascii"]):
+        code, out, err = run("solve", "hertz", "--level", "8", "--quiet", "--vtu", vtu, *ascii_flag)
+        check(code == 0, f"solve --vtu exit 0 ({err})")
+        attrs, arr = vtu_arrays(vtu)
+        n, ne = int(attrs["NumberOfPoints"]), int(attrs["NumberOfCells"])
+        check(n == 9 * 9 and ne == 2 * 8 * 8, f"hertz level 8: 81 points, 128 cells, got {n}, {ne}")
+        for name, comps in [("displacement", 3), ("stress", 3), ("von_mises", 1),
+                            ("contact_pressure", 1), ("contact_status", 1), ("Points", 3)]:
+            c, vals = arr[name]
+            check(c == comps and len(vals) == comps * n, f"{name}: {comps} x {n} values, got {c} x {len(vals)}")
+        check(len(arr["connectivity"][1]) == 3 * ne and arr["offsets"][1][-1] == 3 * ne, "connectivity/offsets")
+        check(set(arr["types"][1]) == {5}, "VTK_TRIANGLE cells")
+        check(len(arr["body"][1]) == ne, "cell data body")
+        # the contact force balances the load: sum of pressure x lumped length ~ 800
+        status = arr["contact_status"][1]
+        check(sum(1 for s in status if s >= 0) == 9, "9 contact points carry a status")
+        check(min(arr["von_mises"][1]) >= 0, "von Mises >= 0")
+        uy = arr["displacement"][1][1::3]
+        # the origin touches the line (uy = 0, up to round-off); the rest moves down
+        check(max(uy) < 1e-12 and min(uy) < -0.1, f"uy in [{min(uy)}, {max(uy)}]")
+
+    # 3D: solve --png and --vtu at once, contact view
+    code, out, err = run("solve", "block3d", "--level", "1", "--quiet", "--png", png, "--vtu", vtu,
+                         "--view", "contact", "--field", "szz", "--size", "200x150")
+    check(code == 0, f"block3d --png --vtu exit 0 ({err})")
+    w, h, text = png_info(png)
+    check((w, h) == (200, 150) and text.get("field") == "szz", "3D PNG")
+    attrs, arr = vtu_arrays(vtu)
+    check(arr["stress"][0] == 6 and set(arr["types"][1]) == {12}, "3D: 6 stresses, hexahedra")
+
+    # plots
+    for kind in ["pressure", "convergence", "work"]:
+        p = os.path.join(tmp, kind + ".png")
+        code, out, err = run("render", "hertz", "--level", "8", "--quiet", "--png", p, "--plot", kind,
+                             "--size", "400x300")
+        check(code == 0 and os.path.exists(p), f"--plot {kind} ({err})")
+        w, h, text = png_info(p)
+        check(text.get("scene") == "hertz", f"{kind} plot text")
+
+    # errors: one line, no file
+    before = set(os.listdir(tmp))
+    bad = os.path.join(tmp, "missing", "x.png")
+    code, out, err = run("render", "hertz", "--level", "4", "--quiet", "--png", bad)
+    one_line_error(code, err, bad)
+    code, out, err = run("solve", "hertz", "--level", "4", "--quiet", "--vtu", os.path.join(tmp, "missing", "x.vtu"))
+    one_line_error(code, err, "x.vtu")
+    check(set(os.listdir(tmp)) == before, "no file or temporary left behind")
+    code, out, err = run("render", "hertz", "--quiet")
+    one_line_error(code, err, "--png")
+    code, out, err = run("render", "hertz", "--png", png, "--field", "nope")
+    one_line_error(code, err, "--field", "nope")
+    code, out, err = run("render", "hertz", "--png", png, "--field", "szz")
+    one_line_error(code, err, "szz", "3D")
+    code, out, err = run("render", "hertz", "--png", png, "--size", "12x5")
+    one_line_error(code, err, "--size")
+    code, out, err = run("render", "hertz", "--png", png, "--view", "contact")
+    one_line_error(code, err, "--view")
+    code, out, err = run("render", "hertz", "--png", png, "--scale", "-1")
+    one_line_error(code, err, "--scale")
+    code, out, err = run("render", "--help")
+    check(code == 0 and "--field" in out, "render --help")
+
+print(f"render cli: {checks} checks, {failures} failed")
+sys.exit(1 if failures else 0)
