@@ -1,0 +1,2 @@
+#include "cli/bench.h"
+int bench_stress(int argc, char **argv) { (void)argc; (void)argv; return 1; }
