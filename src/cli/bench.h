@@ -104,7 +104,7 @@ int bench_methods(const char *list, const cx_problem *p, const cx_method **out, 
 /* ---- tables ------------------------------------------------------------ */
 
 #define BENCH_MAX_COLS 32
-#define BENCH_CELL_LEN 48
+#define BENCH_CELL_LEN 200
 
 typedef struct bench_cell {
     int kind;                  /* 0 empty, 1 number, 2 integer, 3 text */
