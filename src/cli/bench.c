@@ -71,8 +71,10 @@ int cli_bench(int argc, char **argv)
     if (strcmp(argv[1], "paper") == 0)
         return bench_paper_run(argc - 1, argv + 1);
     for (int k = 0; bench_kinds[k].id; k++)
-        if (strcmp(bench_kinds[k].id, argv[1]) == 0)
+        if (strcmp(bench_kinds[k].id, argv[1]) == 0) {
+            bench_catch_sigint();
             return bench_kinds[k].run(argc - 1, argv + 1);
+        }
     char msg[128];
     snprintf(msg, sizeof msg, "unknown kind '%s' (see 'signorini bench --help')", argv[1]);
     return cli_fail("bench", msg);

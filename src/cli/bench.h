@@ -150,6 +150,16 @@ void bench_table_print(const bench_table *t, FILE *out);
 int bench_table_write_csv(const bench_table *t, const char *path, cx_diag *d);
 int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d);
 
+/* The outcome columns of a row from a result: converged (yes / no / n/a),
+ * reason, iterations, kkt, err_u, err_l, nonfinite, message (the columns
+ * the table has). */
+void bench_set_result(bench_table *t, int r, const bench_result *res);
+
+/* A file written whole or not at all: open a temporary name beside path
+ * (stdout for "-"), then rename it over path (removed on any error). */
+FILE *bench_file_open(const char *path, char *tmp, size_t len, cx_diag *d);
+int bench_file_commit(FILE *f, const char *path, const char *tmp, cx_diag *d);
+
 /* ---- options every benchmark takes ------------------------------------ */
 
 typedef struct bench_common {
@@ -212,8 +222,11 @@ extern const char bench_png_missing[];
 
 /* ---- progress and Ctrl-C ------------------------------------------------ */
 
-/* Install the SIGINT handler and start a bar of total cases (drawn on
- * stderr only when it is a terminal). */
+/* From now on Ctrl-C (SIGINT) sets a flag that the runs and the loops of
+ * the benchmark poll, instead of ending the process. */
+void bench_catch_sigint(void);
+/* Start a bar of total cases (drawn on stderr only when it is a
+ * terminal). */
 void bench_progress_start(int total);
 /* Case k (0-based) starts: label names it. */
 void bench_progress_case(int k, const char *label);

@@ -199,16 +199,20 @@ int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it)
     return progress_stop != 0;
 }
 
-void bench_progress_start(int total)
+void bench_catch_sigint(void)
 {
-    progress_total = total;
-    progress_tty = isatty(STDERR_FILENO);
-    progress_t0 = cx_clock_now();
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = progress_on_sigint;
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
+}
+
+void bench_progress_start(int total)
+{
+    progress_total = total;
+    progress_tty = isatty(STDERR_FILENO);
+    progress_t0 = cx_clock_now();
 }
 
 void bench_progress_case(int k, const char *label)

@@ -169,21 +169,14 @@ static int ref_read(const char *path, const cx_problem *p, bench_ref *r)
 static int ref_write(const char *path, const bench_ref *r, cx_diag *d)
 {
     char tmp[760];
-    snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, (long)getpid());
-    FILE *f = fopen(tmp, "wb");
+    FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
     if (!f)
-        return cx_diag_set(d, CX_EIO, "%s: cannot write", tmp);
+        return CX_EIO;
     fprintf(f, "CXREF 1 %d %d %d %.17g %d %s\n", r->n, r->m, r->nt, r->kkt, r->iterations, r->method);
     fwrite(r->u, sizeof(double), (size_t)r->n, f);
     fwrite(r->lN, sizeof(double), (size_t)r->m, f);
     fwrite(r->lT, sizeof(double), (size_t)r->nt, f);
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
-    if (bad || rename(tmp, path) != 0) {
-        remove(tmp);
-        return cx_diag_set(d, CX_EIO, "%s: cannot write", path);
-    }
-    return CX_OK;
+    return bench_file_commit(f, path, tmp, d);
 }
 
 /* Solve p with the candidates in turn until one reaches REF_TOL; keep the

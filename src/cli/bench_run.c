@@ -115,6 +115,25 @@ void bench_run(cx_session *s, const cx_method *m, const cx_param_values *pv,
         bench_errors(p, ref, it->u, it->lN, it->lT, &r->err_u, &r->err_l);
 }
 
+void bench_set_result(bench_table *t, int r, const bench_result *res)
+{
+    if (res->failed) {
+        bench_set_str(t, r, "converged", "n/a");
+        bench_set_str(t, r, "reason", "refused");
+        bench_set_str(t, r, "message", "%s", res->msg);
+        return;
+    }
+    bench_set_str(t, r, "converged", "%s", res->reason > 0 ? "yes" : "no");
+    bench_set_str(t, r, "reason", "%s", cx_reason_id(res->reason));
+    bench_set_int(t, r, "iterations", res->iterations);
+    bench_set_num(t, r, "kkt", res->kkt);
+    bench_set_num(t, r, "err_u", res->err_u);
+    bench_set_num(t, r, "err_l", res->err_l);
+    bench_set_str(t, r, "nonfinite", "%s", res->nonfinite ? "yes" : "no");
+    if (res->msg[0])
+        bench_set_str(t, r, "message", "%s", res->msg);
+}
+
 int bench_methods(const char *list, const cx_problem *p, const cx_method **out, int max,
                   int *count, cx_diag *d)
 {

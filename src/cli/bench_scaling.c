@@ -25,7 +25,7 @@ static const char scaling_usage[] =
 static const char *const scaling_cols[] = {
     "scene", "level", "friction", "dofs", "contact", "assembly", "baseline", "assembly/baseline",
     "factor_mb", "method", "converged", "reason", "iterations", "time", "ratio", "setup", "solve",
-    "peak_mb", "peak/factor", "kkt", "err_u", NULL};
+    "peak_mb", "peak/factor", "kkt", "err_u", "message", NULL};
 
 #define SCALING_MAX_LEVELS 24
 
@@ -263,23 +263,16 @@ int bench_scaling(int argc, char **argv)
             bench_set_num(&t, r, "assembly/baseline", t_asm / t_base);
             bench_set_num(&t, r, "factor_mb", fmb);
             bench_set_str(&t, r, "method", "%s", methods[k]->id);
-            if (res.failed) {
-                bench_set_str(&t, r, "converged", "no");
-                bench_set_str(&t, r, "reason", "error: %s", res.msg);
+            bench_set_result(&t, r, &res);
+            if (res.failed)
                 continue;
-            }
             double time = bench_median(times, nt);
-            bench_set_str(&t, r, "converged", "%s", res.reason > 0 ? "yes" : "no");
-            bench_set_str(&t, r, "reason", "%s", cx_reason_id(res.reason));
-            bench_set_int(&t, r, "iterations", res.iterations);
             bench_set_num(&t, r, "time", time);
             bench_set_num(&t, r, "ratio", time / t_base);
             bench_set_num(&t, r, "setup", bench_median(setups, nt));
             bench_set_num(&t, r, "solve", bench_median(solves, nt));
             bench_set_num(&t, r, "peak_mb", peak);
             bench_set_num(&t, r, "peak/factor", peak / fmb);
-            bench_set_num(&t, r, "kkt", res.kkt);
-            bench_set_num(&t, r, "err_u", res.err_u);
         }
         bench_ref_clear(&ref);
         cx_problem_destroy(&p);

@@ -139,23 +139,9 @@ static int stress_row(const stress_row_ctx *x, const char *method)
 
 static void stress_fill(bench_table *t, int r, const bench_result *res, const stress_nominal *nom)
 {
-    if (res->failed) {
-        bench_set_str(t, r, "converged", "n/a");
-        bench_set_str(t, r, "reason", "refused");
-        bench_set_str(t, r, "message", "%s", res->msg);
-        return;
-    }
-    bench_set_str(t, r, "converged", "%s", res->reason > 0 ? "yes" : "no");
-    bench_set_str(t, r, "reason", "%s", cx_reason_id(res->reason));
-    bench_set_int(t, r, "iterations", res->iterations);
-    if (nom && nom->ran)
+    bench_set_result(t, r, res);
+    if (!res->failed && nom && nom->ran)
         bench_set_int(t, r, "nominal_iterations", nom->iterations);
-    bench_set_num(t, r, "kkt", res->kkt);
-    bench_set_num(t, r, "err_u", res->err_u);
-    bench_set_num(t, r, "err_l", res->err_l);
-    bench_set_str(t, r, "nonfinite", "%s", res->nonfinite ? "yes" : "no");
-    if (res->msg[0])
-        bench_set_str(t, r, "message", "%s", res->msg);
 }
 
 static double stress_maxabs(int n, const double *v, double scale)

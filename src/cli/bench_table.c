@@ -156,7 +156,7 @@ static void cell_text(const bench_cell *c, char *buf, size_t len, int exact)
 void bench_table_print(const bench_table *t, FILE *out)
 {
     int w[BENCH_MAX_COLS];
-    char buf[64];
+    char buf[BENCH_CELL_LEN + 32];
     for (int k = 0; k < t->nmeta; k++)
         fprintf(out, "# %s: %s\n", t->meta[k][0], t->meta[k][1]);
     for (int c = 0; c < t->ncols; c++) {
@@ -181,8 +181,7 @@ void bench_table_print(const bench_table *t, FILE *out)
     }
 }
 
-/* Open path for writing: a temporary file beside it (stdout for "-"). */
-static FILE *table_open(const char *path, char *tmp, size_t len, cx_diag *d)
+FILE *bench_file_open(const char *path, char *tmp, size_t len, cx_diag *d)
 {
     if (strcmp(path, "-") == 0)
         return stdout;
@@ -193,7 +192,7 @@ static FILE *table_open(const char *path, char *tmp, size_t len, cx_diag *d)
     return f;
 }
 
-static int table_close(FILE *f, const char *path, const char *tmp, cx_diag *d)
+int bench_file_commit(FILE *f, const char *path, const char *tmp, cx_diag *d)
 {
     if (f == stdout)
         return fflush(stdout) == 0 ? CX_OK : cx_diag_set(d, CX_EIO, "cannot write to stdout");
@@ -223,8 +222,8 @@ static void csv_field(FILE *f, const char *s)
 
 int bench_table_write_csv(const bench_table *t, const char *path, cx_diag *d)
 {
-    char tmp[600], buf[64];
-    FILE *f = table_open(path, tmp, sizeof tmp, d);
+    char tmp[600], buf[BENCH_CELL_LEN + 32];
+    FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
     if (!f)
         return CX_EIO;
     for (int k = 0; k < t->nmeta; k++)
@@ -244,13 +243,13 @@ int bench_table_write_csv(const bench_table *t, const char *path, cx_diag *d)
         }
         fputc('\n', f);
     }
-    return table_close(f, path, tmp, d);
+    return bench_file_commit(f, path, tmp, d);
 }
 
 int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d)
 {
     char tmp[600];
-    FILE *f = table_open(path, tmp, sizeof tmp, d);
+    FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
     if (!f)
         return CX_EIO;
     cli_json j;
@@ -278,5 +277,5 @@ int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d)
     }
     cli_json_end_array(&j);
     cli_json_end_object(&j);
-    return table_close(f, path, tmp, d);
+    return bench_file_commit(f, path, tmp, d);
 }

@@ -37,7 +37,7 @@ static const struct {
 static const char *const wp_cols[] = {
     "scene", "level", "friction", "method", "param", "value", "tol", "converged", "reason",
     "iterations", "time", "ratio", "setup", "solve", "factorizations", "solves", "kkt", "err_u",
-    "err_l", NULL};
+    "err_l", "message", NULL};
 
 #define WP_MAX_VALUES 16
 
@@ -219,7 +219,6 @@ int bench_wp(int argc, char **argv)
         cx_problem_destroy(&p);
         return cli_fail("bench wp", d.msg);
     }
-    bench_progress_start(0);
     int ref_ok = bench_ref_get(a.c.cache_dir, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
 
     bench_table t;
@@ -300,24 +299,16 @@ int bench_wp(int argc, char **argv)
                 bench_set_str(&t, r, "param", "%s", key ? key : "");
                 bench_set_str(&t, r, "value", "%s", vtext);
                 bench_set_num(&t, r, "tol", a.tols[q]);
-                if (res.failed) {
-                    bench_set_str(&t, r, "converged", "no");
-                    bench_set_str(&t, r, "reason", "error: %s", res.msg);
+                bench_set_result(&t, r, &res);
+                if (res.failed)
                     continue;
-                }
                 double time = bench_median(times, nt);
-                bench_set_str(&t, r, "converged", "%s", res.reason > 0 ? "yes" : "no");
-                bench_set_str(&t, r, "reason", "%s", cx_reason_id(res.reason));
-                bench_set_int(&t, r, "iterations", res.iterations);
                 bench_set_num(&t, r, "time", time);
                 bench_set_num(&t, r, "ratio", time / baseline);
                 bench_set_num(&t, r, "setup", res.t_setup);
                 bench_set_num(&t, r, "solve", res.t_solve);
                 bench_set_int(&t, r, "factorizations", res.work.factorizations);
                 bench_set_int(&t, r, "solves", res.work.solves);
-                bench_set_num(&t, r, "kkt", res.kkt);
-                bench_set_num(&t, r, "err_u", res.err_u);
-                bench_set_num(&t, r, "err_l", res.err_l);
             }
         }
     }
