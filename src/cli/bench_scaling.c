@@ -154,12 +154,13 @@ static int scaling_level_costs(const bench_problem_spec *spec, int repeat, doubl
                                double *t_base, double *factor_mb, cx_problem **p, cx_diag *d)
 {
     double ta[64], tb[64];
-    int n = repeat < 64 ? repeat : 64, nb = 2 * n + 1 < 64 ? 2 * n + 1 : 64;
+    int n = repeat < 64 ? repeat : 64, nb = n;
     for (int k = 0; k < n; k++) {
         cx_problem_destroy(p);
         CX_TRY(bench_build(spec, p, &ta[k], d));
     }
-    /* the baseline is short and noisy on a shared machine: more samples */
+    /* the level's baseline for rows without a run (each run is paired
+     * with its own) */
     for (int k = 0; k < nb; k++)
         CX_TRY(cx_problem_baseline(*p, &tb[k], d));
     *t_asm = bench_median(ta, n);
@@ -228,7 +229,8 @@ int bench_scaling(int argc, char **argv)
             cx_options opt;
             bench_common_options(&a.c, &opt);
             opt.tol = a.tol;
-            double times[64], setups[64], solves[64], peak = 0;
+            /* each run paired with a baseline just before it (see wp) */
+            double times[64], setups[64], solves[64], bases[64], ratios[64], peak = 0;
             int nt = 0;
             bench_result res;
             memset(&res, 0, sizeof res);
@@ -241,6 +243,8 @@ int bench_scaling(int argc, char **argv)
                     snprintf(res.msg, sizeof res.msg, "%s", d.msg);
                     break;
                 }
+                double tb = NAN;
+                cx_problem_baseline(cx_session_problem(s), &tb, NULL);
                 bench_run(s, methods[k], NULL, &opt, ref_ok ? &ref : NULL, &res);
                 peak = fmax(peak, res.heap_mb);
                 cx_session_destroy(&s);
@@ -248,7 +252,10 @@ int bench_scaling(int argc, char **argv)
                     break;
                 setups[nt] = res.t_setup;
                 solves[nt] = res.t_solve;
-                times[nt++] = res.t_setup + res.t_solve;
+                bases[nt] = tb;
+                times[nt] = res.t_setup + res.t_solve;
+                ratios[nt] = times[nt] / tb;
+                nt++;
             }
             if (res.interrupted)
                 break;
@@ -268,7 +275,10 @@ int bench_scaling(int argc, char **argv)
                 continue;
             double time = bench_median(times, nt);
             bench_set_num(&t, r, "time", time);
-            bench_set_num(&t, r, "ratio", time / t_base);
+            double tb = bench_median(bases, nt);
+            bench_set_num(&t, r, "baseline", tb);
+            bench_set_num(&t, r, "assembly/baseline", t_asm / tb);
+            bench_set_num(&t, r, "ratio", bench_median(ratios, nt));
             bench_set_num(&t, r, "setup", bench_median(setups, nt));
             bench_set_num(&t, r, "solve", bench_median(solves, nt));
             bench_set_num(&t, r, "peak_mb", peak);

@@ -181,10 +181,11 @@ static void wp_time_to_accuracy(bench_table *t, double baseline)
         bench_meta(t, "time to kkt 1e-8", "no run reached it");
         return;
     }
+    (void)baseline;
     bench_meta(t, "time to kkt 1e-8", "%s %s=%s: %.3g s = %.2f x baseline, %ld iterations",
                bench_get_str(t, best, "method"), bench_get_str(t, best, "param"),
                bench_get_str(t, best, "value"), bench_get_num(t, best, "time"),
-               bench_get_num(t, best, "time") / baseline, (long)bench_get_num(t, best, "iterations"));
+               bench_get_num(t, best, "ratio"), (long)bench_get_num(t, best, "iterations"));
 }
 
 int bench_wp(int argc, char **argv)
@@ -271,7 +272,10 @@ int bench_wp(int argc, char **argv)
                 opt.tol = a.tols[q];
                 opt.own_stop = 0;
                 bench_result res;
-                double times[64];
+                /* each run is paired with a baseline measured just before
+                 * it: the ratio is the median of the pairs, robust to the
+                 * load of a shared machine drifting during the benchmark */
+                double times[64], ratios[64];
                 int nt = 0;
                 for (int rep = 0; rep < a.c.repeat && rep < 64 && !bench_interrupted(); rep++) {
                     cx_problem *q2 = NULL;
@@ -283,11 +287,15 @@ int bench_wp(int argc, char **argv)
                         snprintf(res.msg, sizeof res.msg, "%s", d.msg);
                         break;
                     }
+                    double tb = NAN;
+                    cx_problem_baseline(cx_session_problem(s), &tb, NULL);
                     bench_run(s, m, &pv, &opt, ref_ok ? &ref : NULL, &res);
                     cx_session_destroy(&s);
                     if (res.failed || res.interrupted)
                         break;
-                    times[nt++] = res.t_setup + res.t_solve;
+                    times[nt] = res.t_setup + res.t_solve;
+                    ratios[nt] = times[nt] / tb;
+                    nt++;
                 }
                 if (res.interrupted || (!res.failed && nt == 0))
                     break;
@@ -304,7 +312,7 @@ int bench_wp(int argc, char **argv)
                     continue;
                 double time = bench_median(times, nt);
                 bench_set_num(&t, r, "time", time);
-                bench_set_num(&t, r, "ratio", time / baseline);
+                bench_set_num(&t, r, "ratio", bench_median(ratios, nt));
                 bench_set_num(&t, r, "setup", res.t_setup);
                 bench_set_num(&t, r, "solve", res.t_solve);
                 bench_set_int(&t, r, "factorizations", res.work.factorizations);
