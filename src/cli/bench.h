@@ -173,6 +173,7 @@ typedef struct bench_common {
     double time_limit;         /* --time-limit S per run (default 60) */
     int max_iter;              /* --max-iter N (0: the default) */
     int repeat;                /* --repeat N: timings are medians of N runs */
+    int threads;               /* --threads N (0: as the environment says) */
     char cache_dir[512];
 } bench_common;
 

@@ -1,7 +1,9 @@
 /* What every benchmark shares on the command line: the common options,
  * the outputs, the progress bar, Ctrl-C, and the plot data. */
+#define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT) for the thread counts */
 #include "cli/bench.h"
 
+#include <dlfcn.h>
 #include <math.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -16,6 +18,8 @@ const char bench_common_help[] =
     "  --max-iter N         iteration limit of every run (default 500)\n"
     "  --time-limit S       seconds per run before it is stopped (default 60)\n"
     "  --repeat N           timings are medians of N runs\n"
+    "  --threads N          BLAS (OpenBLAS) and OpenMP threads (default: as the\n"
+    "                       environment says); 1 gives steadier ratios on a busy machine\n"
     "  --csv FILE           also write the rows as CSV (header lines start with '#')\n"
     "  --json               print JSON {meta, rows} on stdout instead of the table\n"
     "  --png FILE           a plot (needs the renderer)\n"
@@ -35,7 +39,7 @@ int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag 
 {
     static const char *const names[] = {"--csv", "--png", "--cache", "--methods", "--friction",
                                         "--slip", "--F", "--time-limit", "--max-iter", "--repeat",
-                                        NULL};
+                                        "--threads", NULL};
     if (strcmp(argv[*i], "--json") == 0) {
         c->json = 1;
         return 1;
@@ -76,14 +80,35 @@ int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag 
             }
             c->repeat = (int)n;
             break;
+        case 10:
+            if (cx_parse_int(v, 1, 1024, &n)) {
+                cx_diag_set(d, CX_EINVAL, "--threads '%s': expected an integer in [1, 1024]", v);
+                return -1;
+            }
+            c->threads = (int)n;
+            break;
         }
         return 1;
     }
     return 0;
 }
 
+/* Thread counts of the libraries loaded (OpenBLAS, the OpenMP runtime
+ * CHOLMOD uses), found at run time so that no header or link is needed. */
+static void common_set_threads(int n)
+{
+    void (*blas)(int) = (void (*)(int))dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+    void (*omp)(int) = (void (*)(int))dlsym(RTLD_DEFAULT, "omp_set_num_threads");
+    if (blas)
+        blas(n);
+    if (omp)
+        omp(n);
+}
+
 int bench_common_finish(bench_common *c, cx_diag *d)
 {
+    if (c->threads > 0)
+        common_set_threads(c->threads);
     if (c->png)
         return cx_diag_set(d, CX_EUNSUPPORTED, "%s", bench_png_missing);
     if (c->cache) {
