@@ -223,8 +223,10 @@ int bench_scaling(int argc, char **argv)
         bench_ref ref = {0};
         int ref_ok = !a.no_ref && bench_ref_get(a.c.cache_dir, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
         if (!a.no_ref)
-            bench_meta(&t, label, ref_ok ? "reference %s kkt %.2e (%s)" : "no reference: %s",
-                       ref_ok ? ref.method : d.msg, ref.kkt, ref.cached ? "cached" : "computed");
+            bench_meta(&t, label, ref_ok ? "reference %s kkt %.2e%s (%s)" : "no reference: %s",
+                       ref_ok ? ref.method : d.msg, ref.kkt,
+                       ref.kkt > 1e-12 ? " (above 1e-12: the best it reached)" : "",
+                       ref.cached ? "cached" : "computed");
         for (int k = 0; k < nm && !bench_interrupted(); k++) {
             cx_options opt;
             bench_common_options(&a.c, &opt);
