@@ -276,7 +276,7 @@ int bench_wp(int argc, char **argv)
                 /* each run is paired with a baseline measured just before
                  * it: the ratio is the median of the pairs, robust to the
                  * load of a shared machine drifting during the benchmark */
-                double times[64], ratios[64];
+                double times[64], ratios[64], setups[64], solves[64];
                 int nt = 0;
                 for (int rep = 0; rep < a.c.repeat && rep < 64 && !bench_interrupted(); rep++) {
                     cx_problem *q2 = NULL;
@@ -294,6 +294,8 @@ int bench_wp(int argc, char **argv)
                     cx_session_destroy(&s);
                     if (res.failed || res.interrupted)
                         break;
+                    setups[nt] = res.t_setup;
+                    solves[nt] = res.t_solve;
                     times[nt] = res.t_setup + res.t_solve;
                     ratios[nt] = times[nt] / tb;
                     nt++;
@@ -314,8 +316,8 @@ int bench_wp(int argc, char **argv)
                 double time = bench_median(times, nt);
                 bench_set_num(&t, r, "time", time);
                 bench_set_num(&t, r, "ratio", bench_median(ratios, nt));
-                bench_set_num(&t, r, "setup", res.t_setup);
-                bench_set_num(&t, r, "solve", res.t_solve);
+                bench_set_num(&t, r, "setup", bench_median(setups, nt));
+                bench_set_num(&t, r, "solve", bench_median(solves, nt));
                 bench_set_int(&t, r, "factorizations", res.work.factorizations);
                 bench_set_int(&t, r, "solves", res.work.solves);
             }
