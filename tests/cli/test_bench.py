@@ -8,6 +8,7 @@ import csv
 import io
 import json
 import os
+import pty
 import signal
 import subprocess
 import sys
@@ -63,6 +64,7 @@ with tempfile.TemporaryDirectory() as tmp:
     code, out, err = run("bench", "wp", "hertz", "--level", "8", "--tols", "1e-4,1e-10",
                          "--sweep", "rho=1e-3,1e-2", "--csv", out_csv, "--cache", cache)
     check(code == 0, f"bench wp runs (exit {code}, {err})")
+    check(err == "", f"no progress bar when stderr is not a terminal: {err!r}")
     meta, rows = read_csv(out_csv)
     for col in ["scene", "level", "friction", "method", "param", "value", "tol", "converged", "reason",
                 "iterations", "time", "ratio", "setup", "solve", "factorizations", "solves", "kkt",
@@ -172,6 +174,24 @@ with tempfile.TemporaryDirectory() as tmp:
     except json.JSONDecodeError:
         check(False, f"valid JSON after Ctrl-C: {out[:200]!r}")
     check("interrupted" in err, f"a note on stderr: {err!r}")
+
+    # ---- the progress bar, on a terminal only ----
+    master, slave = pty.openpty()
+    r = subprocess.run([exe, "bench", "wp", "hertz", "--level", "4", "--tols", "1e-4,1e-8", "--methods",
+                        "ssn-tresca", "--cache", cache], stdout=subprocess.PIPE, stderr=slave, timeout=60)
+    os.close(slave)
+    bar = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:
+            break
+        if not chunk:
+            break
+        bar += chunk
+    os.close(master)
+    check(r.returncode == 0 and b"] 1/6 ssn-tresca rho=0.0001 tol 1e-04" in bar and b"s left" in bar,
+          f"a progress bar with the case and the time left: {bar[:200]!r}")
 
     # ---- errors: one line, nothing written ----
     code, out, err = run("bench", "wp")
