@@ -96,8 +96,8 @@ void bench_errors(const cx_problem *p, const bench_ref *ref, const double *u, co
                   const double *lT, double *err_u, double *err_l);
 
 /* The methods to run on p: the ids in list ("a,b,c"; NULL: every
- * registered method supporting p's law, dimension and bodies). An unknown
- * id is an error naming it. */
+ * registered method supporting p's law, dimension and bodies: none is
+ * CX_EUNSUPPORTED). An unknown id is an error naming it. */
 int bench_methods(const char *list, const cx_problem *p, const cx_method **out, int max,
                   int *count, cx_diag *d);
 

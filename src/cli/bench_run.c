@@ -142,6 +142,11 @@ int bench_methods(const char *list, const cx_problem *p, const cx_method **out, 
         for (int k = 0; k < cx_method_count() && *count < max; k++)
             if (cx_method_check(cx_method_at(k), p, NULL) == CX_OK)
                 out[(*count)++] = cx_method_at(k);
+        if (*count == 0)
+            return cx_diag_set(d, CX_EUNSUPPORTED,
+                               "no registered method supports %s friction in %dD%s (see 'signorini list')",
+                               cx_friction_name(p->friction), p->dim,
+                               p->mesh && p->mesh->nbodies > 1 ? " with several bodies" : "");
         return CX_OK;
     }
     char buf[512];

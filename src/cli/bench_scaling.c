@@ -123,6 +123,15 @@ static double scaling_slope(const bench_table *t, const char *method, const char
     return n >= 2 && den > 0 ? (n * sxy - sx * sy) / den : NAN;
 }
 
+/* A slope as text: "n/a" with fewer than two levels. */
+static void scaling_fmt_slope(double v, char *buf, size_t len)
+{
+    if (isfinite(v))
+        snprintf(buf, len, "%.2f", v);
+    else
+        snprintf(buf, len, "n/a");
+}
+
 /* The plot of time against dofs (log-log): one line per method, the
  * baseline and the assembly, the fitted slopes in the labels. */
 static int bench_scaling_plot(const bench_table *t, const char *png, cx_diag *d)
@@ -136,11 +145,15 @@ static int bench_scaling_plot(const bench_table *t, const char *png, cx_diag *d)
     for (int r = 0; r < t->nrows; r++) {
         char label[64];
         const char *m = bench_get_str(t, r, "method");
-        snprintf(label, sizeof label, "%s (slope %.2f)", m, scaling_slope(t, m, "dofs", "time"));
+        char v[16];
+        scaling_fmt_slope(scaling_slope(t, m, "dofs", "time"), v, sizeof v);
+        snprintf(label, sizeof label, "%s (slope %s)", m, v);
         bench_plot_point(&pl, label, bench_get_num(t, r, "dofs"), bench_get_num(t, r, "time"));
-        snprintf(label, sizeof label, "baseline (slope %.2f)", scaling_slope(t, NULL, "dofs", "baseline"));
+        scaling_fmt_slope(scaling_slope(t, NULL, "dofs", "baseline"), v, sizeof v);
+        snprintf(label, sizeof label, "baseline (slope %s)", v);
         bench_plot_point(&pl, label, bench_get_num(t, r, "dofs"), bench_get_num(t, r, "baseline"));
-        snprintf(label, sizeof label, "assembly (slope %.2f)", scaling_slope(t, NULL, "dofs", "assembly"));
+        scaling_fmt_slope(scaling_slope(t, NULL, "dofs", "assembly"), v, sizeof v);
+        snprintf(label, sizeof label, "assembly (slope %s)", v);
         bench_plot_point(&pl, label, bench_get_num(t, r, "dofs"), bench_get_num(t, r, "assembly"));
     }
     int st = bench_plot_write_png(&pl, png, d);
@@ -302,11 +315,14 @@ int bench_scaling(int argc, char **argv)
             const char *m = bench_get_str(&t, r, "method");
             if (strstr(slopes, m))
                 continue;
-            len += (size_t)snprintf(slopes + len, sizeof slopes - len, "%s%s %.2f", len ? ", " : "", m,
-                                    scaling_slope(&t, m, "dofs", "time"));
+            char v[16];
+            scaling_fmt_slope(scaling_slope(&t, m, "dofs", "time"), v, sizeof v);
+            len += (size_t)snprintf(slopes + len, sizeof slopes - len, "%s%s %s", len ? ", " : "", m, v);
         }
-        bench_meta(&t, "slopes (log time / log dofs)", "%s; baseline %.2f; assembly %.2f", slopes,
-                   scaling_slope(&t, NULL, "dofs", "baseline"), scaling_slope(&t, NULL, "dofs", "assembly"));
+        char vb[16], va[16];
+        scaling_fmt_slope(scaling_slope(&t, NULL, "dofs", "baseline"), vb, sizeof vb);
+        scaling_fmt_slope(scaling_slope(&t, NULL, "dofs", "assembly"), va, sizeof va);
+        bench_meta(&t, "slopes (log time / log dofs)", "%s; baseline %s; assembly %s", slopes, vb, va);
         if (bench_interrupted())
             bench_meta(&t, "interrupted", "yes: %d rows done", t.nrows);
         if (bench_output(&a.c, &t, &d))

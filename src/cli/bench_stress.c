@@ -333,12 +333,21 @@ static int stress_scene(const stress_args *a, const char *id, bench_table *t, in
     cx_problem *p0 = NULL;
     const cx_method *methods[STRESS_MAX_METHODS];
     int nm = 0;
-    if (bench_build(&nominal_spec, &p0, NULL, &d) ||
-        bench_methods(a->c.methods, p0, methods, STRESS_MAX_METHODS, &nm, &d)) {
-        cx_problem_destroy(&p0);
-        return cli_fail("bench stress", d.msg);
-    }
+    int st = bench_build(&nominal_spec, &p0, NULL, &d);
+    if (st == CX_OK)
+        st = bench_methods(a->c.methods, p0, methods, STRESS_MAX_METHODS, &nm, &d);
     cx_problem_destroy(&p0);
+    if (st != CX_OK && st != CX_EUNSUPPORTED)
+        return cli_fail("bench stress", d.msg);
+    if (st == CX_EUNSUPPORTED) {
+        /* a scene no method can solve is a row, and the others go on */
+        stress_row_ctx x = {t, &sc, a->level > 0 ? a->level : sc.level, "nominal", nominal_spec.law};
+        int r = stress_row(&x, "-");
+        bench_set_str(t, r, "converged", "n/a");
+        bench_set_str(t, r, "reason", "n/a");
+        bench_set_str(t, r, "message", "%s", d.msg);
+        return CX_OK;
+    }
     /* under Coulomb or Tresca extremes the methods of another law join */
     const cx_method *all[STRESS_MAX_METHODS];
     int nall = 0;
