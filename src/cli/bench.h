@@ -71,6 +71,7 @@ typedef struct bench_result {
     int failed;                /* could not run: refused, error (msg says) */
     int reason;                /* cx_reason of the run */
     int iterations;
+    int active;                /* contact points in contact at the end */
     double kkt;
     double err_u;              /* ||u - u*||_K / ||u*||_K, NaN without reference */
     double err_l;              /* ||l - l*||_2 / ||l*||_2 */

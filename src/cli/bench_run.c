@@ -104,6 +104,7 @@ void bench_run(cx_session *s, const cx_method *m, const cx_param_values *pv,
     r->interrupted = it->reason == CX_ITERATING;
     r->reason = it->reason;
     r->iterations = it->iter;
+    r->active = it->ncontact + it->nstick + it->nslip;
     r->kkt = it->kkt;
     r->t_setup = it->init_time;
     r->t_solve = it->time - it->init_time;
@@ -126,6 +127,7 @@ void bench_set_result(bench_table *t, int r, const bench_result *res)
     bench_set_str(t, r, "converged", "%s", res->reason > 0 ? "yes" : "no");
     bench_set_str(t, r, "reason", "%s", cx_reason_id(res->reason));
     bench_set_int(t, r, "iterations", res->iterations);
+    bench_set_int(t, r, "active", res->active);
     bench_set_num(t, r, "kkt", res->kkt);
     bench_set_num(t, r, "err_u", res->err_u);
     bench_set_num(t, r, "err_l", res->err_l);

@@ -53,7 +53,7 @@ static const struct {
 
 static const char *const stress_cols[] = {
     "scene", "level", "case", "friction", "method", "converged", "reason", "iterations",
-    "nominal_iterations", "kkt", "err_u", "err_l", "nonfinite", "dkkt", "scale_err", "check",
+    "nominal_iterations", "active", "kkt", "err_u", "err_l", "nonfinite", "dkkt", "scale_err", "check",
     "message", NULL};
 
 #define STRESS_MAX_METHODS 64

@@ -143,6 +143,19 @@ with tempfile.TemporaryDirectory() as tmp:
     rows = [r for r in j["rows"] if r["case"] == "coincident"]
     check(code == 0 and len(rows) >= 1 and all(r["reason"] for r in rows), f"coincident rows {rows}")
 
+    # the perturbations do what they say: contact points at the end
+    code, out, err = run("bench", "stress", "hertz", "slider", "--level", "8", "--cases", "gap-1,load",
+                         "--methods", "ssn-tresca", "--json", "--cache", cache)
+    j = json.loads(out)
+    act = {(r["scene"], r["case"]): r["active"] for r in j["rows"] if r["converged"] == "yes"}
+    check(code == 0 and len(act) == 14, f"14 converged rows (gap-1 is a prefix of gap-1e-*): {act}")
+    # slider: a gap of the body size, the punch's 0.01 cannot close it
+    check(act.get(("slider", "nominal")) == 65 and act.get(("slider", "gap-1")) == 0, f"slider {act}")
+    # hertz: the rigid translation closes any gap, the same contact zone
+    check(act.get(("hertz", "gap-1")) == act.get(("hertz", "nominal")) == 5, f"hertz gap {act}")
+    # hertz: a tiny load touches at the lowest point only, a huge one closes the whole arc (9 points)
+    check(act.get(("hertz", "load-1e-8")) == 1 and act.get(("hertz", "load-1e4")) == 9, f"hertz loads {act}")
+
     # ---- stress: unit scaling keeps kkt and iterations ----
     # (ssn-tresca only: a method whose parameters carry units would rightly show FAIL)
     code, out, err = run("bench", "stress", "hertz", "slider", "--level", "8", "--cases", "units",
