@@ -469,6 +469,17 @@ int bench_stress(int argc, char **argv)
     }
     bench_progress_end();
     cx_free(ids);
+    int yes = 0, no = 0, na = 0, fails = 0, nonfinite = 0;
+    for (int r = 0; r < t.nrows; r++) {
+        const char *c = bench_get_str(&t, r, "converged");
+        yes += strcmp(c, "yes") == 0;
+        no += strcmp(c, "no") == 0;
+        na += strcmp(c, "n/a") == 0;
+        fails += strcmp(bench_get_str(&t, r, "check"), "FAIL") == 0;
+        nonfinite += strcmp(bench_get_str(&t, r, "nonfinite"), "yes") == 0;
+    }
+    bench_meta(&t, "summary", "%d rows: %d converged, %d not converged (%d with NaN/Inf), %d n/a; "
+               "%d failed unit-scaling checks", t.nrows, yes, no, nonfinite, na, fails);
     if (bench_interrupted())
         bench_meta(&t, "interrupted", "yes: %d rows done", t.nrows);
     if (code == CLI_EXIT_OK && bench_output(&a.c, &t, &d))
