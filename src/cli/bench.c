@@ -1,7 +1,7 @@
 /* signorini bench: the benchmarks. Each kind is a row of the table below;
  * the papers' tables are rows of bench_papers[]. A benchmark prints its
  * tables on stdout; timings live here, never in the test suite. */
-#include "cli/cli.h"
+#include "cli/bench.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -10,6 +10,10 @@ static const char bench_usage[] =
     "usage: signorini bench <kind> [options]\n"
     "\n"
     "kinds:\n"
+    "  wp SCENE [options]     work-precision: time against error for every method\n"
+    "  scaling SCENE --levels a..b [options]\n"
+    "                         mesh scaling: assembly, baseline and methods per level\n"
+    "  stress [SCENE...]      numerical stability under a catalogue of perturbations\n"
     "  paper NNN [options]    reproduce the tables of paper NNN (see below)\n"
     "\n"
     "papers:\n";
@@ -25,6 +29,17 @@ typedef struct bench_paper {
 static const bench_paper bench_papers[] = {
     {"000", "Tables 1-2: MPRGP and SNM1-4 (nK/kmax) on two blocks", cli_paper_000},
     {NULL, NULL, NULL}
+};
+
+/* The benchmarks of cli/bench_*.c. */
+static const struct {
+    const char *id;
+    int (*run)(int argc, char **argv);
+} bench_kinds[] = {
+    {"wp", bench_wp},
+    {"scaling", bench_scaling},
+    {"stress", bench_stress},
+    {NULL, NULL}
 };
 
 static void bench_print_usage(FILE *out)
@@ -56,6 +71,11 @@ int cli_bench(int argc, char **argv)
     }
     if (strcmp(argv[1], "paper") == 0)
         return bench_paper_run(argc - 1, argv + 1);
+    for (int k = 0; bench_kinds[k].id; k++)
+        if (strcmp(bench_kinds[k].id, argv[1]) == 0) {
+            bench_catch_sigint();
+            return bench_kinds[k].run(argc - 1, argv + 1);
+        }
     char msg[128];
     snprintf(msg, sizeof msg, "unknown kind '%s' (see 'signorini bench --help')", argv[1]);
     return cli_fail("bench", msg);

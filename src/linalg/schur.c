@@ -30,6 +30,9 @@ struct cx_schur {
     double *L22;        /* nc x nc, lower, trailing order */
     double *S;          /* nc x nc, full, caller's order */
     double *t;          /* nc: scratch in trailing order */
+    double *fcopy;      /* n: the last f given to a forward solve ... */
+    double *fy;         /* n: ... and L^-1 P f, reused while f is the same */
+    int fy_valid;
 };
 
 void cx_schur_destroy(cx_schur **Sp)
@@ -48,6 +51,8 @@ void cx_schur_destroy(cx_schur **Sp)
     cx_free(s->L22);
     cx_free(s->S);
     cx_free(s->t);
+    cx_free(s->fcopy);
+    cx_free(s->fy);
     cx_free(s);
     *Sp = NULL;
 }
@@ -177,10 +182,13 @@ int cx_schur_create(cx_schur **Sp, const cx_csc *A, const int *c, int nc, cx_cou
     s->L22 = CX_NEW(double, (size_t)nc * (size_t)nc);
     s->S = CX_NEW(double, (size_t)nc * (size_t)nc);
     s->t = CX_NEW(double, nc);
+    s->fcopy = CX_NEW(double, n);
+    s->fy = CX_NEW(double, n);
     cmember = CX_NEW(int, n);
     perm = CX_NEW(int, n);
     dshift = CX_NEW(double, nc);
-    if (!s->c || !s->tpos || !s->L22 || !s->S || !s->t || !cmember || !perm || !dshift)
+    if (!s->c || !s->tpos || !s->L22 || !s->S || !s->t || !s->fcopy || !s->fy || !cmember || !perm ||
+        !dshift)
         goto fail;
     if (nc > 0)
         memcpy(s->c, c, sizeof(int) * (size_t)nc);
@@ -229,14 +237,27 @@ static int schur_solve(cx_schur *s, int sys, cholmod_dense *B, cholmod_dense **X
     return ok && *X ? CX_OK : CX_EEXTERNAL;
 }
 
-/* X1 = L^-1 P f (the forward half of a solve). */
+/* X1 = L^-1 P f (the forward half of a solve). An iterative method
+ * condenses and expands with the same load f at every iteration: the
+ * forward half is then kept and copied, so that an expansion costs the
+ * backward half only. */
 static int schur_forward(cx_schur *s, const double *f)
 {
-    cholmod_dense B = cx_cholmod_vec((double *)f, s->n);
+    size_t bytes = sizeof(double) * (size_t)s->n;
     if (s->cnt)
         s->cnt->solves++;
+    if (s->fy_valid && memcmp(f, s->fcopy, bytes) == 0) {
+        memcpy(s->X1->x, s->fy, bytes);
+        return CX_OK;
+    }
+    s->fy_valid = 0;
+    cholmod_dense B = cx_cholmod_vec((double *)f, s->n);
     CX_TRY(schur_solve(s, CHOLMOD_P, &B, &s->X2));
-    return schur_solve(s, CHOLMOD_L, s->X2, &s->X1);
+    CX_TRY(schur_solve(s, CHOLMOD_L, s->X2, &s->X1));
+    memcpy(s->fcopy, f, bytes);
+    memcpy(s->fy, s->X1->x, bytes);
+    s->fy_valid = 1;
+    return CX_OK;
 }
 
 int cx_schur_condense(cx_schur *s, const double *f, double *fc)

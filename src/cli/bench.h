@@ -1,0 +1,251 @@
+/* The machinery the benchmarks share (cli/bench_*.c): building and running
+ * one case with a time limit, the reference solution and its disk cache,
+ * the errors against it, result tables written as text / CSV / JSON through
+ * a temporary file and a rename, the progress bar and Ctrl-C.
+ *
+ * A benchmark is a loop over cases; each case gives one row. A failure of a
+ * case (a refused method, a singular system, a time limit) is a row with its
+ * reason, never an abort of the benchmark. */
+#ifndef CLI_BENCH_H
+#define CLI_BENCH_H
+
+#include "cli/cli.h"
+
+#include <stdint.h>
+#include <stdio.h>
+
+/* ---- the problem a case runs on ------------------------------------ */
+
+/* A change applied to the built problem before it is solved (bench stress):
+ * returns a status and a diag; arg is the perturbation's own data. */
+typedef int (*bench_perturb_fn)(cx_problem *p, const void *arg, cx_diag *d);
+
+typedef struct bench_problem_spec {
+    const cx_scene *scene;     /* possibly changed in memory (stress) */
+    int level;                 /* <= 0: the scene's */
+    cx_friction law;
+    double value;              /* Tresca slip bound or Coulomb F */
+    const char *variant;       /* "" or the perturbation's key: part of the reference key */
+    bench_perturb_fn perturb;  /* may be NULL */
+    const void *perturb_arg;
+} bench_problem_spec;
+
+/* Build the problem of spec (assembly timed into *t_assemble, may be NULL). */
+int bench_build(const bench_problem_spec *spec, cx_problem **p, double *t_assemble, cx_diag *d);
+
+/* ---- the reference solution (DESIGN.md §3) -------------------------- */
+
+typedef struct bench_ref {
+    int n, m, nt;
+    double *u, *lN, *lT;
+    double uK;                 /* ||u*||_K */
+    double lnorm;              /* ||(lN*, lT*)||_2 */
+    double kkt;                /* its kkt error */
+    int iterations;
+    char method[CX_SCENE_NAMELEN];
+    int cached;                /* 1: read from the cache, 0: computed now */
+    cx_counters work;          /* work of computing it (zero when cached) */
+    uint64_t hash;             /* the key it is stored under */
+} bench_ref;
+
+/* The reference method for a problem: the first registered entry of a
+ * small table per friction law that supports p (see bench_ref.c). */
+const cx_method *bench_ref_method(const cx_problem *p);
+
+/* Key of a reference: FNV-1a over the scene file's bytes, the level, the
+ * law and its value and the variant. */
+int bench_ref_key(const bench_problem_spec *spec, uint64_t *hash, cx_diag *d);
+/* The hash of the scene file alone (for the headers). */
+int bench_scene_hash(const cx_scene *s, uint64_t *hash, cx_diag *d);
+
+/* Read the reference of spec from dir (created if missing), or compute it
+ * with the reference method to kkt < 1e-12 and store it (temp + rename).
+ * p is the problem of spec (already built). */
+int bench_ref_get(const char *dir, const bench_problem_spec *spec, const cx_problem *p,
+                  double time_limit, bench_ref *r, cx_diag *d);
+void bench_ref_clear(bench_ref *r);
+
+/* ---- one run --------------------------------------------------------- */
+
+typedef struct bench_result {
+    int failed;                /* could not run: refused, error (msg says) */
+    int reason;                /* cx_reason of the run */
+    int iterations;
+    int active;                /* contact points in contact at the end */
+    double kkt;
+    double err_u;              /* ||u - u*||_K / ||u*||_K, NaN without reference */
+    double err_l;              /* ||l - l*||_2 / ||l*||_2 */
+    double t_setup, t_solve;   /* method init, steps (seconds) */
+    cx_counters work;          /* the run's counters (cache work included) */
+    double heap_mb;            /* heap held by the run at its largest (sampled
+                                  after init and every step), MB */
+    int nonfinite;             /* NaN/Inf met in the iterate */
+    int interrupted;           /* Ctrl-C during the run: not a result */
+    char msg[CX_DIAG_LEN];
+} bench_result;
+
+/* Run method m with params pv (NULL: defaults) and options opt on the
+ * session s (the method is set, the run starts from its initial guess;
+ * the session's operator cache is kept, so pass a fresh session for a
+ * timing that includes the setup). ref may be NULL. Never fails: a
+ * failure is described in r. */
+void bench_run(cx_session *s, const cx_method *m, const cx_param_values *pv,
+               const cx_options *opt, const bench_ref *ref, bench_result *r);
+
+/* Errors of (u, lN, lT) against ref on problem p. */
+void bench_errors(const cx_problem *p, const bench_ref *ref, const double *u, const double *lN,
+                  const double *lT, double *err_u, double *err_l);
+
+/* The methods to run on p: the ids in list ("a,b,c"; NULL: every
+ * registered method supporting p's law, dimension and bodies: none is
+ * CX_EUNSUPPORTED). An unknown id is an error naming it. */
+int bench_methods(const char *list, const cx_problem *p, const cx_method **out, int max,
+                  int *count, cx_diag *d);
+
+/* ---- tables ------------------------------------------------------------ */
+
+#define BENCH_MAX_COLS 32
+#define BENCH_CELL_LEN 200
+
+typedef struct bench_cell {
+    int kind;                  /* 0 empty, 1 number, 2 integer, 3 text */
+    double v;
+    char s[BENCH_CELL_LEN];
+} bench_cell;
+
+typedef struct bench_table {
+    int ncols;
+    const char *cols[BENCH_MAX_COLS];
+    int nrows, cap;
+    bench_cell *cells;         /* nrows * ncols */
+    /* header: "key: value" lines kept in order */
+    int nmeta;
+    char meta[24][2][160];
+} bench_table;
+
+void bench_table_init(bench_table *t, const char *const *cols);   /* NULL-terminated */
+void bench_table_clear(bench_table *t);
+/* A new empty row; returns its index (exits on OOM: cli may fail fast). */
+int bench_table_row(bench_table *t);
+void bench_set_num(bench_table *t, int row, const char *col, double v);
+void bench_set_int(bench_table *t, int row, const char *col, long v);
+void bench_set_str(bench_table *t, int row, const char *col, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+double bench_get_num(const bench_table *t, int row, const char *col);   /* NaN if not a number */
+const char *bench_get_str(const bench_table *t, int row, const char *col);
+void bench_meta(bench_table *t, const char *key, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* The common header: program version, machine (cores, BLAS), date. */
+void bench_meta_machine(bench_table *t);
+
+void bench_table_print(const bench_table *t, FILE *out);
+/* Write the CSV ("# key: value" lines, then the header row and the rows)
+ * or the JSON object {"meta": {...}, "rows": [{...}]} to path through a
+ * temporary file and a rename; path "-" is stdout. */
+int bench_table_write_csv(const bench_table *t, const char *path, cx_diag *d);
+int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d);
+
+/* The outcome columns of a row from a result: converged (yes / no / n/a),
+ * reason, iterations, kkt, err_u, err_l, nonfinite, message (the columns
+ * the table has). */
+void bench_set_result(bench_table *t, int r, const bench_result *res);
+
+/* A file written whole or not at all: open a temporary name beside path
+ * (stdout for "-"), then rename it over path (removed on any error). */
+FILE *bench_file_open(const char *path, char *tmp, size_t len, cx_diag *d);
+int bench_file_commit(FILE *f, const char *path, const char *tmp, cx_diag *d);
+
+/* ---- options every benchmark takes ------------------------------------ */
+
+typedef struct bench_common {
+    const char *csv;           /* --csv FILE */
+    int json;                  /* --json: the JSON on stdout instead of the table */
+    const char *png;           /* --png FILE (refused until the renderer lands) */
+    const char *cache;         /* --cache DIR (default: next to --csv, else ./signorini-ref) */
+    const char *methods;       /* --methods a,b */
+    const char *friction;      /* --friction LAW */
+    const char *value;         /* --slip / --F value */
+    double time_limit;         /* --time-limit S per run (default 60) */
+    int max_iter;              /* --max-iter N (0: the default) */
+    int repeat;                /* --repeat N: timings are medians of N runs */
+    int threads;               /* --threads N (0: as the environment says) */
+    char cache_dir[512];
+} bench_common;
+
+/* If argv[*i] is a common option, consume it and return 1; -1 on a bad
+ * value (message in d); 0 otherwise. */
+int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d);
+void bench_common_default(bench_common *c, int repeat);
+/* Check what needs checking once the options are read (PNG, cache dir). */
+int bench_common_finish(bench_common *c, cx_diag *d);
+extern const char bench_common_help[];
+/* The friction law and value of a scene under the common options. */
+int bench_common_law(const bench_common *c, const cx_scene *s, cx_friction *law, double *value,
+                     cx_diag *d);
+/* The options of a run under the common options. */
+void bench_common_options(const bench_common *c, cx_options *o);
+/* Write the table as the options say: the table (or JSON) on stdout,
+ * CSV to --csv. */
+int bench_output(const bench_common *c, const bench_table *t, cx_diag *d);
+
+/* ---- plots (the renderer wires in here) ------------------------------ */
+
+#define BENCH_PLOT_MAX_SERIES 32
+typedef struct bench_series {
+    char label[64];
+    int n;
+    double *x, *y;             /* owned (cx_free) */
+} bench_series;
+
+typedef struct bench_plot {
+    char title[160];
+    char xlabel[64], ylabel[64];
+    int xlog, ylog;
+    int nseries;
+    bench_series series[BENCH_PLOT_MAX_SERIES];
+    int nvlines;
+    double vline[4];
+    char vlabel[4][64];
+} bench_plot;
+
+/* Add a point to the series called label (created on first use). */
+void bench_plot_point(bench_plot *pl, const char *label, double x, double y);
+void bench_plot_clear(bench_plot *pl);
+/* Write the plot as a PNG: CX_EUNSUPPORTED until the renderer (issue 9)
+ * is in the build (bench_plot.c is the one place to wire cx_plot in). */
+int bench_plot_write_png(const bench_plot *pl, const char *path, cx_diag *d);
+extern const char bench_png_missing[];
+
+/* ---- progress and Ctrl-C ------------------------------------------------ */
+
+/* From now on Ctrl-C (SIGINT) sets a flag that the runs and the loops of
+ * the benchmark poll, instead of ending the process. */
+void bench_catch_sigint(void);
+/* Start a bar of total cases (drawn on stderr only when it is a
+ * terminal). */
+void bench_progress_start(int total);
+/* Case k (0-based) starts: label names it. */
+void bench_progress_case(int k, const char *label);
+/* Erase the bar; restore the default SIGINT handler. */
+void bench_progress_end(void);
+/* 1 once Ctrl-C was pressed. */
+int bench_interrupted(void);
+/* An observer that stops a run on Ctrl-C. */
+int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it);
+
+/* ---- the benchmarks ---------------------------------------------------- */
+
+int bench_wp(int argc, char **argv);
+int bench_scaling(int argc, char **argv);
+int bench_stress(int argc, char **argv);
+
+/* Median of v[0..n-1] (reorders v). */
+double bench_median(double *v, int n);
+
+#endif

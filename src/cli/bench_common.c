@@ -1,0 +1,268 @@
+/* What every benchmark shares on the command line: the common options,
+ * the outputs, the progress bar, Ctrl-C, and the plot data. */
+#define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT) for the thread counts */
+#include "cli/bench.h"
+
+#include <dlfcn.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+const char bench_common_help[] =
+    "  --methods a,b,...    methods to run (default: every registered method\n"
+    "                       that supports the scene's law, dimension and bodies)\n"
+    "  --friction LAW       none | tresca | coulomb (default: the scene's)\n"
+    "  --slip S / --F F     Tresca slip bound / Coulomb coefficient (default: the scene's)\n"
+    "  --max-iter N         iteration limit of every run (default 500)\n"
+    "  --time-limit S       seconds per run before it is stopped (default 60)\n"
+    "  --repeat N           timings are medians of N runs\n"
+    "  --threads N          BLAS (OpenBLAS) and OpenMP threads (default: as the\n"
+    "                       environment says); 1 gives steadier ratios on a busy machine\n"
+    "  --csv FILE           also write the rows as CSV (header lines start with '#')\n"
+    "  --json               print JSON {meta, rows} on stdout instead of the table\n"
+    "  --png FILE           a plot (needs the renderer)\n"
+    "  --cache DIR          reference solutions (default: signorini-ref/ beside\n"
+    "                       the --csv file, else in the current directory)\n";
+
+const char bench_png_missing[] = "PNG plots need the renderer (not in this build)";
+
+void bench_common_default(bench_common *c, int repeat)
+{
+    memset(c, 0, sizeof *c);
+    c->time_limit = 60;
+    c->repeat = repeat;
+}
+
+int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d)
+{
+    static const char *const names[] = {"--csv", "--png", "--cache", "--methods", "--friction",
+                                        "--slip", "--F", "--time-limit", "--max-iter", "--repeat",
+                                        "--threads", NULL};
+    if (strcmp(argv[*i], "--json") == 0) {
+        c->json = 1;
+        return 1;
+    }
+    for (int k = 0; names[k]; k++) {
+        const char *v;
+        int r = cli_option(argc, argv, i, names[k], &v, d);
+        if (r <= 0) {
+            if (r < 0)
+                return -1;
+            continue;
+        }
+        long n;
+        switch (k) {
+        case 0: c->csv = v; break;
+        case 1: c->png = v; break;
+        case 2: c->cache = v; break;
+        case 3: c->methods = v; break;
+        case 4: c->friction = v; break;
+        case 5: case 6: c->value = v; break;
+        case 7:
+            if (cx_parse_double(v, &c->time_limit) || !(c->time_limit > 0)) {
+                cx_diag_set(d, CX_EINVAL, "--time-limit '%s': expected a positive number of seconds", v);
+                return -1;
+            }
+            break;
+        case 8:
+            if (cx_parse_int(v, 1, 100000000, &n)) {
+                cx_diag_set(d, CX_EINVAL, "--max-iter '%s': expected a positive integer", v);
+                return -1;
+            }
+            c->max_iter = (int)n;
+            break;
+        case 9:
+            if (cx_parse_int(v, 1, 1000, &n)) {
+                cx_diag_set(d, CX_EINVAL, "--repeat '%s': expected an integer in [1, 1000]", v);
+                return -1;
+            }
+            c->repeat = (int)n;
+            break;
+        case 10:
+            if (cx_parse_int(v, 1, 1024, &n)) {
+                cx_diag_set(d, CX_EINVAL, "--threads '%s': expected an integer in [1, 1024]", v);
+                return -1;
+            }
+            c->threads = (int)n;
+            break;
+        }
+        return 1;
+    }
+    return 0;
+}
+
+/* Thread counts of the libraries loaded (OpenBLAS, the OpenMP runtime
+ * CHOLMOD uses), found at run time so that no header or link is needed. */
+static void common_set_threads(int n)
+{
+    void (*blas)(int) = (void (*)(int))dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+    void (*omp)(int) = (void (*)(int))dlsym(RTLD_DEFAULT, "omp_set_num_threads");
+    if (blas)
+        blas(n);
+    if (omp)
+        omp(n);
+}
+
+int bench_common_finish(bench_common *c, cx_diag *d)
+{
+    if (c->threads > 0)
+        common_set_threads(c->threads);
+    if (c->png)
+        return cx_diag_set(d, CX_EUNSUPPORTED, "%s", bench_png_missing);
+    if (c->cache) {
+        snprintf(c->cache_dir, sizeof c->cache_dir, "%s", c->cache);
+    } else if (c->csv && strcmp(c->csv, "-") != 0 && strrchr(c->csv, '/')) {
+        int len = (int)(strrchr(c->csv, '/') - c->csv);
+        snprintf(c->cache_dir, sizeof c->cache_dir, "%.*s/signorini-ref", len, c->csv);
+    } else {
+        snprintf(c->cache_dir, sizeof c->cache_dir, "signorini-ref");
+    }
+    return CX_OK;
+}
+
+int bench_common_law(const bench_common *c, const cx_scene *s, cx_friction *law, double *value,
+                     cx_diag *d)
+{
+    int l = s->friction;
+    if (c->friction && (l = cx_friction_from_name(c->friction)) < 0)
+        return cx_diag_set(d, CX_EINVAL, "--friction '%s': expected none, tresca or coulomb", c->friction);
+    *law = (cx_friction)l;
+    *value = l == CX_FRICTION_COULOMB ? s->F : s->slip_bound;
+    if (l == CX_FRICTION_NONE)
+        *value = 0;
+    if (c->value && (cx_parse_double(c->value, value) || *value < 0))
+        return cx_diag_set(d, CX_EINVAL, "--slip/--F '%s': expected a non-negative number", c->value);
+    return CX_OK;
+}
+
+void bench_common_options(const bench_common *c, cx_options *o)
+{
+    cx_options_default(o);
+    o->time_limit = c->time_limit;
+    if (c->max_iter > 0)
+        o->max_iter = c->max_iter;
+}
+
+int bench_output(const bench_common *c, const bench_table *t, cx_diag *d)
+{
+    if (c->csv)
+        CX_TRY(bench_table_write_csv(t, c->csv, d));
+    if (c->json)
+        return bench_table_write_json(t, "-", d);
+    bench_table_print(t, stdout);
+    return fflush(stdout) == 0 ? CX_OK : cx_diag_set(d, CX_EIO, "cannot write to stdout");
+}
+
+/* ---- plots ------------------------------------------------------------- */
+
+void bench_plot_point(bench_plot *pl, const char *label, double x, double y)
+{
+    if (!isfinite(x) || !isfinite(y))
+        return;
+    int k;
+    for (k = 0; k < pl->nseries; k++)
+        if (strcmp(pl->series[k].label, label) == 0)
+            break;
+    if (k == pl->nseries) {
+        if (k == BENCH_PLOT_MAX_SERIES)
+            return;
+        pl->nseries++;
+        snprintf(pl->series[k].label, sizeof pl->series[k].label, "%s", label);
+    }
+    bench_series *s = &pl->series[k];
+    double *x2 = realloc(s->x, sizeof(double) * (size_t)(s->n + 1));
+    double *y2 = x2 ? realloc(s->y, sizeof(double) * (size_t)(s->n + 1)) : NULL;
+    if (x2)
+        s->x = x2;
+    if (!y2)
+        return;
+    s->y = y2;
+    s->x[s->n] = x;
+    s->y[s->n++] = y;
+}
+
+void bench_plot_clear(bench_plot *pl)
+{
+    for (int k = 0; k < pl->nseries; k++) {
+        free(pl->series[k].x);
+        free(pl->series[k].y);
+    }
+    memset(pl, 0, sizeof *pl);
+}
+
+/* The one place the renderer is wired in: translate pl into a cx_plot
+ * (title, axis labels, log axes, one line per series, the vertical lines)
+ * and call cx_plot_write_png(path). */
+int bench_plot_write_png(const bench_plot *pl, const char *path, cx_diag *d)
+{
+    (void)pl;
+    (void)path;
+    return cx_diag_set(d, CX_EUNSUPPORTED, "%s", bench_png_missing);
+}
+
+/* ---- progress and Ctrl-C ---------------------------------------------- */
+
+static volatile sig_atomic_t progress_stop;
+static int progress_total, progress_tty;
+static double progress_t0;
+
+static void progress_on_sigint(int sig)
+{
+    (void)sig;
+    progress_stop = 1;
+}
+
+int bench_interrupted(void) { return progress_stop != 0; }
+
+int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it)
+{
+    (void)ctx;
+    (void)s;
+    (void)it;
+    return progress_stop != 0;
+}
+
+void bench_catch_sigint(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = progress_on_sigint;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+}
+
+void bench_progress_start(int total)
+{
+    progress_total = total;
+    progress_tty = isatty(STDERR_FILENO);
+    progress_t0 = cx_clock_now();
+}
+
+void bench_progress_case(int k, const char *label)
+{
+    if (!progress_tty || progress_total <= 0)
+        return;
+    enum { WIDTH = 24 };
+    int done = WIDTH * k / progress_total;
+    char bar[WIDTH + 1];
+    for (int c = 0; c < WIDTH; c++)
+        bar[c] = c < done ? '#' : '.';
+    bar[WIDTH] = '\0';
+    double spent = cx_clock_now() - progress_t0;
+    char left[32] = "";
+    if (k > 0)
+        snprintf(left, sizeof left, ", ~%.0f s left", spent / k * (progress_total - k));
+    fprintf(stderr, "\r\033[K[%s] %d/%d %s%s", bar, k + 1, progress_total, label, left);
+    fflush(stderr);
+}
+
+void bench_progress_end(void)
+{
+    if (progress_tty && progress_total > 0)
+        fputs("\r\033[K", stderr);
+    signal(SIGINT, SIG_DFL);
+    if (progress_stop)
+        fputs("signorini bench: interrupted: the table keeps the runs that finished\n", stderr);
+}

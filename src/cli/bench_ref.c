@@ -1,0 +1,275 @@
+/* The reference solution of DESIGN.md §3: computed once per scene, level,
+ * friction law and value (and stress variant) by the most robust method to
+ * kkt < 1e-12, stored on disk under a hash of the scene file's bytes and
+ * those values, and read back by the next benchmark run.
+ *
+ * File: one text line "CXREF 1 n m nt kkt iterations method", then the
+ * doubles u (n), lN (m), lT (nt) in the machine's byte order. A file that
+ * does not match the problem's sizes is recomputed. */
+#include "cli/bench.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* The reference method per friction law, most robust first. Add a row when
+ * a more robust method lands; a law without a registered row falls back to
+ * any registered method that supports the problem. */
+static const struct {
+    cx_friction law;
+    const char *id;
+} ref_table[] = {
+    {CX_FRICTION_NONE, "ssn-tresca"},
+    {CX_FRICTION_TRESCA, "ssn-tresca"},
+    {CX_FRICTION_COULOMB, "ssn-coulomb"},
+};
+
+#define REF_TOL 1e-12
+/* accepted, and flagged in the header, when no method gets below REF_TOL:
+ * on fine meshes the round-off floor of the kkt error lies near 1e-11 */
+#define REF_TOL_FLOOR 1e-9
+
+/* Candidates in order: the table's rows for the law, then the registry. */
+static int ref_candidates(const cx_problem *p, const cx_method **out, int max)
+{
+    int n = 0;
+    for (size_t k = 0; k < sizeof ref_table / sizeof ref_table[0] && n < max; k++) {
+        const cx_method *m = cx_method_find(ref_table[k].id);
+        if (ref_table[k].law == p->friction && m && cx_method_check(m, p, NULL) == CX_OK)
+            out[n++] = m;
+    }
+    for (int k = 0; k < cx_method_count() && n < max; k++) {
+        const cx_method *m = cx_method_at(k);
+        int seen = 0;
+        for (int j = 0; j < n; j++)
+            seen |= out[j] == m;
+        if (!seen && cx_method_check(m, p, NULL) == CX_OK)
+            out[n++] = m;
+    }
+    return n;
+}
+
+const cx_method *bench_ref_method(const cx_problem *p)
+{
+    const cx_method *m[1];
+    return ref_candidates(p, m, 1) ? m[0] : NULL;
+}
+
+static uint64_t fnv1a(uint64_t h, const void *data, size_t len)
+{
+    const unsigned char *c = data;
+    for (size_t k = 0; k < len; k++) {
+        h ^= c[k];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+int bench_scene_hash(const cx_scene *s, uint64_t *hash, cx_diag *d)
+{
+    FILE *f = fopen(s->path, "rb");
+    if (!f)
+        return cx_diag_set(d, CX_EIO, "%s: cannot read", s->path);
+    uint64_t h = 14695981039346656037ull;
+    char buf[4096];
+    size_t got;
+    while ((got = fread(buf, 1, sizeof buf, f)) > 0)
+        h = fnv1a(h, buf, got);
+    fclose(f);
+    *hash = h;
+    return CX_OK;
+}
+
+int bench_ref_key(const bench_problem_spec *spec, uint64_t *hash, cx_diag *d)
+{
+    CX_TRY(bench_scene_hash(spec->scene, hash, d));
+    char text[256];
+    int level = spec->level > 0 ? spec->level : spec->scene->level;
+    int n = snprintf(text, sizeof text, "level=%d friction=%s value=%.17g variant=%s", level,
+                     cx_friction_name(spec->law), spec->law == CX_FRICTION_NONE ? 0.0 : spec->value,
+                     spec->variant ? spec->variant : "");
+    *hash = fnv1a(*hash, text, (size_t)n);
+    return CX_OK;
+}
+
+void bench_ref_clear(bench_ref *r)
+{
+    free(r->u);
+    free(r->lN);
+    free(r->lT);
+    memset(r, 0, sizeof *r);
+}
+
+static int ref_alloc(bench_ref *r, const cx_problem *p)
+{
+    r->n = p->n;
+    r->m = p->m;
+    r->nt = p->nt;
+    r->u = calloc((size_t)p->n + 1, sizeof(double));
+    r->lN = calloc((size_t)p->m + 1, sizeof(double));
+    r->lT = calloc((size_t)p->nt + 1, sizeof(double));
+    return r->u && r->lN && r->lT ? CX_OK : CX_ENOMEM;
+}
+
+/* mkdir -p */
+static int ref_mkdir(const char *dir, cx_diag *d)
+{
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (char *c = buf + 1;; c++) {
+        if (*c == '/' || *c == '\0') {
+            char keep = *c;
+            *c = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return cx_diag_set(d, CX_EIO, "--cache %s: cannot create the directory", dir);
+            *c = keep;
+            if (!keep)
+                break;
+        }
+    }
+    return CX_OK;
+}
+
+static void ref_path(const char *dir, const bench_problem_spec *spec, uint64_t hash, char *path,
+                     size_t len)
+{
+    int level = spec->level > 0 ? spec->level : spec->scene->level;
+    snprintf(path, len, "%s/%s-L%d-%016llx.ref", dir, spec->scene->id, level,
+             (unsigned long long)hash);
+}
+
+static int ref_read(const char *path, const cx_problem *p, bench_ref *r)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return CX_EIO;
+    int n, m, nt, iters, ok = 0;
+    double kkt;
+    char method[CX_SCENE_NAMELEN];
+    if (fscanf(f, "CXREF 1 %d %d %d %lg %d %31s", &n, &m, &nt, &kkt, &iters, method) == 6 &&
+        fgetc(f) == '\n' && n == p->n && m == p->m && nt == p->nt && ref_alloc(r, p) == CX_OK &&
+        fread(r->u, sizeof(double), (size_t)n, f) == (size_t)n &&
+        fread(r->lN, sizeof(double), (size_t)m, f) == (size_t)m &&
+        fread(r->lT, sizeof(double), (size_t)nt, f) == (size_t)nt && fgetc(f) == EOF &&
+        cx_vec_finite(n, r->u) && cx_vec_finite(m, r->lN) && cx_vec_finite(nt, r->lT)) {
+        ok = 1;
+        r->kkt = kkt;
+        r->iterations = iters;
+        snprintf(r->method, sizeof r->method, "%s", method);
+    }
+    fclose(f);
+    if (!ok)
+        bench_ref_clear(r);
+    return ok ? CX_OK : CX_EIO;
+}
+
+static int ref_write(const char *path, const bench_ref *r, cx_diag *d)
+{
+    char tmp[760];
+    FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
+    if (!f)
+        return CX_EIO;
+    fprintf(f, "CXREF 1 %d %d %d %.17g %d %s\n", r->n, r->m, r->nt, r->kkt, r->iterations, r->method);
+    fwrite(r->u, sizeof(double), (size_t)r->n, f);
+    fwrite(r->lN, sizeof(double), (size_t)r->m, f);
+    fwrite(r->lT, sizeof(double), (size_t)r->nt, f);
+    return bench_file_commit(f, path, tmp, d);
+}
+
+/* Solve p with the candidates in turn until one reaches REF_TOL; keep the
+ * best converged run below REF_TOL_FLOOR otherwise. */
+static int ref_compute(const bench_problem_spec *spec, const cx_problem *p, double time_limit,
+                       bench_ref *r, cx_diag *d)
+{
+    const cx_method *cand[16];
+    int nc = ref_candidates(p, cand, 16);
+    if (nc == 0)
+        return cx_diag_set(d, CX_EUNSUPPORTED, "no registered method solves %s friction here",
+                           cx_friction_name(p->friction));
+    cx_options opt;
+    cx_options_default(&opt);
+    opt.tol = REF_TOL;
+    opt.max_iter = 2000;
+    opt.time_limit = time_limit;
+    double best = INFINITY;
+    char why[CX_DIAG_LEN] = "";
+    for (int k = 0; k < nc && best > REF_TOL && !bench_interrupted(); k++) {
+        cx_problem *q = NULL;
+        cx_session *s = NULL;
+        cx_diag local;
+        int st = bench_build(spec, &q, NULL, &local);
+        if (st == CX_OK)
+            st = cx_session_create(&s, &q, &local);
+        cx_problem_destroy(&q);
+        if (st == CX_OK)
+            st = cx_session_set_method(s, cand[k], NULL, &opt, &local);
+        if (st == CX_OK)
+            st = cx_solver_solve(s, bench_observer, NULL, &local);
+        const cx_iterate *it = s ? cx_session_iterate(s) : NULL;
+        if (st == CX_OK && it->reason > 0 && it->kkt < best && it->kkt <= REF_TOL_FLOOR) {
+            bench_ref_clear(r);
+            if (ref_alloc(r, p) != CX_OK) {
+                cx_session_destroy(&s);
+                return cx_diag_set(d, CX_ENOMEM, "out of memory");
+            }
+            memcpy(r->u, it->u, sizeof(double) * (size_t)p->n);
+            memcpy(r->lN, it->lN, sizeof(double) * (size_t)p->m);
+            memcpy(r->lT, it->lT, sizeof(double) * (size_t)p->nt);
+            r->kkt = best = it->kkt;
+            r->iterations = it->iter;
+            r->work = it->counters;
+            snprintf(r->method, sizeof r->method, "%s", cand[k]->id);
+        } else if (!why[0]) {
+            if (st != CX_OK)
+                snprintf(why, sizeof why, "%s: %s", cand[k]->id, cx_diag_msg(&local, st));
+            else
+                snprintf(why, sizeof why, "%s: %s (kkt %.2e)", cand[k]->id, cx_reason_str(it->reason),
+                         it->kkt);
+        }
+        cx_session_destroy(&s);
+    }
+    if (!isfinite(best))
+        return cx_diag_set(d, CX_ENUMERIC, "no reference solution (%s)", why[0] ? why : "interrupted");
+    return CX_OK;
+}
+
+int bench_ref_get(const char *dir, const bench_problem_spec *spec, const cx_problem *p,
+                  double time_limit, bench_ref *r, cx_diag *d)
+{
+    memset(r, 0, sizeof *r);
+    char path[700]; /* dir (512) + name */
+    uint64_t hash;
+    CX_TRY(bench_ref_key(spec, &hash, d));
+    CX_TRY(ref_mkdir(dir, d));
+    ref_path(dir, spec, hash, path, sizeof path);
+    if (ref_read(path, p, r) == CX_OK) {
+        r->cached = 1;
+    } else {
+        CX_TRY(ref_compute(spec, p, time_limit, r, d));
+        int st = ref_write(path, r, d);
+        if (st != CX_OK) {
+            bench_ref_clear(r);
+            return st;
+        }
+    }
+    r->hash = hash;
+    double *w = malloc(sizeof(double) * ((size_t)p->n + 1));
+    if (!w) {
+        bench_ref_clear(r);
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    }
+    cx_csc_gemv(&p->K, 1.0, r->u, 0.0, w);
+    double q = cx_vec_dot(p->n, r->u, w);
+    free(w);
+    r->uK = sqrt(q > 0 ? q : 0);
+    double l2 = 0;
+    for (int i = 0; i < p->m; i++)
+        l2 += r->lN[i] * r->lN[i];
+    for (int i = 0; p->friction != CX_FRICTION_NONE && i < p->nt; i++)
+        l2 += r->lT[i] * r->lT[i];
+    r->lnorm = sqrt(l2);
+    return CX_OK;
+}

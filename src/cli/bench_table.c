@@ -1,0 +1,281 @@
+/* Result tables of the benchmarks: typed cells, a header of "key: value"
+ * lines, and three writers (aligned text, CSV, JSON). Files are written to
+ * a temporary name and renamed, so that an interrupted or failed write
+ * never leaves half a file under the real name. */
+#define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT) to ask which BLAS is loaded */
+#include "cli/bench.h"
+#include "cli/json.h"
+#include "cx_config.h"
+
+#include <dlfcn.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+void bench_table_init(bench_table *t, const char *const *cols)
+{
+    memset(t, 0, sizeof *t);
+    while (cols[t->ncols] && t->ncols < BENCH_MAX_COLS) {
+        t->cols[t->ncols] = cols[t->ncols];
+        t->ncols++;
+    }
+}
+
+void bench_table_clear(bench_table *t)
+{
+    free(t->cells);
+    t->cells = NULL;
+    t->nrows = t->cap = 0;
+}
+
+int bench_table_row(bench_table *t)
+{
+    if (t->nrows == t->cap) {
+        int cap = t->cap ? 2 * t->cap : 32;
+        bench_cell *c = realloc(t->cells, sizeof *c * (size_t)cap * (size_t)t->ncols);
+        if (!c) {
+            fputs("signorini bench: out of memory\n", stderr);
+            exit(CLI_EXIT_ERROR);
+        }
+        t->cells = c;
+        t->cap = cap;
+    }
+    memset(t->cells + (size_t)t->nrows * t->ncols, 0, sizeof(bench_cell) * (size_t)t->ncols);
+    return t->nrows++;
+}
+
+static bench_cell *table_cell(const bench_table *t, int row, const char *col)
+{
+    for (int c = 0; c < t->ncols; c++)
+        if (strcmp(t->cols[c], col) == 0)
+            return t->cells + (size_t)row * t->ncols + c;
+    return NULL;  /* a column the table does not have: ignored */
+}
+
+void bench_set_num(bench_table *t, int row, const char *col, double v)
+{
+    bench_cell *c = table_cell(t, row, col);
+    if (c && isfinite(v)) {
+        c->kind = 1;
+        c->v = v;
+    } else if (c) {
+        /* never a NaN as a result: an empty cell says "not available" */
+        c->kind = 0;
+    }
+}
+
+void bench_set_int(bench_table *t, int row, const char *col, long v)
+{
+    bench_cell *c = table_cell(t, row, col);
+    if (c) {
+        c->kind = 2;
+        c->v = (double)v;
+    }
+}
+
+void bench_set_str(bench_table *t, int row, const char *col, const char *fmt, ...)
+{
+    bench_cell *c = table_cell(t, row, col);
+    if (!c)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->s, sizeof c->s, fmt, ap);
+    va_end(ap);
+    c->kind = 3;
+}
+
+double bench_get_num(const bench_table *t, int row, const char *col)
+{
+    const bench_cell *c = table_cell(t, row, col);
+    return c && (c->kind == 1 || c->kind == 2) ? c->v : NAN;
+}
+
+const char *bench_get_str(const bench_table *t, int row, const char *col)
+{
+    const bench_cell *c = table_cell(t, row, col);
+    return c && c->kind == 3 ? c->s : "";
+}
+
+void bench_meta(bench_table *t, const char *key, const char *fmt, ...)
+{
+    int k;
+    for (k = 0; k < t->nmeta; k++)
+        if (strcmp(t->meta[k][0], key) == 0)
+            break;
+    if (k == t->nmeta) {
+        if (t->nmeta == (int)(sizeof t->meta / sizeof t->meta[0]))
+            return;
+        t->nmeta++;
+    }
+    snprintf(t->meta[k][0], sizeof t->meta[k][0], "%s", key);
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(t->meta[k][1], sizeof t->meta[k][1], fmt, ap);
+    va_end(ap);
+}
+
+/* Which BLAS the process runs on: OpenBLAS answers openblas_get_config. */
+static void table_blas(char *buf, size_t len)
+{
+    char *(*config)(void) = (char *(*)(void))dlsym(RTLD_DEFAULT, "openblas_get_config");
+    int (*threads)(void) = (int (*)(void))dlsym(RTLD_DEFAULT, "openblas_get_num_threads");
+    if (config)
+        snprintf(buf, len, "OpenBLAS (%s; %d threads)", config(), threads ? threads() : 1);
+    else
+        snprintf(buf, len, "reference BLAS/LAPACK (no OpenBLAS loaded)");
+}
+
+void bench_meta_machine(bench_table *t)
+{
+    char blas[160], date[32];
+    table_blas(blas, sizeof blas);
+    time_t now = time(NULL);
+    strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
+    bench_meta(t, "program", "signorini %s", CX_VERSION);
+    bench_meta(t, "machine", "%ld cores", sysconf(_SC_NPROCESSORS_ONLN));
+    bench_meta(t, "blas", "%s", blas);
+    bench_meta(t, "date", "%s", date);
+}
+
+static void cell_text(const bench_cell *c, char *buf, size_t len, int exact)
+{
+    if (c->kind == 1)
+        snprintf(buf, len, exact ? "%.10g" : "%.4g", c->v);
+    else if (c->kind == 2)
+        snprintf(buf, len, "%.0f", c->v);
+    else if (c->kind == 3)
+        snprintf(buf, len, "%s", c->s);
+    else
+        snprintf(buf, len, "%s", exact ? "" : "-");
+}
+
+void bench_table_print(const bench_table *t, FILE *out)
+{
+    int w[BENCH_MAX_COLS];
+    char buf[BENCH_CELL_LEN + 32];
+    for (int k = 0; k < t->nmeta; k++)
+        fprintf(out, "# %s: %s\n", t->meta[k][0], t->meta[k][1]);
+    for (int c = 0; c < t->ncols; c++) {
+        w[c] = (int)strlen(t->cols[c]);
+        for (int r = 0; r < t->nrows; r++) {
+            cell_text(t->cells + (size_t)r * t->ncols + c, buf, sizeof buf, 0);
+            if ((int)strlen(buf) > w[c])
+                w[c] = (int)strlen(buf);
+        }
+    }
+    for (int c = 0; c < t->ncols; c++)
+        fprintf(out, "%s%-*s", c ? "  " : "", w[c], t->cols[c]);
+    fputc('\n', out);
+    for (int r = 0; r < t->nrows; r++) {
+        for (int c = 0; c < t->ncols; c++) {
+            const bench_cell *cell = t->cells + (size_t)r * t->ncols + c;
+            cell_text(cell, buf, sizeof buf, 0);
+            /* numbers right-aligned, text left-aligned */
+            fprintf(out, "%s%*s", c ? "  " : "", cell->kind == 3 ? -w[c] : w[c], buf);
+        }
+        fputc('\n', out);
+    }
+}
+
+FILE *bench_file_open(const char *path, char *tmp, size_t len, cx_diag *d)
+{
+    if (strcmp(path, "-") == 0)
+        return stdout;
+    snprintf(tmp, len, "%s.tmp.%ld", path, (long)getpid());
+    FILE *f = fopen(tmp, "w");
+    if (!f)
+        cx_diag_set(d, CX_EIO, "%s: cannot write", path);
+    return f;
+}
+
+int bench_file_commit(FILE *f, const char *path, const char *tmp, cx_diag *d)
+{
+    if (f == stdout)
+        return fflush(stdout) == 0 ? CX_OK : cx_diag_set(d, CX_EIO, "cannot write to stdout");
+    int bad = ferror(f);
+    bad |= fclose(f) != 0;
+    if (bad || rename(tmp, path) != 0) {
+        remove(tmp);
+        return cx_diag_set(d, CX_EIO, "%s: cannot write", path);
+    }
+    return CX_OK;
+}
+
+static void csv_field(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+int bench_table_write_csv(const bench_table *t, const char *path, cx_diag *d)
+{
+    char tmp[600], buf[BENCH_CELL_LEN + 32];
+    FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
+    if (!f)
+        return CX_EIO;
+    for (int k = 0; k < t->nmeta; k++)
+        fprintf(f, "# %s: %s\n", t->meta[k][0], t->meta[k][1]);
+    for (int c = 0; c < t->ncols; c++) {
+        if (c)
+            fputc(',', f);
+        csv_field(f, t->cols[c]);
+    }
+    fputc('\n', f);
+    for (int r = 0; r < t->nrows; r++) {
+        for (int c = 0; c < t->ncols; c++) {
+            if (c)
+                fputc(',', f);
+            cell_text(t->cells + (size_t)r * t->ncols + c, buf, sizeof buf, 1);
+            csv_field(f, buf);
+        }
+        fputc('\n', f);
+    }
+    return bench_file_commit(f, path, tmp, d);
+}
+
+int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d)
+{
+    char tmp[600];
+    FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
+    if (!f)
+        return CX_EIO;
+    cli_json j;
+    cli_json_init(&j, f);
+    cli_json_object(&j, NULL);
+    cli_json_object(&j, "meta");
+    for (int k = 0; k < t->nmeta; k++)
+        cli_json_str(&j, t->meta[k][0], t->meta[k][1]);
+    cli_json_end_object(&j);
+    cli_json_array(&j, "rows");
+    for (int r = 0; r < t->nrows; r++) {
+        cli_json_object(&j, NULL);
+        for (int c = 0; c < t->ncols; c++) {
+            const bench_cell *cell = t->cells + (size_t)r * t->ncols + c;
+            if (cell->kind == 1)
+                cli_json_num(&j, t->cols[c], cell->v);
+            else if (cell->kind == 2)
+                cli_json_int(&j, t->cols[c], (long)cell->v);
+            else if (cell->kind == 3)
+                cli_json_str(&j, t->cols[c], cell->s);
+            else
+                cli_json_null(&j, t->cols[c]);
+        }
+        cli_json_end_object(&j);
+    }
+    cli_json_end_array(&j);
+    cli_json_end_object(&j);
+    return bench_file_commit(f, path, tmp, d);
+}

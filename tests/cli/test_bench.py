@@ -1,0 +1,229 @@
+#!/usr/bin/env python3
+"""'signorini bench' machinery on tiny cases: CSV columns and one row per
+run, the reference solution reused from the disk cache (checked through the
+counters), a stress case forced to fail gives a row and no crash, unit
+scaling keeps kkt and iteration counts, Ctrl-C keeps what finished, and
+one-line errors for bad options. No timings are asserted."""
+import csv
+import io
+import json
+import os
+import pty
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+exe = sys.argv[1]
+failures = 0
+checks = 0
+
+
+def check(cond, what):
+    global failures, checks
+    checks += 1
+    if not cond:
+        failures += 1
+        print(f"FAIL: {what}")
+
+
+def run(*args, cwd=None):
+    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=120, cwd=cwd)
+    return r.returncode, r.stdout, r.stderr
+
+
+def read_csv(path):
+    with open(path) as f:
+        lines = f.read().splitlines()
+    meta = {}
+    for line in lines:
+        if line.startswith("# "):
+            k, _, v = line[2:].partition(": ")
+            meta[k] = v
+    rows = list(csv.DictReader(io.StringIO("\n".join(l for l in lines if not l.startswith("#")))))
+    return meta, rows
+
+
+def one_line_error(code, err, *needles):
+    lines = err.strip().splitlines()
+    check(code == 1, f"exit 1 for an error, got {code}: {err!r}")
+    check(len(lines) == 1, f"one line on stderr, got {lines!r}")
+    for n in needles:
+        check(n in err, f"{n!r} in {err!r}")
+
+
+methods = json.loads(run("list", "--json")[1])["methods"]
+frictionless_2d = [m for m in methods if "frictionless" in m["supports"] and "2d" in m["supports"]]
+
+with tempfile.TemporaryDirectory() as tmp:
+    cache = os.path.join(tmp, "ref")
+
+    # ---- wp: the CSV has the columns and one row per run ----
+    out_csv = os.path.join(tmp, "wp.csv")
+    code, out, err = run("bench", "wp", "hertz", "--level", "8", "--tols", "1e-4,1e-10",
+                         "--sweep", "rho=1e-3,1e-2", "--csv", out_csv, "--cache", cache)
+    check(code == 0, f"bench wp runs (exit {code}, {err})")
+    check(err == "", f"no progress bar when stderr is not a terminal: {err!r}")
+    meta, rows = read_csv(out_csv)
+    for col in ["scene", "level", "friction", "method", "param", "value", "tol", "converged", "reason",
+                "iterations", "time", "ratio", "setup", "solve", "factorizations", "solves", "kkt",
+                "err_u", "err_l"]:
+        check(rows and col in rows[0], f"wp CSV has column '{col}'")
+    expected = sum(2 * (2 if any(p["key"] == "rho" for p in m["params"]) else 1) for m in frictionless_2d)
+    check(len(rows) == expected, f"one row per run: {expected} expected, got {len(rows)}")
+    for key in ["program", "machine", "blas", "scene hash", "baseline", "reference"]:
+        check(key in meta, f"wp header has '{key}'")
+    check("computed" in meta.get("reference", ""), f"first run computes the reference: {meta.get('reference')}")
+    check(meta.get("program", "").startswith("signorini "), "program version in the header")
+    check("cores" in meta.get("machine", ""), "cores in the header")
+    ssn = [r for r in rows if r["method"] == "ssn-tresca"]
+    check(len(ssn) == 4, "ssn-tresca: 2 values of rho x 2 tolerances")
+    for r in ssn:
+        check(r["converged"] == "yes" and float(r["kkt"]) <= float(r["tol"]), f"ssn row converged {r}")
+        # the reference is ssn-tresca itself to kkt < 1e-12: the same active set, the same solution
+        check(float(r["err_u"]) <= 1e-8 and float(r["err_l"]) <= 1e-8, f"errors against the reference {r}")
+        check(int(r["factorizations"]) == 1, "one factorisation per run (fresh session)")
+    refs = os.listdir(cache)
+    check(len(refs) == 1 and refs[0].startswith("hertz-L8-") and refs[0].endswith(".ref"),
+          f"one reference file in the cache: {refs}")
+    check(not any(".tmp" in f for f in os.listdir(tmp)), "no temporary file left")
+
+    # ---- the second run reads the reference from the cache ----
+    code, out, err = run("bench", "wp", "hertz", "--level", "8", "--tols", "1e-10", "--methods",
+                         "ssn-tresca", "--json", "--cache", cache)
+    check(code == 0, f"second bench wp runs ({code}, {err})")
+    j = json.loads(out)
+    ref = j["meta"]["reference"]
+    check("cached" in ref and "0 factorisations" in ref, f"reference reused, no work: {ref}")
+    check(len(j["rows"]) == 3 and [r["value"] for r in j["rows"]] == ["0.0001", "0.001", "0.01"],
+          f"--methods ssn-tresca: the default sweep of rho (3 values) x 1 tolerance, got {len(j['rows'])}")
+    check(all(r["err_u"] is not None and r["err_u"] <= 1e-8 for r in j["rows"]),
+          "errors against the cached reference")
+    check(len(os.listdir(cache)) == 1, "nothing recomputed")
+    # another friction law is another reference
+    code, out, err = run("bench", "wp", "hertz", "--level", "8", "--tols", "1e-10", "--friction",
+                         "tresca", "--json", "--cache", cache)
+    j = json.loads(out)
+    check(code == 0 and "computed" in j["meta"]["reference"], f"Tresca: a new reference ({err})")
+    check(len(os.listdir(cache)) == 2, "two references in the cache")
+
+    # ---- scaling: one row per level and method ----
+    sc_csv = os.path.join(tmp, "scaling.csv")
+    code, out, err = run("bench", "scaling", "hertz", "--levels", "4..8", "--repeat", "1",
+                         "--methods", "ssn-tresca", "--csv", sc_csv, "--cache", cache)
+    check(code == 0, f"bench scaling runs ({code}, {err})")
+    meta, rows = read_csv(sc_csv)
+    check([int(r["level"]) for r in rows] == [4, 8], f"levels 4 and 8: {[r['level'] for r in rows]}")
+    for r in rows:
+        n = int(r["level"])
+        check(int(r["dofs"]) == 2 * (n + 1) ** 2 - (n + 1) and int(r["contact"]) == n + 1,
+              f"dofs and contact points at level {n}: {r['dofs']} {r['contact']}")
+        for col in ["assembly", "baseline", "time", "ratio", "factor_mb", "peak_mb"]:
+            check(r[col] != "" and float(r[col]) >= 0, f"scaling {col} at level {n}: {r[col]!r}")
+        check(r["converged"] == "yes" and float(r["err_u"]) <= 1e-8, f"scaling row {r}")
+    check("slopes (log time / log dofs)" in meta, "slopes in the header")
+
+    # ---- stress: a case that cannot converge is a row, not a crash ----
+    code, out, err = run("bench", "stress", "hertz", "--level", "16", "--cases", "load-1e-8",
+                         "--max-iter", "2", "--json", "--cache", cache)
+    check(code == 0, f"stress with 2 iterations runs ({code}, {err})")
+    j = json.loads(out)
+    rows = [r for r in j["rows"] if r["method"] == "ssn-tresca"]
+    check([r["case"] for r in rows] == ["nominal", "load-1e-8"], f"cases {[r['case'] for r in rows]}")
+    for r in rows:
+        check(r["converged"] == "no" and r["reason"] == "diverged_maxit" and r["iterations"] == 2,
+              f"forced failure row {r}")
+        check(r["nonfinite"] == "no" and r["kkt"] is not None and r["kkt"] > 1e-10, "a finite kkt, not small")
+
+    # a duplicated contact point: a row with the reason, whatever it is
+    code, out, err = run("bench", "stress", "hertz", "--level", "8", "--cases", "coincident", "--json",
+                         "--cache", cache)
+    j = json.loads(out)
+    rows = [r for r in j["rows"] if r["case"] == "coincident"]
+    check(code == 0 and len(rows) >= 1 and all(r["reason"] for r in rows), f"coincident rows {rows}")
+
+    # the perturbations do what they say: contact points at the end
+    code, out, err = run("bench", "stress", "hertz", "slider", "--level", "8", "--cases", "gap-1,load",
+                         "--methods", "ssn-tresca", "--json", "--cache", cache)
+    j = json.loads(out)
+    act = {(r["scene"], r["case"]): r["active"] for r in j["rows"] if r["converged"] == "yes"}
+    check(code == 0 and len(act) == 14, f"14 converged rows (gap-1 is a prefix of gap-1e-*): {act}")
+    # slider: a gap of the body size, the punch's 0.01 cannot close it
+    check(act.get(("slider", "nominal")) == 65 and act.get(("slider", "gap-1")) == 0, f"slider {act}")
+    # hertz: the rigid translation closes any gap, the same contact zone
+    check(act.get(("hertz", "gap-1")) == act.get(("hertz", "nominal")) == 5, f"hertz gap {act}")
+    # hertz: a tiny load touches at the lowest point only, a huge one closes the whole arc (9 points)
+    check(act.get(("hertz", "load-1e-8")) == 1 and act.get(("hertz", "load-1e4")) == 9, f"hertz loads {act}")
+
+    # ---- stress: unit scaling keeps kkt and iterations ----
+    # (ssn-tresca only: a method whose parameters carry units would rightly show FAIL)
+    code, out, err = run("bench", "stress", "hertz", "slider", "--level", "8", "--cases", "units",
+                         "--methods", "ssn-tresca", "--json", "--cache", cache)
+    check(code == 0, f"stress units runs ({code}, {err})")
+    j = json.loads(out)
+    units = [r for r in j["rows"] if r["case"] == "units" and r["converged"] != "n/a"]
+    check(len(units) >= 2, f"units rows on hertz and slider: {len(units)}")
+    for r in units:
+        nominal = [q for q in j["rows"] if q["case"] == "nominal" and q["scene"] == r["scene"]
+                   and q["method"] == r["method"]][0]
+        check(r["iterations"] == nominal["iterations"] == r["nominal_iterations"],
+              f"{r['scene']} {r['method']}: iterations {r['iterations']} vs {nominal['iterations']}")
+        check(abs(r["kkt"] - nominal["kkt"]) <= 1e-12 * max(1.0, nominal["kkt"]),
+              f"{r['scene']}: kkt {r['kkt']} vs {nominal['kkt']}")
+        check(r["scale_err"] is not None and r["scale_err"] <= 1e-8, f"results scale: {r['scale_err']}")
+        check(r["check"] == "ok", f"units check {r['check']}")
+
+    # ---- Ctrl-C stops cleanly and keeps what finished ----
+    p = subprocess.Popen([exe, "bench", "wp", "hertz", "--level", "32", "--repeat", "200", "--json",
+                          "--methods", "ssn-tresca", "--cache", cache], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(1.5)
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=60)
+    check(p.returncode == 130, f"exit 130 after Ctrl-C, got {p.returncode} ({err})")
+    try:
+        j = json.loads(out)
+        check("interrupted" in j["meta"], "the header says it was interrupted")
+        check(all(r["converged"] == "yes" for r in j["rows"]), "only finished runs are kept")
+    except json.JSONDecodeError:
+        check(False, f"valid JSON after Ctrl-C: {out[:200]!r}")
+    check("interrupted" in err, f"a note on stderr: {err!r}")
+
+    # ---- the progress bar, on a terminal only ----
+    master, slave = pty.openpty()
+    r = subprocess.run([exe, "bench", "wp", "hertz", "--level", "4", "--tols", "1e-4,1e-8", "--methods",
+                        "ssn-tresca", "--cache", cache], stdout=subprocess.PIPE, stderr=slave, timeout=60)
+    os.close(slave)
+    bar = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:
+            break
+        if not chunk:
+            break
+        bar += chunk
+    os.close(master)
+    check(r.returncode == 0 and b"] 1/6 ssn-tresca rho=0.0001 tol 1e-04" in bar and b"s left" in bar,
+          f"a progress bar with the case and the time left: {bar[:200]!r}")
+
+    # ---- errors: one line, nothing written ----
+    code, out, err = run("bench", "wp")
+    one_line_error(code, err, "missing SCENE")
+    code, out, err = run("bench", "wp", "hertz", "--png", os.path.join(tmp, "x.png"))
+    one_line_error(code, err, "PNG plots need the renderer (not in this build)")
+    check(not os.path.exists(os.path.join(tmp, "x.png")), "no PNG written")
+    code, out, err = run("bench", "scaling", "hertz")
+    one_line_error(code, err, "--levels")
+    code, out, err = run("bench", "scaling", "hertz", "--levels", "8..4")
+    one_line_error(code, err, "--levels '8..4'")
+    code, out, err = run("bench", "wp", "hertz", "--methods", "nope")
+    one_line_error(code, err, "unknown method 'nope'")
+    code, out, err = run("bench", "stress", "hertz", "--time-limit", "0")
+    one_line_error(code, err, "--time-limit")
+    code, out, err = run("bench", "wp", "hertz", "--level", "8", "--csv", os.path.join(tmp, "no/such/dir.csv"),
+                         "--cache", cache)
+    one_line_error(code, err, "cannot write")
+
+print(f"{checks - failures} of {checks} checks passed")
+sys.exit(1 if failures else 0)
