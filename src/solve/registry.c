@@ -6,9 +6,13 @@
 #include <string.h>
 
 extern const cx_method cx_method_ssn_tresca;
+extern const cx_method cx_method_ubr_c;
+extern const cx_method cx_method_ubr_tf;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
+    &cx_method_ubr_c,
+    &cx_method_ubr_tf,
     NULL
 };
 
