@@ -9,12 +9,14 @@ extern const cx_method cx_method_ssn_tresca;
 extern const cx_method cx_method_ubr_c;
 extern const cx_method cx_method_ubr_tf;
 extern const cx_method cx_method_cf_fp;
+extern const cx_method cx_method_ssn_c;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
     &cx_method_ubr_c,
     &cx_method_ubr_tf,
     &cx_method_cf_fp,
+    &cx_method_ssn_c,
     NULL
 };
 
