@@ -10,8 +10,7 @@ typedef struct ubr_core {
     int n, m, dt;         /* free dofs, contact points, tangent components (0: frictionless) */
     double E;             /* Young modulus (largest of the bodies): the unit of r */
     double r;             /* current penalty (absolute: force / length^(d+1)) */
-    int auto_r;           /* 1: r is adapted by residual balancing (ubr.c) */
-    int changes;          /* r changes made so far (auto) */
+    int auto_r;           /* 1: r chosen by the a-priori rule of ubr.c */
     double eps;           /* the paper's criterion (4.16)/(5.6) */
     cx_fact *F;           /* factor of K + r (N'WN + T'WT), borrowed from the cache */
     const double *w;      /* m: lumped contact-boundary measure W (the problem's) */
