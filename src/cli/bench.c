@@ -23,6 +23,7 @@ typedef struct bench_paper {
 /* One line per paper: the id, what it reproduces, its entry point
  * (cli/paper_NNN.c). */
 static const bench_paper bench_papers[] = {
+    {"002", "Koko: Uzawa block relaxation, Tables 1-6 (hertz, halfball), r = auto", cli_paper_002},
     {NULL, NULL, NULL}
 };
 

@@ -237,6 +237,12 @@ int cx_session_set_method(cx_session *s, const cx_method *m, const cx_param_valu
     return CX_OK;
 }
 
+void cx_session_clear_method(cx_session *s)
+{
+    session_drop_method(s);
+    session_clear_run(s);
+}
+
 int cx_session_reset(cx_session *s, cx_diag *d)
 {
     if (!s->method)

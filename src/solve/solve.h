@@ -165,6 +165,11 @@ const cx_param_values *cx_session_params(const cx_session *s);
 const cx_options *cx_session_options(const cx_session *s);
 void cx_session_set_options(cx_session *s, const cx_options *opt);
 
+/* Unselect the current method (its state is destroyed, the iterate
+ * cleared; the operator cache stays), e.g. before changing to a friction
+ * law it does not support. */
+void cx_session_clear_method(cx_session *s);
+
 /* Restart the current method from its initial guess (re-init). */
 int cx_session_reset(cx_session *s, cx_diag *d);
 
