@@ -22,6 +22,8 @@
 #include <stdio.h>
 #include <string.h>
 
+extern const cx_method cx_method_cf_fp;
+
 typedef struct {
     cx_session *child;        /* nested session running the inner method */
     const cx_method *inner;   /* the inner Tresca method */
@@ -77,8 +79,10 @@ static int cffp_init(void *state, cx_session *s, const cx_param_values *params, 
     if (!st->inner)
         return cx_diag_set(d, CX_EINVAL, "parameter 'inner' of method 'cf-fp': unknown method '%s' "
                            "(see 'signorini list')", id);
-    if (!(st->inner->supports & CX_TRESCA) || st->inner->init == NULL ||
-        strcmp(st->inner->id, "cf-fp") == 0)
+    if (st->inner == &cx_method_cf_fp)
+        return cx_diag_set(d, CX_EINVAL, "parameter 'inner' of method 'cf-fp': cf-fp cannot be its own "
+                           "inner method");
+    if (!(st->inner->supports & CX_TRESCA))
         return cx_diag_set(d, CX_EINVAL, "parameter 'inner' of method 'cf-fp': method '%s' does not "
                            "support Tresca friction", id);
     cx_param_default(&st->iparams, st->inner->params);
