@@ -86,7 +86,12 @@ void cx_session_destroy(cx_session **sp)
 }
 
 const cx_problem *cx_session_problem(const cx_session *s) { return s->p; }
-const cx_counters *cx_session_cache_counters(const cx_session *s) { return &s->cache; }
+const cx_counters *cx_session_cache_counters(const cx_session *s)
+{
+    while (s->parent)   /* a nested session shares its root's cache */
+        s = s->parent;
+    return &s->cache;
+}
 cx_counters *cx_session_counters(cx_session *s) { return &cx_session_root_(s)->run; }
 const cx_method *cx_session_method(const cx_session *s) { return s->method; }
 const cx_param_values *cx_session_params(const cx_session *s) { return &s->params; }
