@@ -53,7 +53,13 @@ static int p2_open(p2_case *c, const char *scene, int level, cx_diag *d)
     c->level = level;
     c->nodes = p->mesh->nnodes;
     c->m = p->m;
-    int st = cx_problem_baseline(p, &c->t_base, d);
+    /* the baseline: the median of three (the machine is shared) */
+    double t[3];
+    int st = CX_OK;
+    for (int k = 0; k < 3 && !st; k++)
+        st = cx_problem_baseline(p, &t[k], d);
+    if (!st)
+        c->t_base = fmax(fmin(t[0], t[1]), fmin(fmax(t[0], t[1]), t[2]));
     if (!st)
         st = cx_session_create(&c->s, &p, d);
     if (st)
@@ -100,9 +106,12 @@ static const char *p2_iters(const p2_result *r, char *buf)
     return buf;
 }
 
+/* The end of a table: flushed, so that a long run shows its tables as
+ * they are done. */
 static void p2_rule(void)
 {
     printf("\n");
+    fflush(stdout);
 }
 
 /* Table 2: r of UBR-C (1 is absolute: E = 2000), then of SSN-C, in units of E. */
