@@ -22,16 +22,17 @@
  * boundary of size L) and mu_min ~ h/E (the mesh-scale mode, h the
  * boundary mesh size), hence
  *     r = c E / sqrt(h L),  L = |Gc|^(1/(d-1)),  h = (|Gc|/m)^(1/(d-1)),
- * one factorisation. Measured (iterations to kkt 1e-8, note of issue 4):
- * the best hand-tuned r grows like sqrt(m) as the rule says, about 1.0 E
- * sqrt(m)/L on hertz (0.7E to 1.4E at levels 16 to 80) and 2.0 E m^1/4 /
- * sqrt(|Gc|) on halfball (4E at levels 4 to 10): the constant depends on
- * the problem (how much of Gc comes into contact, nu). c = 1.4, their
- * geometric mean, stays within a factor 1.5 of the best r on both, which
- * costs 1.1x to 1.5x the iterations of the best r. The paper's 0.11E is
+ * one factorisation. Measured (iterations to kkt 1e-8, Table A of
+ * 'signorini bench paper 002'): the best hand-tuned r grows with the level
+ * as the rule says, about 1.0 E sqrt(m)/L on hertz (0.7E to 2E at levels
+ * 20 to 192) and 2.0 E m^1/4 / sqrt(|Gc|) on halfball (2.8E to 8E at levels
+ * 4 to 20): the constant depends on the problem (how much of Gc comes into
+ * contact, nu). c = 1.4, their geometric mean, stays within a factor 1.6 of
+ * the best r on both, which costs 1.1x to 1.55x the iterations of the best
+ * r (4x to 8x fewer than the paper's r on hertz). The paper's 0.11E is
  * tuned to its own relative-change criterion, which stops earlier (a small
- * r moves phi in small steps); the rule aims at the kkt error. E is the largest Young
- * modulus of the bodies. See the note of issue 4 for the measured table.
+ * r moves phi in small steps); the rule aims at the kkt error. E is the
+ * largest Young modulus of the bodies.
  */
 #include "solve/ubr.h"
 
