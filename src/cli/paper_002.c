@@ -287,12 +287,7 @@ static int p2_auto_run(const char *scene, int level, const char *set, int max_it
     CX_TRY(p2_open(&c, scene, level, 0, d));
     int st = p2_run(c.s, "ubr-c", set, 0, 1e-8, max_iter, r, d);
     const cx_problem *p = cx_session_problem(c.s);
-    double area = 0;
-    for (int i = 0; i < p->m; i++)
-        area += p->contact.weight[i];
-    /* the rule's r/E, recomputed as ubr.c does, for the record */
-    double e = 1.0 / (p->dim - 1);
-    c.r_auto = 1.4 / sqrt(pow(area / p->m, e) * pow(area, e));
+    c.r_auto = cx_ubr_auto_r(p, p->mats[0].E) / p->mats[0].E;
     *info = c;
     cx_session_destroy(&c.s);
     info->s = NULL;

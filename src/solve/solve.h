@@ -225,6 +225,11 @@ int cx_session_set_slip_bounds(cx_session *s, const double *sb, cx_diag *d);
 int cx_session_set_start(cx_session *s, const double *u, const double *lN, const double *lT,
                          cx_diag *d);
 
+/* The penalty r that ubr-c and ubr-tf choose for r = auto (ubr.c), for a
+ * body of Young modulus E: c E / sqrt(h L) over the contact points the
+ * obstacle can reach. In the units of the problem (force / length^d). */
+double cx_ubr_auto_r(const cx_problem *p, double E);
+
 /* The baseline of DESIGN.md §5: analyse + factorise + solve K (with springs
  * diag(K) on the contact dofs when K alone is singular, as every contact
  * method effectively does), CHOLMOD's default ordering, timed. */

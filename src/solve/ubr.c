@@ -21,18 +21,19 @@
  * elastic body mu_max ~ L/E (the smoothest boundary mode over the contact
  * boundary of size L) and mu_min ~ h/E (the mesh-scale mode, h the
  * boundary mesh size), hence
- *     r = c E / sqrt(h L),  L = |Gc|^(1/(d-1)),  h = (|Gc|/m)^(1/(d-1)),
- * one factorisation. Measured (iterations to kkt 1e-8, Table A of
- * 'signorini bench paper 002'): the best hand-tuned r grows with the level
- * as the rule says, about 1.0 E sqrt(m)/L on hertz (0.7E to 2E at levels
- * 20 to 192) and 2.0 E m^1/4 / sqrt(|Gc|) on halfball (2.8E to 8E at levels
- * 4 to 20): the constant depends on the problem (how much of Gc comes into
- * contact, nu). c = 1.4, their geometric mean, stays within a factor 1.6 of
- * the best r on both, which costs 1.1x to 1.55x the iterations of the best
- * r (4x to 8x fewer than the paper's r on hertz). The paper's 0.11E is
- * tuned to its own relative-change criterion, which stops earlier (a small
- * r moves phi in small steps); the rule aims at the kkt error. E is the
- * largest Young modulus of the bodies.
+ *     r = c E / sqrt(h L),  L = |Gc'|^(1/(d-1)),  h = (|Gc'|/m')^(1/(d-1)),
+ * over the m' candidate points Gc' (those the obstacle can reach: initial
+ * gap below the size of the contact boundary; a half-ball leaves most of a
+ * face out of reach), one factorisation. Measured (iterations to kkt 1e-8,
+ * Table A of 'signorini bench paper 002'): the best hand-tuned r grows
+ * with the level as the rule says (0.7E to 2E on hertz at levels 20 to
+ * 192, 2.8E to 8E on halfball at levels 4 to 20), with c = 1.0 on hertz
+ * and about 1.4 on halfball; c = 1.2 splits the difference. The paper's
+ * 0.11E is tuned to its own relative-change criterion, which stops earlier
+ * (a small r moves phi in small steps); the rule aims at the kkt error. E
+ * is the largest Young modulus of the bodies. Tried and dropped: residual
+ * balancing (adaptive r, refactorising): on hertz the early transient of
+ * the rigid mode drove r down 16-fold and the run stalled.
  */
 #include "solve/ubr.h"
 
@@ -40,7 +41,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#define UBR_AUTO_C 1.4
+#define UBR_AUTO_C 1.2
 
 typedef struct {
     double r;
@@ -141,16 +142,32 @@ void ubr_core_clear(ubr_core *c)
     memset(c, 0, sizeof *c);
 }
 
-/* The a-priori r of the auto rule (see the header). */
-static double ubr_auto_r(const cx_problem *p, double E)
+/* The a-priori r of the auto rule (see the header), over the candidate
+ * points: those whose initial gap is below the size of the contact
+ * boundary (a point the obstacle cannot reach has a far gap). */
+double cx_ubr_auto_r(const cx_problem *p, double E)
 {
-    double area = 0;
+    int d = p->dim;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, size = 0;
     for (int i = 0; i < p->m; i++)
-        area += p->contact.weight[i];
-    if (!(area > 0) || p->m == 0)
+        for (int k = 0; k < d; k++) {
+            lo[k] = fmin(lo[k], p->contact.x[d * i + k]);
+            hi[k] = fmax(hi[k], p->contact.x[d * i + k]);
+        }
+    for (int k = 0; k < d && p->m > 0; k++)
+        size += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    size = sqrt(size);
+    double area = 0;
+    int mc = 0;
+    for (int i = 0; i < p->m; i++)
+        if (p->g[i] < size) {
+            area += p->contact.weight[i];
+            mc++;
+        }
+    if (!(area > 0) || mc == 0)
         return E;
-    double e = 1.0 / (p->dim - 1);
-    double L = pow(area, e), h = pow(area / p->m, e);
+    double e = 1.0 / (d - 1);
+    double L = pow(area, e), h = pow(area / mc, e);
     return UBR_AUTO_C * E / sqrt(h * L);
 }
 
@@ -174,7 +191,7 @@ int ubr_core_init(ubr_core *c, cx_session *s, const cx_param_values *params, int
                                "contact point (point %d has %g)", id, i, c->w[i]);
     double r = cx_param_get(params, "r");
     c->auto_r = isnan(r);
-    c->r = c->auto_r ? ubr_auto_r(p, c->E) : r * c->E;
+    c->r = c->auto_r ? cx_ubr_auto_r(p, c->E) : r * c->E;
     c->eps = cx_param_get(params, "eps");
     int mt = c->m * c->dt, mx = mt > c->m ? mt : c->m;
     c->sb = CX_NEW(double, c->m);
