@@ -215,8 +215,10 @@ int cx_session_nested_create(cx_session **child, cx_session *parent, cx_diag *d)
 /* Tresca friction with per-point slip bounds sb (m nodal forces >= 0; e.g.
  * s_i = F_i lN_i of a fixed-point step, or a bound times Hertz's pressure
  * times the lumped length). Keeps the operator cache; re-inits the current
- * method (a new run), like cx_session_set_friction. CX_EINVAL for a
- * negative or non-finite bound. Works on any session. */
+ * method (a new run). If that method refuses Tresca, its error is returned
+ * and the session keeps the new bounds with no method selected (unlike
+ * cx_session_set_friction, which restores the old law). CX_EINVAL for a
+ * negative or non-finite bound (nothing changed). Works on any session. */
 int cx_session_set_slip_bounds(cx_session *s, const double *sb, cx_diag *d);
 /* The starting iterate of every later run (set_method, reset, friction or
  * slip-bound changes): u (n), lN (m), lT (nt; may be NULL: zero). NULL u
