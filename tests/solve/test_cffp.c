@@ -57,6 +57,35 @@ static void check_hertz_coulomb(void)
     cx_session_destroy(&s);
 }
 
+/* 3D (the disc): halfball level 4, F = 0.6, to kkt 1e-8 with one
+ * factorisation; ubr-tf with s = F lN of the answer gives it back. */
+static void check_halfball_coulomb(void)
+{
+    cx_scene sc;
+    cx_diag d;
+    cx_session *s = fixture_session("halfball", 4, &sc);
+    const cx_problem *p = cx_session_problem(s);
+    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, &d));
+    CX_CHECK_OK(fixture_run(s, "cf-fp", "inner_set=r=4,eps=1e-12 eps_min=1e-12 eps_fp=1e-12", 0, 1e-8, 100, &d));
+    const cx_iterate *it = cx_session_iterate(s);
+    fprintf(stderr, "halfball 4 coulomb: cf-fp %d steps, %ld Tresca iterations, kkt %.2e, %d stick %d slip\n",
+            it->iter, it->inner_total, it->kkt, it->nstick, it->nslip);
+    CX_CHECK(it->reason == CX_CONVERGED_KKT);
+    CX_CHECK(it->counters.factorizations == 1);
+    CX_CHECK(it->nstick + it->nslip > 0);
+    double *sb = malloc(sizeof(double) * (size_t)p->m);
+    for (int i = 0; i < p->m; i++)
+        sb[i] = 0.6 * it->lN[i];
+    double *u = fixture_copy_u(s);
+    cx_session_clear_method(s);
+    CX_CHECK_OK(cx_session_set_slip_bounds(s, sb, &d));
+    CX_CHECK_OK(fixture_run(s, "ubr-tf", "r=4", 0, 1e-11, 5000, &d));
+    CX_CHECK_LE(fixture_energy_diff(p, it->u, u), 1e-6);
+    free(sb);
+    free(u);
+    cx_session_destroy(&s);
+}
+
 static void check_refusals(void)
 {
     cx_scene sc;
@@ -117,6 +146,7 @@ static void check_nested(void)
 int main(void)
 {
     check_hertz_coulomb();
+    check_halfball_coulomb();
     check_refusals();
     check_nested();
     return check_finish("solve_cffp");
