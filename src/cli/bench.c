@@ -28,6 +28,7 @@ typedef struct bench_paper {
  * (cli/paper_NNN.c). */
 static const bench_paper bench_papers[] = {
     {"000", "Tables 1-2: MPRGP and SNM1-4 (nK/kmax) on two blocks", cli_paper_000},
+    {"002", "Koko: Uzawa block relaxation, Tables 1-6 (hertz, halfball), r = auto", cli_paper_002},
     {NULL, NULL, NULL}
 };
 

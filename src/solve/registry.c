@@ -10,6 +10,10 @@ extern const cx_method cx_method_mprgp;
 extern const cx_method cx_method_ssn_tresca_dual;
 extern const cx_method cx_method_ssn_tresca_glob;
 extern const cx_method cx_method_ssn_coulomb;
+extern const cx_method cx_method_ubr_c;
+extern const cx_method cx_method_ubr_tf;
+extern const cx_method cx_method_cf_fp;
+extern const cx_method cx_method_ssn_c;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
@@ -17,6 +21,10 @@ static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca_dual,
     &cx_method_ssn_tresca_glob,
     &cx_method_ssn_coulomb,
+    &cx_method_ubr_c,
+    &cx_method_ubr_tf,
+    &cx_method_cf_fp,
+    &cx_method_ssn_c,
     NULL
 };
 

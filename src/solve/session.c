@@ -25,13 +25,14 @@ static void session_free_iterate(cx_iterate *it)
     cx_free(it->changed);
 }
 
-int cx_session_create(cx_session **sp, cx_problem **pp, cx_diag *d)
+int cx_session_create_(cx_session **sp, cx_problem **pp, cx_session *parent, cx_diag *d)
 {
     cx_session *s = CX_NEW(cx_session, 1);
     if (!s)
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     cx_problem *p = *pp;
     s->p = p;
+    s->parent = parent;
     *pp = NULL;
     cx_options_default(&s->opt);
     s->it.u = CX_NEW(double, p->n);
@@ -57,6 +58,11 @@ static void session_drop_method(cx_session *s)
     s->method = NULL;
 }
 
+int cx_session_create(cx_session **sp, cx_problem **pp, cx_diag *d)
+{
+    return cx_session_create_(sp, pp, NULL, d);
+}
+
 void cx_session_destroy(cx_session **sp)
 {
     if (!sp || !*sp)
@@ -70,14 +76,23 @@ void cx_session_destroy(cx_session **sp)
     cx_free(s->entries);
     session_free_iterate(&s->it);
     cx_free(s->work);
-    cx_problem_destroy(&s->p);
+    cx_free(s->start);
+    if (s->parent)
+        cx_session_view_free_(s->p);   /* a view: the parent owns what it shares */
+    else
+        cx_problem_destroy(&s->p);
     cx_free(s);
     *sp = NULL;
 }
 
 const cx_problem *cx_session_problem(const cx_session *s) { return s->p; }
-const cx_counters *cx_session_cache_counters(const cx_session *s) { return &s->cache; }
-cx_counters *cx_session_counters(cx_session *s) { return &s->run; }
+const cx_counters *cx_session_cache_counters(const cx_session *s)
+{
+    while (s->parent)   /* a nested session shares its root's cache */
+        s = s->parent;
+    return &s->cache;
+}
+cx_counters *cx_session_counters(cx_session *s) { return &cx_session_root_(s)->run; }
 const cx_method *cx_session_method(const cx_session *s) { return s->method; }
 const cx_param_values *cx_session_params(const cx_session *s) { return &s->params; }
 const cx_options *cx_session_options(const cx_session *s) { return &s->opt; }
@@ -105,6 +120,8 @@ static void session_count_cache(cx_session *s, const cx_counters *before)
 
 int cx_session_schur(cx_session *s, cx_schur **S, cx_diag *d)
 {
+    if (s->parent)
+        return cx_session_schur(s->parent, S, d);
     if (!s->schur) {
         cx_counters before = s->run;
         int st = cx_schur_create(&s->schur, &s->p->K, s->p->cdofs, s->p->nc, &s->run, d);
@@ -121,6 +138,8 @@ int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build
 {
     if (strlen(key) >= CX_CACHE_KEYLEN)
         return cx_diag_set(d, CX_EINVAL, "operator cache key too long: '%s'", key);
+    if (s->parent)
+        return cx_session_cache_get(s->parent, key, build, arg, destroy, obj, d);
     for (int i = 0; i < s->nentries; i++)
         if (strcmp(s->entries[i].key, key) == 0) {
             *obj = s->entries[i].obj;
@@ -150,6 +169,8 @@ int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build
 
 int cx_session_cache_size(const cx_session *s)
 {
+    if (s->parent)
+        return cx_session_cache_size(s->parent);
     return s->nentries + (s->schur != NULL);
 }
 
@@ -173,7 +194,15 @@ static void session_clear_run(cx_session *s)
     it->ncontact = it->nstick = it->nslip = it->nchanged = 0;
     it->inner = it->inner_total = 0;
     it->step_time = it->time = it->init_time = 0;
-    memset(&s->run, 0, sizeof s->run);
+    if (s->start) {
+        memcpy(it->u, s->start, sizeof(double) * (size_t)p->n);
+        memcpy(it->lN, s->start + p->n, sizeof(double) * (size_t)p->m);
+        memcpy(it->lT, s->start + p->n + p->m, sizeof(double) * (size_t)p->nt);
+    }
+    if (s->parent)
+        s->base = cx_session_root_(s)->run;
+    else
+        memset(&s->run, 0, sizeof s->run);
     memset(&it->counters, 0, sizeof it->counters);
     s->best_kkt = INFINITY;
     s->best_iter = 0;
@@ -202,7 +231,7 @@ int cx_session_set_method(cx_session *s, const cx_method *m, const cx_param_valu
     int st = m->init(s->state, s, &s->params, d);
     s->it.init_time = cx_clock_now() - t0;
     s->it.time = s->it.init_time;
-    s->it.counters = s->run;
+    cx_session_sync_counters_(s);
     if (st != CX_OK) {
         /* init frees what it built on failure; drop the shell */
         cx_free(s->state);
@@ -211,6 +240,12 @@ int cx_session_set_method(cx_session *s, const cx_method *m, const cx_param_valu
         return st;
     }
     return CX_OK;
+}
+
+void cx_session_clear_method(cx_session *s)
+{
+    session_drop_method(s);
+    session_clear_run(s);
 }
 
 int cx_session_reset(cx_session *s, cx_diag *d)

@@ -27,6 +27,36 @@ struct cx_session {
     double best_kkt;             /* stall detection: best kkt so far ... */
     int best_iter;               /* ... and when it last halved */
     char reason_msg[CX_DIAG_LEN];/* why a run broke down */
+    /* nested sessions (nested.c) */
+    cx_session *parent;          /* the session whose cache and counters this one shares, or NULL */
+    cx_counters base;            /* the root's run counters when this run started (nested) */
+    double *start;               /* n + m + nt: warm start for the next run (u, lN, lT), or NULL */
 };
+
+/* cx_session_create with a parent (nested.c): on failure, a nested
+ * session's view is freed as a view. */
+int cx_session_create_(cx_session **sp, cx_problem **pp, cx_session *parent, cx_diag *d);
+
+/* Frees a nested session's problem view (nested.c). */
+void cx_session_view_free_(cx_problem *p);
+
+/* The root of a chain of nested sessions (s itself if not nested). */
+static inline cx_session *cx_session_root_(cx_session *s)
+{
+    while (s->parent)
+        s = s->parent;
+    return s;
+}
+
+/* The iterate's counters: the work of this run, counted in the root's run
+ * counters since the run started. */
+static inline void cx_session_sync_counters_(cx_session *s)
+{
+    const cx_counters *c = &cx_session_root_(s)->run;
+    s->it.counters.factorizations = c->factorizations - s->base.factorizations;
+    s->it.counters.solves = c->solves - s->base.solves;
+    s->it.counters.matvecs = c->matvecs - s->base.matvecs;
+    s->it.counters.dual_products = c->dual_products - s->base.dual_products;
+}
 
 #endif

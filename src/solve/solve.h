@@ -165,6 +165,11 @@ const cx_param_values *cx_session_params(const cx_session *s);
 const cx_options *cx_session_options(const cx_session *s);
 void cx_session_set_options(cx_session *s, const cx_options *opt);
 
+/* Unselect the current method (its state is destroyed, the iterate
+ * cleared; the operator cache stays), e.g. before changing to a friction
+ * law it does not support. */
+void cx_session_clear_method(cx_session *s);
+
 /* Restart the current method from its initial guess (re-init). */
 int cx_session_reset(cx_session *s, cx_diag *d);
 
@@ -182,6 +187,50 @@ int cx_solver_solve(cx_session *s, cx_observer obs, void *ctx, cx_diag *d);
 const cx_iterate *cx_session_iterate(const cx_session *s);
 /* Why the run broke down (the method's message), or "" . */
 const char *cx_session_reason_msg(const cx_session *s);
+
+/* ---- nested sessions (nested.c): a method that runs another method ----
+ *
+ * A wrapper such as cf-fp (002 CF-FP: Coulomb by successive Tresca
+ * problems) runs any registered Tresca method as its inner method through
+ * a nested session: cx_session_nested_create gives a child session whose
+ * problem is a view of the parent's (the same K, f, N, T, g, mesh; its own
+ * friction law, Tresca, and per-point slip bounds), which shares the
+ * parent's operator cache (a factorisation built by the first inner run is
+ * reused by every later one and by the parent) and counts all its work in
+ * the parent's run counters (so the parent's 'factorizations', 'solves'
+ * include the inner runs'). The child is driven by the ordinary calls:
+ *
+ *     cx_session_nested_create(&child, s, d);                   (in init)
+ *     cx_session_set_method(child, inner, &inner_params, &opt, d);
+ *     each outer step:
+ *         cx_session_set_start(child, u, lN, lT, d);           (warm start)
+ *         cx_session_set_slip_bounds(child, s_bounds, d);      (re-inits the run)
+ *         cx_solver_solve(child, NULL, NULL, d);
+ *         read cx_session_iterate(child): u, lN, lT, iter, reason
+ *     cx_session_destroy(&child);                               (in destroy)
+ *
+ * The child's iterate counters are the work of its own run. The child must
+ * be destroyed before the parent. */
+int cx_session_nested_create(cx_session **child, cx_session *parent, cx_diag *d);
+/* Tresca friction with per-point slip bounds sb (m nodal forces >= 0; e.g.
+ * s_i = F_i lN_i of a fixed-point step, or a bound times Hertz's pressure
+ * times the lumped length). Keeps the operator cache; re-inits the current
+ * method (a new run). If that method refuses Tresca, its error is returned
+ * and the session keeps the new bounds with no method selected (unlike
+ * cx_session_set_friction, which restores the old law). CX_EINVAL for a
+ * negative or non-finite bound (nothing changed). Works on any session. */
+int cx_session_set_slip_bounds(cx_session *s, const double *sb, cx_diag *d);
+/* The starting iterate of every later run (set_method, reset, friction or
+ * slip-bound changes): u (n), lN (m), lT (nt; may be NULL: zero). NULL u
+ * clears it (runs start from zero). A method's init may read the iterate
+ * as its start (ubr-c, ubr-tf do; others start from their own guess). */
+int cx_session_set_start(cx_session *s, const double *u, const double *lN, const double *lT,
+                         cx_diag *d);
+
+/* The penalty r that ubr-c and ubr-tf choose for r = auto (ubr.c), for a
+ * body of Young modulus E: c E / sqrt(h L) over the contact points the
+ * obstacle can reach. In the units of the problem (force / length^d). */
+double cx_ubr_auto_r(const cx_problem *p, double E);
 
 /* The baseline of DESIGN.md §5: analyse + factorise + solve K (with springs
  * diag(K) on the contact dofs when K alone is singular, as every contact

@@ -114,12 +114,13 @@ int cx_solver_step(cx_session *s, cx_diag *d)
         /* a method that cannot go on is an outcome, with its reason */
         it->reason = CX_DIVERGED_BREAKDOWN;
         snprintf(s->reason_msg, sizeof s->reason_msg, "%s", cx_diag_msg(&local, st));
-        it->counters = s->run;
+        cx_session_sync_counters_(s);
         return CX_OK;
     }
 
-    it->kkt = cx_kkt_error(s->p, it->u, it->lN, it->lT, s->work, &s->run, &it->kkt_parts);
-    it->counters = s->run;
+    it->kkt = cx_kkt_error(s->p, it->u, it->lN, it->lT, s->work, cx_session_counters(s),
+                           &it->kkt_parts);
+    cx_session_sync_counters_(s);
     if (!isfinite(it->kkt)) {
         it->reason = CX_DIVERGED_NAN;
         snprintf(s->reason_msg, sizeof s->reason_msg, "NaN or Inf in the iterate at iteration %d", it->iter);

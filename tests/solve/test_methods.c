@@ -35,7 +35,35 @@ static const method_case cases[] = {
     {"twoblocks", 4, CX_FRICTION_TRESCA, 5e7, 1e-12, 2, 15, 1e-8},
     {"twoblocks", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
     {"twoblocks", 3, CX_FRICTION_COULOMB, 0.3, 1e-12, 1, 12, 1e-8},
+    {"halfball", 4, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
 };
+
+/* Methods that cannot meet a case's tolerance as it stands: linearly
+ * convergent ones (ubr-*: run past their own criterion, at the r that
+ * converges fastest asymptotically) and ssn-c, whose answer is that of the
+ * regularised problem (penetration O(lam / r): kkt ~ 1e-7 at r = 1e9 E). */
+typedef struct {
+    const char *id;
+    const char *set;   /* parameters, "key=value" */
+    double tol;        /* kkt tolerance instead of the case's (if larger) */
+    int own_stop;      /* stop on the method's own criterion */
+    int max_iter;
+    double agree;      /* energy-norm agreement instead of the case's (if larger) */
+} method_setting;
+
+static const method_setting settings[] = {
+    {"ubr-c", "r=1", 1e-10, 0, 20000, 1e-8},
+    {"ubr-tf", "r=1", 1e-10, 0, 20000, 1e-8},
+    {"ssn-c", "r=1e9", 2e-6, 1, 50, 1e-6},
+};
+
+static const method_setting *setting_of(const cx_method *m)
+{
+    for (size_t k = 0; k < sizeof settings / sizeof settings[0]; k++)
+        if (strcmp(settings[k].id, m->id) == 0)
+            return &settings[k];
+    return NULL;
+}
 
 /* ||u - v||_K / ||v||_K */
 static double energy_diff(const cx_problem *p, const double *u, const double *v)
@@ -77,8 +105,22 @@ static void run_case(const method_case *c)
 
     for (int k = 0; k < cx_method_count(); k++) {
         const cx_method *m = cx_method_at(k);
-        o.tol = c->tol;
-        int st = cx_session_set_method(s, m, NULL, &o, &d);
+        const method_setting *ms = setting_of(m);
+        cx_param_values pv;
+        cx_param_default(&pv, m->params);
+        cx_options om = o;
+        om.tol = c->tol;
+        double agree = c->agree;
+        if (ms) {
+            CX_CHECK_OK(cx_param_set_pair(&pv, ms->set, m->id, &d));
+            om.tol = fmax(om.tol, ms->tol);
+            om.own_stop = ms->own_stop;
+            om.max_iter = ms->max_iter;
+            om.stall_window = 0;
+            agree = fmax(agree, ms->agree);
+        }
+        double cache_before = (double)cx_session_cache_counters(s)->factorizations;
+        int st = cx_session_set_method(s, m, &pv, &om, &d);
         if (cx_method_check(m, p, NULL) != CX_OK || st == CX_EUNSUPPORTED) {
             if (st == CX_EUNSUPPORTED)
                 fprintf(stderr, "%s level %d %s: %s refused: %s\n", c->scene, c->level,
@@ -94,8 +136,8 @@ static void run_case(const method_case *c)
         fprintf(stderr, "%s level %d %s: %s %d iterations, kkt %.2e, %ld solves\n", c->scene, c->level,
                 cx_friction_name(c->law), m->id, it->iter, it->kkt, it->counters.solves);
         CX_CHECK(it->reason > 0);
-        CX_CHECK_LE(it->kkt, c->tol);
-        CX_CHECK_LE(energy_diff(p, it->u, uref), c->agree);
+        CX_CHECK_LE(it->kkt, om.tol);
+        CX_CHECK_LE(energy_diff(p, it->u, uref), agree);
         if (strcmp(m->id, "ssn-tresca") == 0) {
             CX_CHECK(it->iter >= c->min_it && it->iter <= c->max_it);
             /* one factorisation for the session (cached, so 0 here), one
@@ -104,9 +146,9 @@ static void run_case(const method_case *c)
             CX_CHECK(it->counters.solves <= it->iter + 1);  /* + the condensation of f */
         }
         CX_CHECK(it->nfree + it->ncontact + it->nstick + it->nslip == p->m);
-        /* one factorisation per cached operator (the Schur complement, the
-         * dual operator's Cholesky of K, ...), never one per run */
-        CX_CHECK(cx_session_cache_counters(s)->factorizations <= cx_session_cache_size(s));
+        /* the reference's Schur complement, plus at most one cached
+         * operator per method (ubr-*: K + rM, keyed by r) */
+        CX_CHECK(cx_session_cache_counters(s)->factorizations - cache_before <= 1);
     }
     free(uref);
     cx_session_destroy(&s);
