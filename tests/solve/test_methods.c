@@ -27,6 +27,9 @@ static const method_case cases[] = {
     {"slider", 2, CX_FRICTION_TRESCA, 1.5, 1e-12, 2, 15, 1e-8},
     {"slider", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
     {"block3d", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
+    {"prism", 1, CX_FRICTION_TRESCA, 1.5e8, 1e-12, 2, 15, 1e-8},
+    {"prism", 2, CX_FRICTION_TRESCA, 1.5e8, 1e-12, 2, 15, 1e-8},
+    {"prism", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
 };
 
 /* ||u - v||_K / ||v||_K */
