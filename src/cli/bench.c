@@ -23,6 +23,7 @@ typedef struct bench_paper {
 /* One line per paper: the id, what it reproduces, its entry point
  * (cli/paper_NNN.c). */
 static const bench_paper bench_papers[] = {
+    {"001", "Table 1: semismooth* Newton, 3D Tresca on the prism, reduction to the contact face", cli_bench_paper_001},
     {NULL, NULL, NULL}
 };
 
