@@ -124,6 +124,12 @@ int cx_schur_condense(cx_schur *S, const double *f, double *fc);
 int cx_schur_expand(cx_schur *S, const double *f, const double *uc, double *u);
 /* Factor non-zeros (for reports). */
 double cx_schur_factor_nnz(const cx_schur *S);
+/* The same S the way paper 001 computes it (schur_solves.c): a Cholesky
+ * factorisation of A_ii alone and one solve per dof of c. S: nc x nc,
+ * column-major, in the order of c. For the bench's comparison; counts one
+ * factorisation and nc solves. CX_ENUMERIC if A_ii is not positive
+ * definite. */
+int cx_schur_by_solves(const cx_csc *A, const int *c, int nc, double *S, cx_counters *cnt, cx_diag *d);
 
 /* ---- dense kernels (column-major, LAPACK) --------------------------- */
 

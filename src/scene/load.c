@@ -27,7 +27,7 @@
 #include <string.h>
 
 #define LD_MAXLINE 4096          /* ini_max_line: longest line + 3 */
-#define LD_MAXKEYS 10            /* keys of the largest section ([contact]) */
+#define LD_MAXKEYS 12            /* keys of the largest section */
 #define LD_VALLEN 1024           /* longest value + 1 */
 #define LD_COUNT_MAX 1000000     /* largest level or cell count */
 #define LD_LEVEL_MAX_DEFAULT 4096
@@ -41,6 +41,7 @@ _Static_assert(CX_OBST_PLANE == 0 && CX_OBST_DISC == 1 && CX_OBST_CYLINDER == 2 
                CX_OBST_SPHERE == 3, "ld_obstacles follows cx_obstacle_kind");
 _Static_assert(CX_FRICTION_NONE == 0 && CX_FRICTION_TRESCA == 1 && CX_FRICTION_COULOMB == 2,
                "ld_frictions follows cx_friction");
+_Static_assert(CX_LEVEL_LINEAR == 0 && CX_LEVEL_SQRT2 == 1, "ld_level_rules follows cx_level_rule");
 _Static_assert(CX_GEN_RECTANGLE == 0 && CX_GEN_HERTZ == 1 && CX_GEN_BRICK == 2 &&
                CX_GEN_TWOBLOCKS == 3,
                "ld_generators follows cx_scene_generator");
@@ -56,6 +57,7 @@ static const char ld_elements[] = "tri3|tri6|quad4|hex8|tet4";
 static const char ld_models[] = "plane_strain|plane_stress|solid";
 static const char ld_obstacles[] = "plane|disc|cylinder|sphere";
 static const char ld_frictions[] = "none|tresca|coulomb";
+static const char ld_level_rules[] = "linear|sqrt2";
 static const char ld_fixes[] = "x|y|z|xy|xz|yz|xyz|all";
 static const unsigned ld_fix_comps[] = {1, 2, 4, 3, 5, 6, 7, 7};
 
@@ -421,6 +423,9 @@ static int ld_finish_mesh(ld_state *L)
         return ld_bad(L, "level", "expected a positive integer <= level_max (%d)", s->level_max);
     }
     CX_TRY(ld_finish_twoblocks(L, g));
+    int rule = CX_LEVEL_LINEAR;
+    CX_TRY(ld_choice(L, "level_rule", ld_level_rules, 0, 1, ld_level_rules, &rule));
+    s->level_rule = (cx_level_rule)rule;
     L->has_generator = 1;
     return CX_OK;
 }
@@ -584,7 +589,8 @@ static int ld_finish_methods(ld_state *L)
 static const ld_key ld_scene_keys[] = {{"id", 1}, {"title", 0}, {"dim", 1}, {NULL, 0}};
 static const ld_key ld_mesh_keys[] = {
     {"generator", 1}, {"element", 0}, {"lo", 0}, {"hi", 0}, {"radius", 0},
-    {"cells", 0}, {"level", 0}, {"level_max", 0}, {"interface", 0}, {"cells_lower", 0}, {NULL, 0}};
+    {"cells", 0}, {"level", 0}, {"level_max", 0}, {"interface", 0}, {"cells_lower", 0},
+    {"level_rule", 0}, {NULL, 0}};
 static const ld_key ld_material_keys[] = {
     {"model", 0}, {"E", 1}, {"nu", 1}, {"body_force", 0}, {NULL, 0}};
 static const ld_key ld_traction_keys[] = {

@@ -37,6 +37,12 @@ typedef enum cx_scene_generator {
     CX_GEN_TWOBLOCKS     /* two stacked rectangles, two bodies (paper 000) */
 } cx_scene_generator;
 
+/* How cells grow with the mesh level (cx_scene_cells). */
+typedef enum cx_level_rule {
+    CX_LEVEL_LINEAR,   /* level L: L * cells */
+    CX_LEVEL_SQRT2     /* level L: ceil(cells * 2^(L/2)), paper 001's rule */
+} cx_level_rule;
+
 typedef struct cx_scene {
     char path[512];
     char id[CX_SCENE_NAMELEN];
@@ -53,6 +59,7 @@ typedef struct cx_scene {
     int level_max;                /* largest level allowed */
     double interface;             /* twoblocks: y of the interface (lo < it < hi) */
     int cells_lower[3];           /* twoblocks: cells of the lower body per level step */
+    cx_level_rule level_rule;     /* how cells grow with the level */
 
     /* [material] */
     cx_material mat;
@@ -94,7 +101,8 @@ int cx_scene_resolve(const char *id_or_path, char *path, size_t len, cx_diag *d)
  * CX_SCENE_NAMELEN strings (cx_free). */
 int cx_scene_list(char (**ids)[CX_SCENE_NAMELEN], int *count, cx_diag *d);
 
-/* Mesh cell counts of a level (level 1 = cells, level L = L * cells). */
+/* Mesh cell counts of a level: level_rule linear: L * cells; sqrt2:
+ * ceil(cells * 2^(L/2)) (exact for even L). */
 void cx_scene_cells(const cx_scene *s, int level, int cells[3]);
 /* twoblocks: the lower body's cell counts of a level (level x cells_lower). */
 void cx_scene_cells_lower(const cx_scene *s, int level, int cells[3]);

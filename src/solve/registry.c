@@ -14,6 +14,7 @@ extern const cx_method cx_method_ubr_c;
 extern const cx_method cx_method_ubr_tf;
 extern const cx_method cx_method_cf_fp;
 extern const cx_method cx_method_ssn_c;
+extern const cx_method cx_method_ssstar;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
@@ -25,6 +26,7 @@ static const cx_method *const cx_methods[] = {
     &cx_method_ubr_tf,
     &cx_method_cf_fp,
     &cx_method_ssn_c,
+    &cx_method_ssstar,
     NULL
 };
 

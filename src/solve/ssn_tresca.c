@@ -1,13 +1,22 @@
 /* ssn-tresca — semismooth Newton / primal-dual active set on the saddle-point
  * system, paper 000 §4.2 (Algorithm ActiveSetTresca).
  *
- * Solves frictionless contact and Tresca friction (2D; 3D frictionless).
+ * Solves frictionless contact and Tresca friction, 2D and 3D.
  * Each iteration predicts the active sets from the natural maps (000 (15),
  * (18), (19)): contact where lN + rho (N u - g) > 0; stick where
  * |lT + rho T u| <= s, slip+/slip- beyond; and solves the mixed problem
  * with u_N = g on the contact set, u_T = 0 on the stick set, lT = +-s on the
  * slip set and lN = 0 elsewhere. Its own criterion: the active sets repeat,
  * which for exact solves means the iterate is the solution.
+ *
+ * 3D Tresca (disc slip bound, the Euclidean norm): the generalised Newton
+ * step for lT = proj_disc(s)(z), z = lT + rho T u. On a slip point
+ * (|z| > s) the slip direction q = z/|z| is fixed for the step and the
+ * projection linearised at z: with P = I - q q' this gives
+ * lT = s q + beta P T u, beta = s rho / (|z| - s), a symmetric positive
+ * semi-definite tangential stiffness added to the condensed K. The sets
+ * repeating is then not enough (q moves): the run stops on the kkt error,
+ * or on the sets repeating with no point slipping.
  *
  * rho matters only for the tangential sets (after an exact solve the normal
  * sets depend on signs alone): a large rho flips a slipping point straight
@@ -51,6 +60,9 @@ typedef struct {
     double rho;           /* natural-map parameter (stiffness units) */
     double kappa;         /* row scaling: the stiffness scale */
     int tangential;       /* 1 if Tresca rows take part */
+    int dt;               /* tangential rows per point (dim - 1) */
+    double *q;            /* nt: 3D slip direction per point (its two tangential rows) */
+    double *beta;         /* m: 3D linearised tangential stiffness of a slip point */
 } ssn_state;
 
 static const cx_param ssn_params[] = {
@@ -79,6 +91,8 @@ static void ssn_destroy(void *state)
     cx_free(st->x);
     cx_free(st->ipiv);
     cx_free(st->work);
+    cx_free(st->q);
+    cx_free(st->beta);
     memset(st, 0, sizeof *st);
 }
 
@@ -133,9 +147,7 @@ static int ssn_init(void *state, cx_session *s, const cx_param_values *params, c
 {
     ssn_state *st = state;
     const cx_problem *p = cx_session_problem(s);
-    if (p->dim == 3 && p->friction == CX_FRICTION_TRESCA)
-        return cx_diag_set(d, CX_EUNSUPPORTED,
-                           "method 'ssn-tresca' does not support Tresca friction in 3D yet");
+    st->dt = p->dim - 1;
     st->tangential = p->friction == CX_FRICTION_TRESCA;
     st->nc = p->nc;
     st->nrow = p->m + (st->tangential ? p->nt : 0);
@@ -158,8 +170,10 @@ static int ssn_init(void *state, cx_session *s, const cx_param_values *params, c
     st->x = CX_NEW(double, ns);
     st->ipiv = CX_NEW(int, ns);
     st->work = CX_NEW(double, st->lwork);
+    st->q = CX_NEW(double, p->nt);
+    st->beta = CX_NEW(double, p->m);
     int status = CX_ENOMEM;
-    if (!st->fc || !st->uc || !st->uprev || !st->Bu || !st->set || !st->prev || !st->act ||
+    if (!st->q || !st->beta || !st->fc || !st->uc || !st->uprev || !st->Bu || !st->set || !st->prev || !st->act ||
         !st->M || !st->x || !st->ipiv || !st->work || (status = ssn_build_rows(st, p)) != CX_OK) {
         ssn_destroy(st);
         return cx_diag_set(d, status, "out of memory");
@@ -191,10 +205,68 @@ static void ssn_predict(ssn_state *st, const cx_problem *p, const cx_iterate *it
         st->Bu[r] = ssn_row_dot(st, r, st->uc);
     for (int i = 0; i < p->m; i++)
         st->set[i] = it->lN[i] + st->rho * (st->Bu[i] - p->g[i]) > 0;
-    for (int i = 0; st->tangential && i < p->m; i++) {
+    for (int i = 0; st->tangential && st->dt == 1 && i < p->m; i++) {
         double z = it->lT[i] + st->rho * st->Bu[p->m + i];
         st->set[p->m + i] = z > p->s[i] ? 1 : (z < -p->s[i] ? -1 : 0);
     }
+    for (int i = 0; st->tangential && st->dt == 2 && i < p->m; i++) {
+        /* the disc: slip along q = z/|z| beyond it, linearised (header) */
+        int r = p->m + 2 * i;
+        double z0 = it->lT[2 * i] + st->rho * st->Bu[r];
+        double z1 = it->lT[2 * i + 1] + st->rho * st->Bu[r + 1];
+        double nz = sqrt(z0 * z0 + z1 * z1);
+        int slip = nz > p->s[i];
+        st->set[r] = st->set[r + 1] = (signed char)slip;
+        st->q[2 * i] = slip ? z0 / nz : 0;
+        st->q[2 * i + 1] = slip ? z1 / nz : 0;
+        st->beta[i] = slip ? p->s[i] * st->rho / (nz - p->s[i]) : 0;
+    }
+}
+
+/* 3D slip points: the tangential stiffness beta T_i' P T_i into M (order
+ * ns) and -s T_i' q into the right-hand side x. */
+static void ssn_add_slip3d(ssn_state *st, const cx_problem *p, int ns)
+{
+    for (int i = 0; i < p->m; i++) {
+        int r = p->m + 2 * i;
+        if (st->set[r] == 0)
+            continue;
+        const double *q = st->q + 2 * i;
+        double P[2][2] = {{1 - q[0] * q[0], -q[0] * q[1]}, {-q[1] * q[0], 1 - q[1] * q[1]}};
+        for (int a = 0; a < 2; a++) {
+            for (int qa = st->rp[r + a]; qa < st->rp[r + a + 1]; qa++) {
+                st->x[st->rc[qa]] -= st->rv[qa] * p->s[i] * q[a];
+                for (int b = 0; b < 2; b++)
+                    for (int qb = st->rp[r + b]; qb < st->rp[r + b + 1]; qb++)
+                        st->M[(size_t)ns * st->rc[qb] + st->rc[qa]] +=
+                            st->beta[i] * P[a][b] * st->rv[qa] * st->rv[qb];
+            }
+        }
+    }
+}
+
+/* 3D slip points after the solve: lT = s q + beta P T u. */
+static void ssn_slip3d_multipliers(ssn_state *st, const cx_problem *p, cx_iterate *it)
+{
+    for (int i = 0; i < p->m; i++) {
+        int r = p->m + 2 * i;
+        if (st->set[r] == 0)
+            continue;
+        const double *q = st->q + 2 * i;
+        double t0 = ssn_row_dot(st, r, st->uc), t1 = ssn_row_dot(st, r + 1, st->uc);
+        double qt = q[0] * t0 + q[1] * t1;
+        it->lT[2 * i] = p->s[i] * q[0] + st->beta[i] * (t0 - qt * q[0]);
+        it->lT[2 * i + 1] = p->s[i] * q[1] + st->beta[i] * (t1 - qt * q[1]);
+    }
+}
+
+/* Number of 3D slip points in the current sets. */
+static int ssn_nslip3d(const ssn_state *st, const cx_problem *p)
+{
+    int n = 0;
+    for (int i = 0; st->tangential && st->dt == 2 && i < p->m; i++)
+        n += st->set[p->m + 2 * i] != 0;
+    return n;
 }
 
 static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
@@ -205,7 +277,7 @@ static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
 
     if (it->iter > 0)
         ssn_predict(st, p, it);
-    if (memcmp(st->set, st->prev, (size_t)st->nrow) == 0) {
+    if (memcmp(st->set, st->prev, (size_t)st->nrow) == 0 && ssn_nslip3d(st, p) == 0) {
         /* the sets repeat: the last iterate solves the problem */
         it->own = 0;
         it->own_done = 1;
@@ -237,7 +309,7 @@ static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
         st->x[nc + a] = r < m ? st->kappa * p->g[r] : 0.0;
     }
     memcpy(st->x, st->fc, sizeof(double) * (size_t)nc);
-    for (int i = 0; st->tangential && i < m; i++) {
+    for (int i = 0; st->tangential && st->dt == 1 && i < m; i++) {
         int r = m + i;
         if (st->set[r] == 0)
             continue;
@@ -245,6 +317,8 @@ static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
         for (int q = st->rp[r]; q < st->rp[r + 1]; q++)
             st->x[st->rc[q]] -= st->rv[q] * lt;
     }
+    if (st->tangential && st->dt == 2)
+        ssn_add_slip3d(st, p, ns);
     int status = cx_dense_sym_solve(ns, st->M, st->x, st->ipiv, st->work, st->lwork, NULL);
     if (status != CX_OK)
         return cx_diag_set(d, status,
@@ -254,8 +328,12 @@ static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     /* ---- the new iterate ---- */
     memcpy(st->uc, st->x, sizeof(double) * (size_t)nc);
     memset(it->lN, 0, sizeof(double) * (size_t)m);
-    for (int i = 0; st->tangential && i < m; i++)
+    for (int i = 0; st->tangential && st->dt == 1 && i < m; i++)
         it->lT[i] = st->set[m + i] * p->s[i];
+    if (st->tangential && st->dt == 2) {
+        memset(it->lT, 0, sizeof(double) * (size_t)p->nt);
+        ssn_slip3d_multipliers(st, p, it);
+    }
     for (int a = 0; a < na; a++) {
         int r = st->act[a];
         if (r < m)

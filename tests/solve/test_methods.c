@@ -36,6 +36,9 @@ static const method_case cases[] = {
     {"twoblocks", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
     {"twoblocks", 3, CX_FRICTION_COULOMB, 0.3, 1e-12, 1, 12, 1e-8},
     {"halfball", 4, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
+    {"prism", 1, CX_FRICTION_TRESCA, 1.5e8, 1e-12, 2, 15, 1e-8},
+    {"prism", 2, CX_FRICTION_TRESCA, 1.5e8, 1e-12, 2, 15, 1e-8},
+    {"prism", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8},
 };
 
 /* Methods that cannot meet a case's tolerance as it stands: linearly
