@@ -61,6 +61,9 @@ static inline size_t cx_csc_nnz(const cx_csc *A) { return A->p ? (size_t)A->p[A-
 void cx_csc_gemv(const cx_csc *A, double alpha, const double *x, double beta, double *y);
 /* y = alpha A' x + beta y */
 void cx_csc_gemv_t(const cx_csc *A, double alpha, const double *x, double beta, double *y);
+/* C = A B (C must be empty; sorted columns, no explicit zeros dropped).
+ * CX_EINVAL if the sizes do not fit, CX_ENOMEM (C left empty). */
+int cx_csc_multiply(cx_csc *C, const cx_csc *A, const cx_csc *B);
 /* A(i, j), 0 if not stored (binary search). */
 double cx_csc_get(const cx_csc *A, int i, int j);
 /* Largest |A(i,j) - A(j,i)| over the stored entries. */

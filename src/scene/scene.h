@@ -33,7 +33,8 @@ typedef struct cx_scene_support {
 typedef enum cx_scene_generator {
     CX_GEN_RECTANGLE,
     CX_GEN_HERTZ,
-    CX_GEN_BRICK
+    CX_GEN_BRICK,
+    CX_GEN_MASONRY     /* paper 003: unit square of bodies, level = courses */
 } cx_scene_generator;
 
 typedef struct cx_scene {
@@ -50,6 +51,8 @@ typedef struct cx_scene {
     int cells[3];                 /* cells per level step along x, y, z */
     int level;                    /* default level */
     int level_max;                /* largest level allowed */
+    cx_bond bond;                 /* masonry: stack, running or laminae */
+    double gap_h;                 /* masonry: settlement gap g as a fraction of H */
 
     /* [material] */
     cx_material mat;
