@@ -6,9 +6,11 @@
 #include <string.h>
 
 extern const cx_method cx_method_ssn_tresca;
+extern const cx_method cx_method_pdas;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
+    &cx_method_pdas,
     NULL
 };
 
