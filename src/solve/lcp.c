@@ -308,8 +308,27 @@ int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *
             if (L->S[i] && (block ? (act[i] ? lam[i] < -tol * ls : v[i] < -tol * vs) : i == last))
                 act[i] = !act[i];
     }
-    CX_TRY(cx_lcp_factor(s, eps, act, NULL, d));
-    CX_TRY(cx_lcp_solve(s, act, L->b, v, work, d));
+    int st = cx_lcp_factor(s, eps, act, NULL, d);
+    if (st == CX_ENUMERIC && eps == 0 && g->eps_fallback > 0) {
+        /* a motion the set leaves free (a brick between open head joints
+         * slides): the consistent singular system, nearly its minimum-norm
+         * solution */
+        eps = g->eps_fallback;
+        g->fallbacks++;
+        st = cx_lcp_factor(s, eps, act, NULL, d);
+    }
+    CX_TRY(st);
+    /* the correction from the current v (v = 0 on the active set): where
+     * the system is singular the free motion keeps its current value */
+    double *r = work + n;
+    for (int i = 0; i < n; i++)
+        if (act[i])
+            v[i] = 0;
+    cx_lcp_apply(L, v, r);
+    for (int i = 0; i < n; i++)
+        r[i] = L->b[i] - r[i] - eps * v[i];
+    CX_TRY(cx_lcp_solve(s, act, r, r, work, d));
+    cx_vec_axpy(n, 1.0, r, v);
     cx_lcp_apply(L, v, work);
     for (int i = 0; i < n; i++)
         lam[i] = act[i] ? work[i] + eps * v[i] - L->b[i] : 0;
@@ -345,6 +364,7 @@ int cx_lcp_run_init(cx_lcp_run *r, cx_session *s, const cx_param_values *params,
     r->eps = cx_param_get(params, "eps") * scale;
     r->c = cx_param_get(params, "tau") * scale;
     r->project = cx_param_get(params, "project") != 0;
+    r->guard.eps_fallback = CX_PDAS_EPS_FALLBACK * scale;
     r->v = CX_NEW(double, n);
     r->lam = CX_NEW(double, n);
     r->work = CX_NEW(double, 2 * (size_t)r->map->full.n + 2 * (size_t)n);

@@ -86,7 +86,10 @@ int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs,
  * Judice & Pires 1994), which makes the method finite on a P-matrix where
  * plain PDAS may cycle. Then one masked solve: v = 0 on the active set,
  * lam = (A v + eps v - b) there and 0 elsewhere. *same = 1 (nothing
- * solved) when no unknown is infeasible: (v, lam) solves the LCP.
+ * solved) when no unknown is infeasible: (v, lam) solves the LCP. With
+ * eps = 0 and a singular subsystem (the exact problem's u is not unique: a
+ * body free to slide between open joints), g->eps_fallback is used instead
+ * and counted in g->fallbacks.
  * act: n flags. work: 2 n doubles. */
 #define CX_PDAS_TRIES 5
 #ifndef CX_PDAS_ROUNDOFF
@@ -95,7 +98,11 @@ int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs,
 typedef struct cx_pdas_guard {
     int best, tries;     /* fewest infeasibilities so far; block tries left */
     long single;         /* single pivots taken */
+    double eps_fallback; /* eps used when the unregularised system is singular (0: fail) */
+    long fallbacks;      /* times it was used */
 } cx_pdas_guard;
+/* The projection's fallback when its set leaves a motion free (relative). */
+#define CX_PDAS_EPS_FALLBACK 1e-10
 
 int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *lam,
                      unsigned char *act, cx_pdas_guard *g, int *same, double *work, cx_diag *d);

@@ -7,10 +7,14 @@
 
 extern const cx_method cx_method_ssn_tresca;
 extern const cx_method cx_method_pdas;
+extern const cx_method cx_method_pdpc;
+extern const cx_method cx_method_lssnn;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
     &cx_method_pdas,
+    &cx_method_pdpc,
+    &cx_method_lssnn,
     NULL
 };
 
