@@ -111,6 +111,27 @@ int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *
 int cx_lcp_pdas_resolve(cx_lcp_solver *s, double eps, double *v, double *lam,
                         const unsigned char *act, double *work, cx_diag *d);
 
+/* ---- Graves' principal pivoting simplex (graves.c) ---- */
+
+/* The tableau y = M x + q of the LCP w = M z + q >= 0, z >= 0, w'z = 0
+ * (dense, n x n, column-major M), with the lexicographic rows B (003 §4,
+ * Graves 1967). */
+typedef struct cx_graves {
+    int n;
+    double *T;          /* n x (1 + n + n): q | M | B, row-major per row */
+    int *basic;         /* n: basic variable of row i: k (w_k) or n + k (z_k) */
+    int *col;           /* n: nonbasic variable of column j, same coding */
+    long pivots;        /* principal pivots done (a double pivot counts 2) */
+    int state;          /* 0 running, 1 solved, -1 no solution */
+} cx_graves;
+
+int cx_graves_init(cx_graves *g, int n, const double *M, const double *q);
+void cx_graves_clear(cx_graves *g);
+/* Up to max_pivots principal pivots; g->state says how it ended. */
+int cx_graves_run(cx_graves *g, long max_pivots, cx_diag *d);
+/* z of the current tableau (the solution once g->state == 1). */
+void cx_graves_z(const cx_graves *g, double *z);
+
 /* ---- the two-stage driver shared by the regularised methods ---- */
 
 typedef struct cx_lcp_run {

@@ -9,12 +9,16 @@ extern const cx_method cx_method_ssn_tresca;
 extern const cx_method cx_method_pdas;
 extern const cx_method cx_method_pdpc;
 extern const cx_method cx_method_lssnn;
+extern const cx_method cx_method_psor;
+extern const cx_method cx_method_graves;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
     &cx_method_pdas,
     &cx_method_pdpc,
     &cx_method_lssnn,
+    &cx_method_psor,
+    &cx_method_graves,
     NULL
 };
 
