@@ -7,7 +7,8 @@
  * so its columns are its rows (no transpose). omega = 2 / (1 + sin(pi / n))
  * as in the paper, u0 = 0. One step is 'sweeps' sweeps; the own criterion
  * is the paper's: the largest change in a sweep below tol times the
- * largest |v|, tol = n eps_machine by default. Slow by nature (Table 3):
+ * largest |v|, tol = n eps_machine by default; after max_sweeps the
+ * projection starts anyway (it needs only the right active set). Slow by nature (Table 3):
  * the floating bodies make A + eps I badly conditioned. */
 #include "solve/lcp.h"
 
@@ -19,6 +20,7 @@ typedef struct {
     cx_lcp_run run;
     double omega, tol;
     int sweeps;
+    long max_sweeps, done;
     double *diag;
 } psor_state;
 
@@ -32,8 +34,10 @@ static const cx_param psor_params[] = {
     {"tau", CX_PARAM_REAL, 1e-3, 1e-12, 1e12, NULL,
      "PDAS / projection parameter, relative to the largest diagonal entry of A", 0},
     {"omega", CX_PARAM_REAL, 0, 0, 2, NULL, "relaxation in (0, 2); 0: 2 / (1 + sin(pi / n))", 0},
-    {"sweeps", CX_PARAM_INT, 200, 1, 1e6, NULL, "sweeps per step", 0},
+    {"sweeps", CX_PARAM_INT, 2000, 1, 1e6, NULL, "sweeps per step", 0},
     {"tol", CX_PARAM_REAL, 0, 0, 1, NULL, "largest change per sweep, relative; 0: n eps_machine", 0},
+    {"max_sweeps", CX_PARAM_INT, 80000, 1, 1e9, NULL,
+     "sweeps after which the projection starts anyway (it is exact once the set is right)", 0},
     {NULL, 0, 0, 0, 0, NULL, NULL, 0}
 };
 
@@ -57,6 +61,7 @@ static int psor_init(void *state, cx_session *s, const cx_param_values *params, 
     if (!(st->tol > 0))
         st->tol = n * DBL_EPSILON;
     st->sweeps = (int)cx_param_get(params, "sweeps");
+    st->max_sweeps = (long)cx_param_get(params, "max_sweeps");
     st->diag = CX_NEW(double, n);
     if (!st->diag) {
         psor_destroy(st);
@@ -90,9 +95,10 @@ static int psor_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
         }
     }
     it->inner = st->sweeps;
+    st->done += st->sweeps;
     double vmax = cx_vec_norminf(L->n, v);
     it->own = vmax > 0 ? change / vmax : change;
-    if (it->own <= st->tol) {
+    if (it->own <= st->tol || st->done >= st->max_sweeps) {
         cx_lcp_run_stage_done(r, it);
         if (r->stage == 1) {
             CX_TRY(cx_lcp_run_project(r, s, it, d));
