@@ -417,11 +417,12 @@ int cx_lcp_run_project(cx_lcp_run *r, cx_session *s, cx_iterate *it, cx_diag *d)
     if (same) {
         r->stage = 2;
         it->own_done = 1;
-        it->own = 0;
+        it->own = r->proj_iters;
         return CX_OK;
     }
     r->proj_iters++;
     it->inner = 1;
+    it->own = r->proj_iters;
     return cx_lcp_run_publish(r, s, it);
 }
 

@@ -164,7 +164,9 @@ void cx_lcp_run_clear(cx_lcp_run *r);
 /* The method's own stage has converged on (r->v): start the projection, or
  * end the run when it is off. */
 void cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it);
-/* One projection iteration; ends the run when the set repeats. */
+/* One projection iteration; ends the run when the set repeats. During the
+ * projection (and at the end of the run) the method's own criterion is the
+ * number of projection iterations (solves) done. */
 int cx_lcp_run_project(cx_lcp_run *r, cx_session *s, cx_iterate *it, cx_diag *d);
 /* it->u, it->lN from r->v. */
 int cx_lcp_run_publish(cx_lcp_run *r, cx_session *s, cx_iterate *it);
