@@ -23,6 +23,7 @@ typedef struct bench_paper {
 /* One line per paper: the id, what it reproduces, its entry point
  * (cli/paper_NNN.c). */
 static const bench_paper bench_papers[] = {
+    {"003", "masonry walls: Tables 1-7 (sizes; PSOR, LSSNN, PDAS, PDPC, Graves, Schur variants)", cli_bench_paper_003},
     {NULL, NULL, NULL}
 };
 

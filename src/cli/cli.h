@@ -12,6 +12,7 @@ enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_NOT_CONVERGED = 3 };
 int cli_list(int argc, char **argv);
 int cli_solve(int argc, char **argv);
 int cli_bench(int argc, char **argv);   /* cli/bench.c */
+int cli_bench_paper_003(int argc, char **argv);   /* cli/paper_003.c */
 
 /* Print "signorini CMD: message" on stderr and return CLI_EXIT_ERROR. */
 int cli_fail(const char *cmd, const char *msg);
