@@ -41,7 +41,7 @@ static void expected(int g, int N, long *nb, long *n, long *nc, long *pairs)
 static void test_sizes(void)
 {
     for (int g = 0; g < 3; g++)
-        for (int N = 1; N <= 12; N++) {
+        for (int N = 1; N <= 8; N++) {
             cx_scene sc;
             cx_session *s = fixture_session(scenes[g], N, &sc);
             const cx_problem *p = cx_session_problem(s);
