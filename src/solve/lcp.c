@@ -241,13 +241,19 @@ int cx_lcp_factor(cx_lcp_solver *s, double eps, const unsigned char *zero, const
             return cx_diag_set(d, CX_ENUMERIC, "the (masked) LCP matrix of order %d is singular", n);
         return CX_OK;
     }
-    for (int j = 0; j < n; j++)
+    cx_lcp_factor_values(s, eps, zero, dadd);
+    return cx_fact_factorize(s->F, &s->M, d);
+}
+
+void cx_lcp_factor_values(cx_lcp_solver *s, double eps, const unsigned char *zero, const double *dadd)
+{
+    const cx_lcp *L = s->L;
+    for (int j = 0; j < L->n; j++)
         for (int q = L->A.p[j]; q < L->A.p[j + 1]; q++) {
             int i = L->A.i[q];
             int z = zero && (zero[i] || zero[j]);
             s->M.x[q] = z ? (i == j) : L->A.x[q] + (i == j ? eps + (dadd ? dadd[j] : 0) : 0);
         }
-    return cx_fact_factorize(s->F, &s->M, d);
 }
 
 int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs, double *x,

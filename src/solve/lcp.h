@@ -71,6 +71,8 @@ void cx_lcp_solver_clear(cx_lcp_solver *s);
  * added to the diagonal (NULL none). CX_ENUMERIC if singular. */
 int cx_lcp_factor(cx_lcp_solver *s, double eps, const unsigned char *zero, const double *dadd,
                   cx_diag *d);
+/* Only the values of the sparse masked matrix s->M (no factorisation). */
+void cx_lcp_factor_values(cx_lcp_solver *s, double eps, const unsigned char *zero, const double *dadd);
 /* x = M^-1 rhs with x = 0 where zero (rhs there ignored); x, rhs may alias
  * only when equal. work: n doubles. */
 int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs, double *x,

@@ -11,8 +11,10 @@
  * passive value is not positive it steps back to the boundary and drops
  * the unknowns that reach zero (the inner loop). Every solve is one numeric
  * Cholesky of A + eps I with the unknowns outside P replaced by the
- * identity (same pattern; symbolic analysis once). CHOLMOD's row
- * add/delete could update the factor instead; not done (see the note).
+ * identity. By default (update = 1) that factor is not recomputed: each
+ * pivot adds or deletes one row and column of a simplicial LDL' factor
+ * (CHOLMOD's rowadd/rowdel, linalg/ldlmod.c); update = 0 refactorises
+ * (same pattern, symbolic analysis once).
  * schur = 1: the same on the dense reduced LCP. Then the projection. */
 #include "solve/lcp.h"
 
@@ -22,6 +24,8 @@
 typedef struct {
     cx_lcp_run run;
     cx_lcp_solver reg;
+    cx_ldlmod *ldl;       /* update = 1: the factor changed row by row */
+    int update;
     unsigned char *zero;  /* n: 1 outside P (held at zero) */
     double *z, *w;        /* n: trial solution, work */
     int started;
@@ -31,6 +35,8 @@ static const cx_param lssnn_params[] = {
     CX_LCP_PARAMS_COMMON,
     {"schur", CX_PARAM_BOOL, 0, 0, 1, NULL,
      "1: solve the reduced Schur-complement LCP on the contact unknowns (dense, 003 Table 7)", 0},
+    {"update", CX_PARAM_BOOL, 1, 0, 1, NULL,
+     "1: add/delete one row of the LDL' factor per pivot (CHOLMOD Modify); 0: refactorise", 0},
     {NULL, 0, 0, 0, 0, NULL, NULL, 0}
 };
 
@@ -38,6 +44,7 @@ static void lssnn_destroy(void *state)
 {
     lssnn_state *st = state;
     cx_lcp_solver_clear(&st->reg);
+    cx_ldlmod_destroy(&st->ldl);
     cx_free(st->zero), cx_free(st->z), cx_free(st->w);
     cx_lcp_run_clear(&st->run);
 }
@@ -56,12 +63,45 @@ static int lssnn_init(void *state, cx_session *s, const cx_param_values *params,
         return status == CX_ENOMEM ? cx_diag_set(d, CX_ENOMEM, "out of memory") : status;
     }
     memcpy(st->zero, st->run.L->S, (size_t)n);
+    st->update = cx_param_get(params, "update") != 0 && !st->run.L->dense;
+    if (st->update) {
+        /* the first matrix: every constrained unknown held at zero */
+        cx_lcp_factor_values(&st->reg, st->run.eps, st->zero, NULL);
+        if ((status = cx_ldlmod_create(&st->ldl, &st->reg.M, cx_session_counters(s), d))) {
+            lssnn_destroy(st);
+            return status;
+        }
+    }
     return CX_OK;
+}
+
+/* P gains (enter = 1) or loses unknown i: one row of the factor */
+static int lssnn_change(lssnn_state *st, int i, int enter, cx_diag *d)
+{
+    st->zero[i] = !enter;
+    if (!st->update)
+        return CX_OK;
+    if (!enter)
+        return cx_ldlmod_delete(st->ldl, i, d);
+    unsigned char *keep = (unsigned char *)st->w;   /* n bytes of the 2 n doubles */
+    for (int k = 0; k < st->run.L->n; k++)
+        keep[k] = !st->zero[k];
+    return cx_ldlmod_add(st->ldl, i, &st->run.L->A, keep, st->run.eps, d);
 }
 
 /* z = solution on P (zero elsewhere) */
 static int lssnn_solve_p(lssnn_state *st, cx_diag *d)
 {
+    if (st->update) {
+        const cx_lcp *L = st->run.L;
+        for (int i = 0; i < L->n; i++)
+            st->w[i] = st->zero[i] ? 0 : L->b[i];
+        CX_TRY(cx_ldlmod_solve(st->ldl, st->w, st->z, d));
+        for (int i = 0; i < L->n; i++)
+            if (st->zero[i])
+                st->z[i] = 0;
+        return CX_OK;
+    }
     CX_TRY(cx_lcp_factor(&st->reg, st->run.eps, st->zero, NULL, d));
     return cx_lcp_solve(&st->reg, st->zero, st->run.L->b, st->z, st->w, d);
 }
@@ -109,7 +149,7 @@ static int lssnn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
             return CX_OK;
         return cx_lcp_run_project(r, s, it, d);
     }
-    st->zero[t] = 0;
+    CX_TRY(lssnn_change(st, t, 1, d));
     long inner = 0;
     for (;;) {
         CX_TRY(lssnn_solve_p(st, d));
@@ -130,7 +170,7 @@ static int lssnn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
             v[i] += alpha * (st->z[i] - v[i]);
             if (L->S[i] && !st->zero[i] && v[i] <= 1e-15 * (1 + fabs(st->z[i]))) {
                 v[i] = 0;
-                st->zero[i] = 1;
+                CX_TRY(lssnn_change(st, i, 0, d));
             }
         }
         if (inner > n) {
