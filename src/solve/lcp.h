@@ -160,6 +160,10 @@ typedef struct cx_lcp_run {
     {"tau", CX_PARAM_REAL, 1e-3, 1e-12, 1e12, NULL,                                           \
      "PDAS / projection parameter, relative to the largest diagonal entry of A", 0}
 
+#define CX_LCP_PARAM_SCHUR                                                                    \
+    {"schur", CX_PARAM_BOOL, 0, 0, 1, NULL,                                                   \
+     "1: solve the reduced Schur-complement LCP on the contact unknowns (dense, 003 Table 7)", 0}
+
 int cx_lcp_run_init(cx_lcp_run *r, cx_session *s, const cx_param_values *params, int reduced,
                     cx_diag *d);
 void cx_lcp_run_clear(cx_lcp_run *r);

@@ -33,8 +33,7 @@ typedef struct {
 
 static const cx_param lssnn_params[] = {
     CX_LCP_PARAMS_COMMON,
-    {"schur", CX_PARAM_BOOL, 0, 0, 1, NULL,
-     "1: solve the reduced Schur-complement LCP on the contact unknowns (dense, 003 Table 7)", 0},
+    CX_LCP_PARAM_SCHUR,
     {"update", CX_PARAM_BOOL, 1, 0, 1, NULL,
      "1: add/delete one row of the LDL' factor per pivot (CHOLMOD Modify); 0: refactorise", 0},
     {NULL, 0, 0, 0, 0, NULL, NULL, 0}

@@ -24,8 +24,7 @@ static const cx_param pdas_params[] = {
     CX_LCP_PARAMS_COMMON,
     {"eps0", CX_PARAM_REAL, 0, 0, 1, NULL,
      "continuation: start with this eps (relative) and divide by 100 down to eps (0: off)", 0},
-    {"schur", CX_PARAM_BOOL, 0, 0, 1, NULL,
-     "1: solve the reduced Schur-complement LCP on the contact unknowns (dense, 003 Table 7)", 0},
+    CX_LCP_PARAM_SCHUR,
     {NULL, 0, 0, 0, 0, NULL, NULL, 0}
 };
 

@@ -26,8 +26,7 @@ typedef struct {
 
 static const cx_param pdpc_params[] = {
     CX_LCP_PARAMS_COMMON,
-    {"schur", CX_PARAM_BOOL, 0, 0, 1, NULL,
-     "1: solve the reduced Schur-complement LCP on the contact unknowns (dense, 003 Table 7)", 0},
+    CX_LCP_PARAM_SCHUR,
     {"tol", CX_PARAM_REAL, 1e-10, 1e-15, 1e-2, NULL,
      "stop the interior point when mu and the residual fall below tol (relative)", 0},
     {NULL, 0, 0, 0, 0, NULL, NULL, 0}
