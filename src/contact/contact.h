@@ -81,4 +81,17 @@ int cx_obstacle_gap(const cx_obstacle *ob, int dim, const double *x, double *gap
  * rotated +90 deg), 3D two (t1 x t2 = n). */
 void cx_tangent_basis(int dim, const double *n, double *t);
 
+/* Paper 003: many bodies with matching nodes. The contact set of a masonry
+ * wall: first the Signorini points, the nodes of boundary settle that are
+ * not on boundary fixed (Dirichlet wins where the two meet), against the
+ * obstacle ob; then one frictionless node-to-node row per pair of
+ * coincident nodes on the joints (boundary joints holds every shared edge
+ * once from each side): with n the outward normal of the body below or to
+ * the left, (N u)_i = (u_k - u_l) . n closes the joint (gap 0), the point
+ * is node k. Pairs are listed once, ordered by node. CX_EINVAL if a joint
+ * edge has no partner edge with coincident nodes. */
+int cx_contact_masonry(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *settle,
+                       const cx_boundary *fixed, const cx_boundary *joints,
+                       const cx_obstacle *ob, cx_diag *d);
+
 #endif

@@ -21,6 +21,7 @@ typedef struct cx_counters {
     long solves;           /* solves with a factor (forward + backward = 1) */
     long matvecs;          /* products with the stiffness matrix K */
     long dual_products;    /* products with a dual operator B K^-1 B' */
+    long updates;          /* factor rows added or deleted (cx_ldlmod) */
 } cx_counters;
 
 /* ---- triplet / CSC --------------------------------------------------- */
@@ -61,6 +62,9 @@ static inline size_t cx_csc_nnz(const cx_csc *A) { return A->p ? (size_t)A->p[A-
 void cx_csc_gemv(const cx_csc *A, double alpha, const double *x, double beta, double *y);
 /* y = alpha A' x + beta y */
 void cx_csc_gemv_t(const cx_csc *A, double alpha, const double *x, double beta, double *y);
+/* C = A B (C must be empty; sorted columns, no explicit zeros dropped).
+ * CX_EINVAL if the sizes do not fit, CX_ENOMEM (C left empty). */
+int cx_csc_multiply(cx_csc *C, const cx_csc *A, const cx_csc *B);
 /* A(i, j), 0 if not stored (binary search). */
 double cx_csc_get(const cx_csc *A, int i, int j);
 /* Largest |A(i,j) - A(j,i)| over the stored entries. */
@@ -94,6 +98,28 @@ int cx_fact_factorize(cx_fact *F, const cx_csc *A, cx_diag *d);
 int cx_fact_solve(cx_fact *F, const double *b, double *x, cx_diag *d);
 /* Number of non-zeros of the factor(s), 0 before factorize. */
 double cx_fact_nnz(const cx_fact *F);
+
+/* ---- a factor modified row by row (CHOLMOD Modify) ------------------- */
+
+/* A simplicial LDL' factor of a symmetric positive definite A (full
+ * storage) whose row and column k can be set to the identity's (delete)
+ * and back to a matrix's (add), each a rank-2 change of the factor instead
+ * of a new factorisation. Used by active-set methods that change one
+ * unknown at a time. Counts one factorisation at create, one update per
+ * add/delete, one solve per solve. */
+typedef struct cx_ldlmod cx_ldlmod;
+
+int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d);
+void cx_ldlmod_destroy(cx_ldlmod **F);
+/* Row and column k become the identity's. */
+int cx_ldlmod_delete(cx_ldlmod *F, int k, cx_diag *d);
+/* Row and column k (now the identity's) become A's column k on the rows
+ * i with keep[i] (and k itself, plus shift on the diagonal); the other rows
+ * must be the identity's. CX_ENUMERIC if no longer positive definite. */
+int cx_ldlmod_add(cx_ldlmod *F, int k, const cx_csc *A, const unsigned char *keep, double shift,
+                  cx_diag *d);
+/* x = A^-1 b for the current matrix. */
+int cx_ldlmod_solve(cx_ldlmod *F, const double *b, double *x, cx_diag *d);
 
 /* ---- static condensation onto a subset of dofs ---------------------- */
 

@@ -93,4 +93,26 @@ int cx_mesh_twoblocks(cx_mesh **m, double x0, double y0, double ym, double x1, d
                       const int cells_upper[2], const int cells_lower[2], cx_elem_type t,
                       cx_diag *d);
 
+/* Masonry walls on the unit square (paper 003 §5): N courses of height
+ * H = 1/N built of separate bodies, each meshed with TRI6 of size h = H
+ * (two triangles per H x H cell) with its own nodes, so that neighbouring
+ * bodies have coincident nodes on their common edges. Stack bond: H x H
+ * squares; running bond: 2H x H bricks with H x H half bricks closing the
+ * courses (even N: a course of N/2 bricks, then half + N/2-1 bricks + half;
+ * odd N: (N-1)/2 bricks and a half brick at the right end, then at the
+ * left); laminae: 1 x H strips. Boundaries: "left", "right", "top",
+ * "settle" (bottom edges ending at x <= 1/2: the Signorini part),
+ * "base" (the other bottom edges), and "joints" (every edge shared by two
+ * bodies, once from each side). body[e] numbers the bodies course by course
+ * from the bottom left. CX_EINVAL for N < 1 or an unknown bond. */
+typedef enum cx_bond {
+    CX_BOND_STACK,
+    CX_BOND_RUNNING,
+    CX_BOND_LAMINAE
+} cx_bond;
+
+int cx_mesh_masonry(cx_mesh **m, cx_bond bond, int N, cx_diag *d);
+/* Number of bodies of a wall: N^2, N(N+1)/2, N. */
+long cx_masonry_bodies(cx_bond bond, int N);
+
 #endif

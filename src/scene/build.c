@@ -22,6 +22,8 @@ static int build_mesh(const cx_scene *s, int level, cx_mesh **m, cx_diag *d)
         return cx_mesh_twoblocks(m, s->lo[0], s->lo[1], s->interface, s->hi[0], s->hi[1], cells,
                                  lower, s->element, d);
     }
+    case CX_GEN_MASONRY:
+        return cx_mesh_masonry(m, s->bond, cells[0], d);
     }
     return cx_diag_set(d, CX_EINVAL, "%s: unknown generator", s->path);
 }
@@ -33,6 +35,24 @@ static int build_boundary(const cx_scene *s, const cx_mesh *m, const char *name,
     if (!*b)
         return cx_diag_set(d, CX_EINVAL, "%s: the mesh has no boundary '%s'", s->path, name);
     return CX_OK;
+}
+
+/* Masonry (paper 003): Signorini on the contact boundary against the
+ * obstacle lowered by the settlement gap g = gap_h H (H = 1 / courses),
+ * except where boundary "base" fixes the node, and the joint rows. */
+static int build_masonry_contact(const cx_scene *s, int level, const cx_mesh *m,
+                                 cx_contact_set *cs, cx_diag *d)
+{
+    const cx_boundary *settle, *base, *joints;
+    int cells[3];
+    cx_scene_cells(s, level, cells);
+    CX_TRY(build_boundary(s, m, s->contact_boundary, &settle, d));
+    CX_TRY(build_boundary(s, m, "base", &base, d));
+    CX_TRY(build_boundary(s, m, "joints", &joints, d));
+    cx_obstacle ob = s->obstacle;
+    for (int k = 0; k < 2; k++)
+        ob.point[k] -= s->gap_h / cells[0] * ob.normal[k];
+    return cx_contact_masonry(cs, m, settle, base, joints, &ob, d);
 }
 
 int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
@@ -86,9 +106,12 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
     if ((st = cx_dofmap_finish(&map)))
         goto fail;
 
-    if ((st = build_boundary(s, m, s->contact_boundary, &b, d)))
+    if (s->generator == CX_GEN_MASONRY) {
+        if ((st = build_masonry_contact(s, level, m, &cs, d)))
+            goto fail;
+    } else if ((st = build_boundary(s, m, s->contact_boundary, &b, d))) {
         goto fail;
-    if (s->contact_master[0]) {
+    } else if (s->contact_master[0]) {
         const cx_boundary *master;
         if ((st = build_boundary(s, m, s->contact_master, &master, d)) ||
             (st = cx_contact_node_to_segment(&cs, m, b, master, &map, d)))

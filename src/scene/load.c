@@ -27,7 +27,7 @@
 #include <string.h>
 
 #define LD_MAXLINE 4096          /* ini_max_line: longest line + 3 */
-#define LD_MAXKEYS 12            /* keys of the largest section */
+#define LD_MAXKEYS 14            /* keys of the largest section */
 #define LD_VALLEN 1024           /* longest value + 1 */
 #define LD_COUNT_MAX 1000000     /* largest level or cell count */
 #define LD_LEVEL_MAX_DEFAULT 4096
@@ -43,16 +43,20 @@ _Static_assert(CX_FRICTION_NONE == 0 && CX_FRICTION_TRESCA == 1 && CX_FRICTION_C
                "ld_frictions follows cx_friction");
 _Static_assert(CX_LEVEL_LINEAR == 0 && CX_LEVEL_SQRT2 == 1, "ld_level_rules follows cx_level_rule");
 _Static_assert(CX_GEN_RECTANGLE == 0 && CX_GEN_HERTZ == 1 && CX_GEN_BRICK == 2 &&
-               CX_GEN_TWOBLOCKS == 3,
+               CX_GEN_TWOBLOCKS == 3 && CX_GEN_MASONRY == 4,
                "ld_generators follows cx_scene_generator");
 
-static const char ld_generators[] = "rectangle|hertz|brick|twoblocks";
-static const char *const ld_generator_name[] = {"rectangle", "hertz", "brick", "twoblocks"};
-static const int ld_generator_dim[] = {2, 2, 3, 2};
+static const char ld_generators[] = "rectangle|hertz|brick|twoblocks|masonry";
+static const char *const ld_generator_name[] = {"rectangle", "hertz", "brick", "twoblocks", "masonry"};
+static const int ld_generator_dim[] = {2, 2, 3, 2, 2};
 /* the boundary names of each generator's mesh (mesh.h) */
 static const char *const ld_boundaries[] = {
     "left|right|bottom|top", "top|axis|arc|side", "xmin|xmax|ymin|ymax|zmin|zmax",
-    "left1|right1|bottom1|top1|left2|right2|bottom2|top2"};
+    "left1|right1|bottom1|top1|left2|right2|bottom2|top2",
+    "left|right|top|settle|base|joints"};
+static const char ld_bonds[] = "stack|running|laminae";
+_Static_assert(CX_BOND_STACK == 0 && CX_BOND_RUNNING == 1 && CX_BOND_LAMINAE == 2,
+               "ld_bonds follows cx_bond");
 static const char ld_elements[] = "tri3|tri6|quad4|hex8|tet4";
 static const char ld_models[] = "plane_strain|plane_stress|solid";
 static const char ld_obstacles[] = "plane|disc|cylinder|sphere";
@@ -379,12 +383,30 @@ static int ld_finish_twoblocks(ld_state *L, int g)
     return ld_ints(L, "cells_lower", 2, 1, LD_COUNT_MAX, "2 positive integers (dim 2)", s->cells_lower);
 }
 
+/* [mesh] of generator masonry: bond, gap (a fraction of H), tri6 only,
+ * no extents (the unit square). */
+static int ld_masonry(ld_state *L)
+{
+    cx_scene *s = L->s;
+    int bond = 0;
+    CX_TRY(ld_require(L, "bond"));
+    CX_TRY(ld_choice(L, "bond", ld_bonds, 0, 2, ld_bonds, &bond));
+    s->bond = (cx_bond)bond;
+    s->gap_h = 0.5;
+    CX_TRY(ld_real(L, "gap", 0, 1, 1, "a number in (0, 1) (the gap g as a fraction of H)", &s->gap_h));
+    if (s->element != CX_EL_TRI6)
+        return ld_bad(L, "element", "expected tri6 (generator masonry)");
+    CX_TRY(ld_unused(L, "lo", "by generator 'masonry' (the unit square)"));
+    CX_TRY(ld_unused(L, "hi", "by generator 'masonry' (the unit square)"));
+    return ld_unused(L, "radius", "by generator 'masonry' (the unit square)");
+}
+
 static int ld_finish_mesh(ld_state *L)
 {
     cx_scene *s = L->s;
     int dim = s->dim, g = 0, el = dim == 2 ? CX_EL_TRI3 : CX_EL_HEX8;
 
-    CX_TRY(ld_choice(L, "generator", ld_generators, 0, 3, ld_generators, &g));
+    CX_TRY(ld_choice(L, "generator", ld_generators, 0, 4, ld_generators, &g));
     if (ld_generator_dim[g] != dim)
         return ld_bad(L, "generator", "generator '%s' needs dim %d (the scene has dim %d)",
                       ld_generator_name[g], ld_generator_dim[g], dim);
@@ -393,7 +415,15 @@ static int ld_finish_mesh(ld_state *L)
                      dim == 2 ? "tri3|tri6|quad4 (dim 2)" : "hex8|tet4 (dim 3)", &el));
     s->element = (cx_elem_type)el;
 
-    if (g == CX_GEN_HERTZ) {
+    if (g == CX_GEN_MASONRY) {
+        CX_TRY(ld_masonry(L));
+    } else {
+        CX_TRY(ld_unused(L, "bond", "by this generator (only by masonry)"));
+        CX_TRY(ld_unused(L, "gap", "by this generator (only by masonry)"));
+    }
+    if (g == CX_GEN_MASONRY) {
+        /* the unit square: no extents */
+    } else if (g == CX_GEN_HERTZ) {
         CX_TRY(ld_require(L, "radius"));
         CX_TRY(ld_unused(L, "lo", "by generator 'hertz' (it takes radius)"));
         CX_TRY(ld_unused(L, "hi", "by generator 'hertz' (it takes radius)"));
@@ -409,7 +439,7 @@ static int ld_finish_mesh(ld_state *L)
                 return ld_bad(L, "hi", "expected hi > lo in every component");
     }
 
-    int ncells = g == CX_GEN_HERTZ ? 1 : dim;
+    int ncells = g == CX_GEN_HERTZ || g == CX_GEN_MASONRY ? 1 : dim;
     CX_TRY(ld_ints(L, "cells", ncells, 1, LD_COUNT_MAX,
                    ncells == 1 ? "1 positive integer (generator hertz)"
                    : ncells == 2 ? "2 positive integers (dim 2)" : "3 positive integers (dim 3)",
@@ -590,7 +620,7 @@ static const ld_key ld_scene_keys[] = {{"id", 1}, {"title", 0}, {"dim", 1}, {NUL
 static const ld_key ld_mesh_keys[] = {
     {"generator", 1}, {"element", 0}, {"lo", 0}, {"hi", 0}, {"radius", 0},
     {"cells", 0}, {"level", 0}, {"level_max", 0}, {"interface", 0}, {"cells_lower", 0},
-    {"level_rule", 0}, {NULL, 0}};
+    {"level_rule", 0}, {"bond", 0}, {"gap", 0}, {NULL, 0}};
 static const ld_key ld_material_keys[] = {
     {"model", 0}, {"E", 1}, {"nu", 1}, {"body_force", 0}, {NULL, 0}};
 static const ld_key ld_traction_keys[] = {

@@ -34,7 +34,8 @@ typedef enum cx_scene_generator {
     CX_GEN_RECTANGLE,
     CX_GEN_HERTZ,
     CX_GEN_BRICK,
-    CX_GEN_TWOBLOCKS     /* two stacked rectangles, two bodies (paper 000) */
+    CX_GEN_TWOBLOCKS     /* two stacked rectangles, two bodies (paper 000) */,
+    CX_GEN_MASONRY     /* paper 003: unit square of bodies, level = courses */
 } cx_scene_generator;
 
 /* How cells grow with the mesh level (cx_scene_cells). */
@@ -60,6 +61,8 @@ typedef struct cx_scene {
     double interface;             /* twoblocks: y of the interface (lo < it < hi) */
     int cells_lower[3];           /* twoblocks: cells of the lower body per level step */
     cx_level_rule level_rule;     /* how cells grow with the level */
+    cx_bond bond;                 /* masonry: stack, running or laminae */
+    double gap_h;                 /* masonry: settlement gap g as a fraction of H */
 
     /* [material] */
     cx_material mat;

@@ -15,6 +15,11 @@ extern const cx_method cx_method_ubr_tf;
 extern const cx_method cx_method_cf_fp;
 extern const cx_method cx_method_ssn_c;
 extern const cx_method cx_method_ssstar;
+extern const cx_method cx_method_pdas;
+extern const cx_method cx_method_pdpc;
+extern const cx_method cx_method_lssnn;
+extern const cx_method cx_method_psor;
+extern const cx_method cx_method_graves;
 
 static const cx_method *const cx_methods[] = {
     &cx_method_ssn_tresca,
@@ -27,6 +32,11 @@ static const cx_method *const cx_methods[] = {
     &cx_method_cf_fp,
     &cx_method_ssn_c,
     &cx_method_ssstar,
+    &cx_method_pdas,
+    &cx_method_pdpc,
+    &cx_method_lssnn,
+    &cx_method_psor,
+    &cx_method_graves,
     NULL
 };
 

@@ -1,0 +1,132 @@
+/* A simplicial LDL' factor whose rows and columns are switched between the
+ * matrix's and the identity's by CHOLMOD's row delete / row add (Modify
+ * module): the single principal pivots of Lawson-Hanson change the factor
+ * by one row and column each, far cheaper than a new factorisation. The
+ * factor is of P A P' (fill-reducing P); CHOLMOD's k and R are in that
+ * order, so indices are mapped through the inverse permutation here. */
+#include "linalg/linalg_impl.h"
+
+#include <string.h>
+
+struct cx_ldlmod {
+    cholmod_common c;
+    cholmod_factor *L;
+    cx_counters *cnt;
+    int n;
+    int *pinv;         /* n: position in L's order of an original index */
+    int *ri;           /* n: row buffer of R */
+    double *rx;        /* n */
+    double *w;         /* n: solve workspace */
+};
+
+void cx_ldlmod_destroy(cx_ldlmod **F)
+{
+    if (!F || !*F)
+        return;
+    cx_ldlmod *f = *F;
+    cholmod_free_factor(&f->L, &f->c);
+    cholmod_finish(&f->c);
+    cx_free(f->pinv), cx_free(f->ri), cx_free(f->rx), cx_free(f->w);
+    cx_free(f);
+    *F = NULL;
+}
+
+int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
+{
+    int n = A->ncol;
+    cx_ldlmod *f = CX_NEW(cx_ldlmod, 1);
+    *F = NULL;
+    if (!f)
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    cx_cholmod_start(&f->c);
+    f->c.supernodal = CHOLMOD_SIMPLICIAL;   /* Modify needs a simplicial LDL' */
+    f->c.final_ll = 0;
+    f->cnt = cnt;
+    f->n = n;
+    f->pinv = CX_NEW(int, n);
+    f->ri = CX_NEW(int, n);
+    f->rx = CX_NEW(double, n);
+    f->w = CX_NEW(double, n);
+    if (!f->pinv || !f->ri || !f->rx || !f->w) {
+        cx_ldlmod_destroy(&f);
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    }
+    cholmod_sparse s = cx_cholmod_view(A, 1);
+    f->L = cholmod_analyze(&s, &f->c);
+    int st = cx_cholmod_check(&f->c, f->L, "analyse (ldlmod)", d);
+    if (st == CX_OK) {
+        cholmod_factorize(&s, f->L, &f->c);
+        st = cx_cholmod_check(&f->c, f->L, "LDL' factorisation", d);
+    }
+    if (st == CX_OK && f->L->minor < f->L->n)
+        st = cx_diag_set(d, CX_ENUMERIC, "LDL' factorisation: matrix not positive definite");
+    if (st != CX_OK) {
+        cx_ldlmod_destroy(&f);
+        return st;
+    }
+    for (int k = 0; k < n; k++)
+        f->pinv[cx_cholmod_column(f->L, k)] = k;
+    if (cnt)
+        cnt->factorizations++;
+    *F = f;
+    return CX_OK;
+}
+
+int cx_ldlmod_delete(cx_ldlmod *f, int k, cx_diag *d)
+{
+    cholmod_rowdel((size_t)f->pinv[k], NULL, f->L, &f->c);
+    CX_TRY(cx_cholmod_check(&f->c, f->L, "row delete", d));
+    if (f->cnt)
+        f->cnt->updates++;
+    return CX_OK;
+}
+
+int cx_ldlmod_add(cx_ldlmod *f, int k, const cx_csc *A, const unsigned char *keep, double shift,
+                  cx_diag *d)
+{
+    int nz = 0, p[2];
+    for (int q = A->p[k]; q < A->p[k + 1]; q++) {
+        int i = A->i[q];
+        if (i != k && !keep[i])
+            continue;
+        f->ri[nz] = f->pinv[i];
+        f->rx[nz++] = A->x[q] + (i == k ? shift : 0);
+    }
+    /* CHOLMOD wants sorted rows in R: insertion sort (a column is short) */
+    for (int a = 1; a < nz; a++) {
+        int ri = f->ri[a];
+        double rx = f->rx[a];
+        int b = a;
+        for (; b > 0 && f->ri[b - 1] > ri; b--)
+            f->ri[b] = f->ri[b - 1], f->rx[b] = f->rx[b - 1];
+        f->ri[b] = ri, f->rx[b] = rx;
+    }
+    p[0] = 0, p[1] = nz;
+    cholmod_sparse R;
+    memset(&R, 0, sizeof R);
+    R.nrow = (size_t)f->n, R.ncol = 1, R.nzmax = nz > 0 ? (size_t)nz : 1;
+    R.p = p, R.i = f->ri, R.x = f->rx;
+    R.stype = 0, R.itype = CHOLMOD_INT, R.xtype = CHOLMOD_REAL, R.dtype = CHOLMOD_DOUBLE;
+    R.sorted = 1, R.packed = 1;
+    cholmod_rowadd((size_t)f->pinv[k], &R, f->L, &f->c);
+    CX_TRY(cx_cholmod_check(&f->c, f->L, "row add", d));
+    if (f->L->minor < f->L->n)
+        return cx_diag_set(d, CX_ENUMERIC, "row add: the matrix is no longer positive definite");
+    if (f->cnt)
+        f->cnt->updates++;
+    return CX_OK;
+}
+
+int cx_ldlmod_solve(cx_ldlmod *f, const double *b, double *x, cx_diag *d)
+{
+    memcpy(f->w, b, sizeof(double) * (size_t)f->n);
+    cholmod_dense B = cx_cholmod_vec(f->w, f->n);
+    cholmod_dense *X = cholmod_solve(CHOLMOD_A, f->L, &B, &f->c);
+    int st = cx_cholmod_check(&f->c, f->L, "solve (ldlmod)", d);
+    if (st == CX_OK && X)
+        memcpy(x, X->x, sizeof(double) * (size_t)f->n);
+    cholmod_free_dense(&X, &f->c);
+    if (f->cnt)
+        f->cnt->solves++;
+    return st;
+}

@@ -1,0 +1,439 @@
+/* The LCP form of paper 003 (lcp.h): the change of variables, the cached
+ * full and reduced LCPs, masked solves, the PDAS step and the two-stage
+ * driver of the regularised methods. */
+#include "solve/lcp.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+/* ---- the change of variables u = u0 + T v (cached) ------------------------ */
+
+static void lcp_clear(cx_lcp *L)
+{
+    cx_free(L->S);
+    cx_csc_clear(&L->A);
+    cx_free(L->Ad);
+    cx_free(L->b);
+    memset(L, 0, sizeof *L);
+}
+
+static void lcp_map_destroy(void *obj)
+{
+    cx_lcp_map *m = obj;
+    if (!m)
+        return;
+    lcp_clear(&m->full);
+    lcp_clear(&m->red);
+    cx_csc_clear(&m->T);
+    cx_free(m->u0);
+    cx_free(m->piv);
+    cx_free(m->sidx);
+    cx_schur_destroy(&m->schur);
+    cx_free(m);
+}
+
+/* Pivots: per row the dof of largest |coefficient| that no other row touches. */
+static int lcp_pivots(const cx_problem *p, const cx_csc *Nt, int *piv, cx_diag *d)
+{
+    for (int r = 0; r < p->m; r++) {
+        double best = 0;
+        piv[r] = -1;
+        for (int q = Nt->p[r]; q < Nt->p[r + 1]; q++) {
+            int j = Nt->i[q];
+            if (p->N.p[j + 1] - p->N.p[j] == 1 && fabs(Nt->x[q]) > best)
+                best = fabs(Nt->x[q]), piv[r] = j;
+        }
+        if (piv[r] < 0)
+            return cx_diag_set(d, CX_EUNSUPPORTED,
+                               "contact row %d has no dof of its own (rows must be node-to-node or "
+                               "node-to-obstacle with distinct nodes)", r);
+    }
+    return CX_OK;
+}
+
+static int lcp_build_map(void **obj, const cx_problem *p, const void *arg, cx_counters *cnt,
+                         cx_diag *d)
+{
+    (void)arg, (void)cnt;
+    int n = p->n, m = p->m, st = CX_ENOMEM;
+    cx_csc Nt = {0}, Tt = {0}, KT = {0};
+    cx_triplet tr = {0};
+    double *r = NULL;
+    cx_lcp_map *map = CX_NEW(cx_lcp_map, 1);
+    *obj = NULL;
+    if (!map)
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    map->u0 = CX_NEW(double, n);
+    map->piv = CX_NEW(int, m);
+    map->sidx = CX_NEW(int, m);
+    map->full.S = CX_NEW(unsigned char, n);
+    map->full.b = CX_NEW(double, n);
+    r = CX_NEW(double, n);
+    if (!map->u0 || !map->piv || !map->sidx || !map->full.S || !map->full.b || !r ||
+        cx_csc_transpose(&Nt, &p->N))
+        goto fail;
+    if ((st = lcp_pivots(p, &Nt, map->piv, d)))
+        goto fail;
+    st = CX_ENOMEM;
+    if (cx_triplet_init(&tr, n, n, (size_t)n + 2 * cx_csc_nnz(&p->N)))
+        goto fail;
+    for (int k = 0; k < m; k++)
+        map->full.S[map->piv[k]] = 1;
+    for (int j = 0; j < n; j++)
+        if (!map->full.S[j] && cx_triplet_add(&tr, j, j, 1.0))
+            goto fail;
+    for (int k = 0; k < m; k++) {
+        int pv = map->piv[k];
+        double npv = cx_csc_get(&p->N, k, pv);
+        map->u0[pv] = p->g[k] / npv;
+        if (cx_triplet_add(&tr, pv, pv, -1.0 / npv))
+            goto fail;
+        for (int q = Nt.p[k]; q < Nt.p[k + 1]; q++)
+            if (Nt.i[q] != pv && cx_triplet_add(&tr, pv, Nt.i[q], -Nt.x[q] / npv))
+                goto fail;
+    }
+    if (cx_csc_from_triplet(&map->T, &tr) || cx_csc_transpose(&Tt, &map->T) ||
+        cx_csc_multiply(&KT, &p->K, &map->T) || cx_csc_multiply(&map->full.A, &Tt, &KT))
+        goto fail;
+    /* b = T' (f - K u0) */
+    cx_csc_gemv(&p->K, -1.0, map->u0, 0.0, r);
+    cx_vec_axpy(n, 1.0, p->f, r);
+    cx_csc_gemv_t(&map->T, 1.0, r, 0.0, map->full.b);
+    map->full.n = n;
+    map->full.nc = m;
+    for (int j = 0, k = 0; j < n; j++) {
+        if (map->full.S[j])
+            map->sidx[k++] = j;
+        double a = cx_csc_get(&map->full.A, j, j);
+        if (a > map->full.amax)
+            map->full.amax = a;
+    }
+    cx_csc_clear(&Nt), cx_csc_clear(&Tt), cx_csc_clear(&KT), cx_triplet_clear(&tr), cx_free(r);
+    *obj = map;
+    return CX_OK;
+fail:
+    cx_csc_clear(&Nt), cx_csc_clear(&Tt), cx_csc_clear(&KT), cx_triplet_clear(&tr), cx_free(r);
+    lcp_map_destroy(map);
+    return st == CX_ENOMEM ? cx_diag_set(d, CX_ENOMEM, "out of memory building the LCP") : st;
+}
+
+int cx_lcp_get(cx_session *s, cx_lcp_map **map, cx_diag *d)
+{
+    const cx_problem *p = cx_session_problem(s);
+    if (p->friction != CX_FRICTION_NONE)
+        return cx_diag_set(d, CX_EUNSUPPORTED, "the LCP methods of paper 003 are frictionless");
+    void *obj = NULL;
+    CX_TRY(cx_session_cache_get(s, "lcp003:full", lcp_build_map, NULL, lcp_map_destroy, &obj, d));
+    *map = obj;
+    return CX_OK;
+}
+
+/* The reduced LCP lives inside the map; the cache entry only counts and
+ * keys its construction (destroyed with the map). */
+static int lcp_build_reduced(void **obj, const cx_problem *p, const void *arg, cx_counters *cnt,
+                             cx_diag *d)
+{
+    (void)p;
+    cx_lcp_map *map = (cx_lcp_map *)arg;
+    cx_lcp *R = &map->red;
+    int nc = map->full.nc;
+    CX_TRY(cx_schur_create(&map->schur, &map->full.A, map->sidx, nc, cnt, d));
+    R->n = R->nc = nc;
+    R->dense = 1;
+    R->S = CX_NEW(unsigned char, nc);
+    R->Ad = CX_NEW(double, (size_t)nc * nc);
+    R->b = CX_NEW(double, nc);
+    if (!R->S || !R->Ad || !R->b) {
+        lcp_clear(R);
+        cx_schur_destroy(&map->schur);
+        return cx_diag_set(d, CX_ENOMEM, "out of memory (reduced LCP of order %d)", nc);
+    }
+    memcpy(R->Ad, cx_schur_matrix(map->schur), sizeof(double) * (size_t)nc * nc);
+    CX_TRY(cx_schur_condense(map->schur, map->full.b, R->b));
+    for (int k = 0; k < nc; k++) {
+        R->S[k] = 1;
+        if (R->Ad[(size_t)nc * k + k] > R->amax)
+            R->amax = R->Ad[(size_t)nc * k + k];
+    }
+    *obj = map;   /* a marker: the data is in the map */
+    return CX_OK;
+}
+
+static void lcp_reduced_nothing(void *obj) { (void)obj; }
+
+int cx_lcp_get_reduced(cx_session *s, cx_lcp_map **map, cx_diag *d)
+{
+    CX_TRY(cx_lcp_get(s, map, d));
+    void *obj = NULL;
+    return cx_session_cache_get(s, "lcp003:schur", lcp_build_reduced, *map, lcp_reduced_nothing,
+                                &obj, d);
+}
+
+void cx_lcp_apply(const cx_lcp *L, const double *v, double *y)
+{
+    if (L->dense)
+        cx_dense_gemv(L->n, L->n, 1.0, L->Ad, v, 0.0, y);
+    else
+        cx_csc_gemv(&L->A, 1.0, v, 0.0, y);
+}
+
+int cx_lcp_result(cx_lcp_map *map, int reduced, const double *v, double *work,
+                  const cx_problem *p, double *u, double *lN)
+{
+    const double *vf = v;
+    int n = map->full.n;
+    if (reduced) {
+        CX_TRY(cx_schur_expand(map->schur, map->full.b, v, work));
+        vf = work;
+    }
+    memcpy(u, map->u0, sizeof(double) * (size_t)n);
+    cx_csc_gemv(&map->T, 1.0, vf, 1.0, u);
+    /* lN_r = (A v - b)_p(r): one row of A per contact row */
+    for (int k = 0; k < p->m; k++) {
+        int j = map->piv[k];
+        double s = -map->full.b[j];
+        for (int q = map->full.A.p[j]; q < map->full.A.p[j + 1]; q++)   /* A symmetric */
+            s += map->full.A.x[q] * vf[map->full.A.i[q]];
+        lN[k] = s;
+    }
+    return CX_OK;
+}
+
+/* ---- masked solves ---------------------------------------------------------- */
+
+int cx_lcp_solver_init(cx_lcp_solver *s, const cx_lcp *L, cx_counters *cnt, cx_diag *d)
+{
+    memset(s, 0, sizeof *s);
+    s->L = L;
+    s->cnt = cnt;
+    if (L->dense) {
+        s->Md = CX_NEW(double, (size_t)L->n * L->n);
+        return s->Md ? CX_OK : cx_diag_set(d, CX_ENOMEM, "out of memory (dense %d x %d)", L->n, L->n);
+    }
+    if (cx_csc_copy(&s->M, &L->A))
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    CX_TRY(cx_fact_create(&s->F, CX_FACT_CHOLESKY, cnt, d));
+    return cx_fact_analyze(s->F, &s->M, d);
+}
+
+void cx_lcp_solver_clear(cx_lcp_solver *s)
+{
+    cx_fact_destroy(&s->F);
+    cx_csc_clear(&s->M);
+    cx_free(s->Md);
+    memset(s, 0, sizeof *s);
+}
+
+int cx_lcp_factor(cx_lcp_solver *s, double eps, const unsigned char *zero, const double *dadd,
+                  cx_diag *d)
+{
+    const cx_lcp *L = s->L;
+    int n = L->n;
+    if (L->dense) {
+        for (int j = 0; j < n; j++)
+            for (int i = 0; i < n; i++) {
+                size_t q = (size_t)n * j + i;
+                int z = zero && (zero[i] || zero[j]);
+                s->Md[q] = z ? (i == j) : L->Ad[q] + (i == j ? eps + (dadd ? dadd[j] : 0) : 0);
+            }
+        if (cx_dense_cholesky(n, s->Md, s->cnt) != CX_OK)
+            return cx_diag_set(d, CX_ENUMERIC, "the (masked) LCP matrix of order %d is singular", n);
+        return CX_OK;
+    }
+    cx_lcp_factor_values(s, eps, zero, dadd);
+    return cx_fact_factorize(s->F, &s->M, d);
+}
+
+void cx_lcp_factor_values(cx_lcp_solver *s, double eps, const unsigned char *zero, const double *dadd)
+{
+    const cx_lcp *L = s->L;
+    for (int j = 0; j < L->n; j++)
+        for (int q = L->A.p[j]; q < L->A.p[j + 1]; q++) {
+            int i = L->A.i[q];
+            int z = zero && (zero[i] || zero[j]);
+            s->M.x[q] = z ? (i == j) : L->A.x[q] + (i == j ? eps + (dadd ? dadd[j] : 0) : 0);
+        }
+}
+
+int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs, double *x,
+                 double *work, cx_diag *d)
+{
+    int n = s->L->n;
+    for (int i = 0; i < n; i++)
+        work[i] = zero && zero[i] ? 0 : rhs[i];
+    if (s->L->dense) {
+        cx_dense_cholesky_solve(n, s->Md, work, 1);
+        if (s->cnt)
+            s->cnt->solves++;
+        memcpy(x, work, sizeof(double) * (size_t)n);
+    } else {
+        CX_TRY(cx_fact_solve(s->F, work, x, d));
+    }
+    for (int i = 0; zero && i < n; i++)
+        if (zero[i])
+            x[i] = 0;
+    return CX_OK;
+}
+
+/* ---- PDAS step -------------------------------------------------------------- */
+
+int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *lam,
+                     unsigned char *act, cx_pdas_guard *g, int *same, double *work, cx_diag *d)
+{
+    const cx_lcp *L = s->L;
+    int n = L->n;
+    *same = 0;
+    if (act[0] == 2) {
+        /* the first set, from the start (v, lam) */
+        for (int i = 0; i < n; i++)
+            act[i] = L->S[i] && lam[i] - c * v[i] > 0;
+        g->best = n + 1, g->tries = CX_PDAS_TRIES;
+    } else {
+        /* infeasible: active with lam < 0, inactive with v < 0 (to roundoff) */
+        double vs = cx_vec_norminf(n, v), ls = cx_vec_norminf(n, lam), tol = CX_PDAS_ROUNDOFF;
+        int ninf = 0, last = -1;
+        for (int i = 0; i < n; i++)
+            if (L->S[i] && (act[i] ? lam[i] < -tol * ls : v[i] < -tol * vs))
+                ninf++, last = i;
+        if (ninf == 0) {
+            *same = 1;
+            return CX_OK;
+        }
+        /* Judice & Pires: block pivots while the infeasibilities fall (or for
+         * a few tries), else Murty's single pivot on the last one, which
+         * terminates for a P-matrix */
+        int block = 1;
+        if (ninf < g->best)
+            g->best = ninf, g->tries = CX_PDAS_TRIES;
+        else if (g->tries > 0)
+            g->tries--;
+        else
+            block = 0, g->single++;
+        for (int i = 0; i < n; i++)
+            if (L->S[i] && (block ? (act[i] ? lam[i] < -tol * ls : v[i] < -tol * vs) : i == last))
+                act[i] = !act[i];
+    }
+    int st = cx_lcp_factor(s, eps, act, NULL, d);
+    if (st == CX_ENUMERIC && eps == 0 && g->eps_fallback > 0) {
+        /* a motion the set leaves free (a brick between open head joints
+         * slides): the consistent singular system, nearly its minimum-norm
+         * solution */
+        eps = g->eps_fallback;
+        g->fallbacks++;
+        st = cx_lcp_factor(s, eps, act, NULL, d);
+    }
+    CX_TRY(st);
+    /* the correction from the current v (v = 0 on the active set): where
+     * the system is singular the free motion keeps its current value */
+    double *r = work + n;
+    for (int i = 0; i < n; i++)
+        if (act[i])
+            v[i] = 0;
+    cx_lcp_apply(L, v, r);
+    for (int i = 0; i < n; i++)
+        r[i] = L->b[i] - r[i] - eps * v[i];
+    CX_TRY(cx_lcp_solve(s, act, r, r, work, d));
+    cx_vec_axpy(n, 1.0, r, v);
+    cx_lcp_apply(L, v, work);
+    for (int i = 0; i < n; i++)
+        lam[i] = act[i] ? work[i] + eps * v[i] - L->b[i] : 0;
+    return CX_OK;
+}
+
+int cx_lcp_pdas_resolve(cx_lcp_solver *s, double eps, double *v, double *lam,
+                        const unsigned char *act, double *work, cx_diag *d)
+{
+    const cx_lcp *L = s->L;
+    CX_TRY(cx_lcp_factor(s, eps, act, NULL, d));
+    CX_TRY(cx_lcp_solve(s, act, L->b, v, work, d));
+    cx_lcp_apply(L, v, work);
+    for (int i = 0; i < L->n; i++)
+        lam[i] = act[i] ? work[i] + eps * v[i] - L->b[i] : 0;
+    return CX_OK;
+}
+
+/* ---- the two-stage driver ----------------------------------------------------- */
+
+int cx_lcp_run_init(cx_lcp_run *r, cx_session *s, const cx_param_values *params, int reduced,
+                    cx_diag *d)
+{
+    memset(r, 0, sizeof *r);
+    if (reduced)
+        CX_TRY(cx_lcp_get_reduced(s, &r->map, d));
+    else
+        CX_TRY(cx_lcp_get(s, &r->map, d));
+    r->reduced = reduced;
+    r->L = reduced ? &r->map->red : &r->map->full;
+    int n = r->L->n;
+    double scale = r->L->amax > 0 ? r->L->amax : 1;
+    r->eps = cx_param_get(params, "eps") * scale;
+    r->c = cx_param_get(params, "tau") * scale;
+    r->project = cx_param_get(params, "project") != 0;
+    r->guard.eps_fallback = CX_PDAS_EPS_FALLBACK * scale;
+    r->v = CX_NEW(double, n);
+    r->lam = CX_NEW(double, n);
+    r->work = CX_NEW(double, 2 * (size_t)r->map->full.n + 2 * (size_t)n);
+    r->act = CX_NEW(unsigned char, n);
+    if (!r->v || !r->lam || !r->work || !r->act) {
+        cx_lcp_run_clear(r);
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    }
+    if (r->project) {
+        int st = cx_lcp_solver_init(&r->proj, r->L, cx_session_counters(s), d);
+        if (st) {
+            cx_lcp_run_clear(r);
+            return st;
+        }
+    }
+    return CX_OK;
+}
+
+void cx_lcp_run_clear(cx_lcp_run *r)
+{
+    cx_lcp_solver_clear(&r->proj);
+    cx_free(r->v);
+    cx_free(r->lam);
+    cx_free(r->work);
+    cx_free(r->act);
+    memset(r, 0, sizeof *r);
+}
+
+void cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it)
+{
+    if (r->project) {
+        r->stage = 1;
+        /* lam from the current v on the constrained unknowns: the PDAS
+         * start of the projection (003 §4) */
+        cx_lcp_apply(r->L, r->v, r->work);
+        for (int i = 0; i < r->L->n; i++) {
+            r->lam[i] = r->L->S[i] ? r->work[i] - r->L->b[i] : 0;
+            r->act[i] = 2;   /* no previous set */
+        }
+    } else {
+        r->stage = 2;
+        it->own_done = 1;
+    }
+}
+
+int cx_lcp_run_project(cx_lcp_run *r, cx_session *s, cx_iterate *it, cx_diag *d)
+{
+    int same = 0;
+    CX_TRY(cx_lcp_pdas_step(&r->proj, 0.0, r->c, r->v, r->lam, r->act, &r->guard, &same, r->work, d));
+    if (same) {
+        r->stage = 2;
+        it->own_done = 1;
+        it->own = r->proj_iters;
+        return CX_OK;
+    }
+    r->proj_iters++;
+    it->inner = 1;
+    it->own = r->proj_iters;
+    return cx_lcp_run_publish(r, s, it);
+}
+
+int cx_lcp_run_publish(cx_lcp_run *r, cx_session *s, cx_iterate *it)
+{
+    const cx_problem *p = cx_session_problem(s);
+    return cx_lcp_result(r->map, r->reduced, r->v, r->work + 2 * r->L->n, p, it->u, it->lN);
+}
