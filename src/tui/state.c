@@ -55,6 +55,8 @@ const char *tui_state_method_reason(const tui_state *st, int index, char *buf, s
     cx_diag_clear(&d);
     if (cx_method_check(m, &info, &d) != CX_OK)
         snprintf(buf, len, "%s", d.msg);
+    else if (index < TUI_MAX_METHODS && st->refused[index][st->sel_law][0])
+        snprintf(buf, len, "%s", st->refused[index][st->sel_law]);
     return buf;
 }
 
@@ -342,10 +344,17 @@ static void job_run(tui_state *st)
         const cx_problem *p = cx_session_problem(s);
         double coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
         atomic_store(&j->phase, TUI_PHASE_FACTORISE);
+        cx_friction law0 = p->friction;
         if (j->law != p->friction || j->coef != coef)
             j->status = cx_session_set_friction(s, j->law, j->coef, &j->diag);
         if (j->status == CX_OK)
             j->status = cx_session_set_method(s, j->method, &j->params, &j->opt, &j->diag);
+        if (j->status != CX_OK && st->cur_method) {
+            /* refused (e.g. at init): the session goes back to what it was,
+             * so the explorer always has a method to step */
+            cx_session_set_friction(s, law0, coef, NULL);
+            cx_session_set_method(s, st->cur_method, &st->cur_params, &st->cur_opt, NULL);
+        }
     }
     atomic_store(&j->phase, TUI_PHASE_DONE);
 }
@@ -426,6 +435,7 @@ int tui_state_poll(tui_state *st)
             st->level = j->level;
             st->build_time = cx_clock_now() - j->t0;
             state_clear_runs(st);
+            memset(st->refused, 0, sizeof st->refused);
             st->m = -1;
             st->info = *cx_session_problem(st->session);
             state_outline(st);
@@ -441,6 +451,10 @@ int tui_state_poll(tui_state *st)
     if (st->session) {
         state_take_session(st);
         /* a refused switch leaves the session as it was: show that */
+        int refused = j->status == CX_EUNSUPPORTED && kind == TUI_JOB_RESOLVE;
+        int mi = refused ? state_method_index(j->method->id) : -1;
+        if (mi >= 0 && mi < TUI_MAX_METHODS)
+            snprintf(st->refused[mi][j->law], CX_DIAG_LEN, "%s", j->diag.msg);
         if (j->status != CX_OK && st->cur_method) {
             st->sel_method = state_method_index(st->cur_method->id);
             st->sel_params = st->cur_params;

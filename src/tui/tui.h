@@ -110,6 +110,8 @@ typedef struct tui_job {
 
 /* ---- the state ----------------------------------------------------------- */
 
+#define TUI_MAX_METHODS 64
+
 typedef struct tui_state {
     /* scenes */
     char (*scene_ids)[CX_SCENE_NAMELEN];
@@ -128,6 +130,10 @@ typedef struct tui_state {
     cx_friction sel_law;
     double sel_slip, sel_F;   /* Tresca bound (traction) and Coulomb F */
     int sel_method;           /* index in the registry */
+    /* methods the session's problem refused at init (e.g. K singular for a
+     * dual method), per friction law: greyed with the reason, skipped by 'm',
+     * so that a refusal (and its failed factorisation) is not repeated */
+    char refused[TUI_MAX_METHODS][3][CX_DIAG_LEN];
     cx_param_values sel_params;
     cx_options sel_opt;
 

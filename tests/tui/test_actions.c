@@ -130,15 +130,26 @@ static void test_hertz(void)
     CX_CHECK(st.nruns == runs_before);
     CX_CHECK(st.cache.factorizations == 1);
 
-    /* the method row: 'm' goes to the next method that fits; every
-     * switch keeps the factorisation */
+    /* the method row: 'm' goes to the next method that fits. A method may
+     * add the one operator of its own to the cache the first time (ubr-*:
+     * K + rM); nothing is ever factorised twice, so a second round through
+     * every method adds no factorisation at all */
+    long before = st.cache.factorizations;
     for (int k = 0; k < cx_method_count() + 1; k++) {
+        long f0 = st.cache.factorizations;
         r = tui_key(&st, 'm');
         CX_CHECK(!(r & TUI_REASSEMBLE));
         tui_state_apply(&st, r);
         CX_CHECK(st.cur_method != NULL);
-        CX_CHECK(st.cache.factorizations == 1);
+        CX_CHECK(st.cache.factorizations - f0 <= 1);
     }
+    CX_CHECK(st.cache.factorizations - before <= cx_method_count());
+    long after_round = st.cache.factorizations;
+    for (int k = 0; k < cx_method_count() + 1; k++) {
+        tui_state_apply(&st, tui_key(&st, 'm'));
+        CX_CHECK(st.cur_method != NULL);
+    }
+    CX_CHECK(st.cache.factorizations == after_round);
 
     /* the tolerance: options only, the run goes on */
     tui_key(&st, 's');
