@@ -217,8 +217,8 @@ typedef struct bench_plot {
 /* Add a point to the series called label (created on first use). */
 void bench_plot_point(bench_plot *pl, const char *label, double x, double y);
 void bench_plot_clear(bench_plot *pl);
-/* Write the plot as a PNG: CX_EUNSUPPORTED until the renderer (issue 9)
- * is in the build (bench_plot.c is the one place to wire cx_plot in). */
+/* Write the plot as a PNG through render/plot.h (temporary file + rename);
+ * CX_EUNSUPPORTED in a build without the renderer. */
 int bench_plot_write_png(const bench_plot *pl, const char *path, cx_diag *d);
 extern const char bench_png_missing[];
 

@@ -2,6 +2,11 @@
  * the outputs, the progress bar, Ctrl-C, and the plot data. */
 #define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT) for the thread counts */
 #include "cli/bench.h"
+#include "cx_config.h"
+
+#if CX_HAVE_RENDER
+#include "render/plot.h"
+#endif
 
 #include <dlfcn.h>
 #include <math.h>
@@ -109,8 +114,12 @@ int bench_common_finish(bench_common *c, cx_diag *d)
 {
     if (c->threads > 0)
         common_set_threads(c->threads);
+#if CX_HAVE_RENDER
+    (void)d;
+#else
     if (c->png)
         return cx_diag_set(d, CX_EUNSUPPORTED, "%s", bench_png_missing);
+#endif
     if (c->cache) {
         snprintf(c->cache_dir, sizeof c->cache_dir, "%s", c->cache);
     } else if (c->csv && strcmp(c->csv, "-") != 0 && strrchr(c->csv, '/')) {
@@ -192,14 +201,26 @@ void bench_plot_clear(bench_plot *pl)
     memset(pl, 0, sizeof *pl);
 }
 
-/* The one place the renderer is wired in: translate pl into a cx_plot
- * (title, axis labels, log axes, one line per series, the vertical lines)
- * and call cx_plot_write_png(path). */
+/* The one place the renderer is wired in: pl as a cx_plot (one line with
+ * markers per series, the vertical reference lines), 1200 x 900. */
 int bench_plot_write_png(const bench_plot *pl, const char *path, cx_diag *d)
 {
+#if CX_HAVE_RENDER
+    cx_plot plot;
+    cx_plot_init(&plot, pl->title, pl->xlabel, pl->ylabel);
+    plot.logx = pl->xlog;
+    plot.logy = pl->ylog;
+    for (int k = 0; k < pl->nseries; k++)
+        CX_TRY(cx_plot_add_series(&plot, pl->series[k].label, pl->series[k].n, pl->series[k].x,
+                                  pl->series[k].y, CX_PLOT_LINE | CX_PLOT_MARKERS));
+    for (int k = 0; k < pl->nvlines; k++)
+        CX_TRY(cx_plot_add_vline(&plot, pl->vline[k], pl->vlabel[k]));
+    return cx_plot_write_png(&plot, path, 1200, 900, d);
+#else
     (void)pl;
     (void)path;
     return cx_diag_set(d, CX_EUNSUPPORTED, "%s", bench_png_missing);
+#endif
 }
 
 /* ---- progress and Ctrl-C ---------------------------------------------- */

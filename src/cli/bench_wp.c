@@ -149,8 +149,8 @@ static int bench_wp_plot(const bench_table *t, double baseline, const char *png,
 {
     bench_plot pl;
     memset(&pl, 0, sizeof pl);
-    snprintf(pl.title, sizeof pl.title, "work-precision: %s level %s", bench_get_str(t, 0, "scene"),
-             t->nrows ? bench_get_str(t, 0, "level") : "");
+    snprintf(pl.title, sizeof pl.title, "work-precision: %s level %.0f", bench_get_str(t, 0, "scene"),
+             t->nrows ? bench_get_num(t, 0, "level") : 0.0);
     snprintf(pl.xlabel, sizeof pl.xlabel, "time (s)");
     snprintf(pl.ylabel, sizeof pl.ylabel, "||u - u*||_K / ||u*||_K");
     pl.xlog = pl.ylog = 1;

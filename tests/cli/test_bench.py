@@ -210,9 +210,15 @@ with tempfile.TemporaryDirectory() as tmp:
     # ---- errors: one line, nothing written ----
     code, out, err = run("bench", "wp")
     one_line_error(code, err, "missing SCENE")
-    code, out, err = run("bench", "wp", "hertz", "--png", os.path.join(tmp, "x.png"))
-    one_line_error(code, err, "PNG plots need the renderer (not in this build)")
-    check(not os.path.exists(os.path.join(tmp, "x.png")), "no PNG written")
+    code, out, err = run("bench", "wp", "hertz", "--level", "4", "--methods", "ssn-tresca,ubr-c",
+                         "--png", os.path.join(tmp, "nodir", "x.png"))
+    one_line_error(code, err, "nodir")
+    check(not os.path.exists(os.path.join(tmp, "nodir")), "no PNG written")
+    png = os.path.join(tmp, "wp.png")
+    code, out, err = run("bench", "wp", "hertz", "--level", "4", "--methods", "ssn-tresca,ubr-c", "--png", png)
+    data = open(png, "rb").read() if os.path.exists(png) else b""
+    check(code == 0 and data[:8] == b"\x89PNG\r\n\x1a\n" and b"work-precision: hertz level 4" in data,
+          f"the work-precision plot as a PNG with its title chunk: {code} {err!r} {len(data)} bytes")
     code, out, err = run("bench", "scaling", "hertz")
     one_line_error(code, err, "--levels")
     code, out, err = run("bench", "scaling", "hertz", "--levels", "8..4")
