@@ -4,6 +4,11 @@
  * TUI_RESOLVE, which the session serves from its operator cache. No
  * curses here. */
 #include "tui/tui_impl.h"
+#include "cx_config.h"
+
+#if CX_HAVE_RENDER
+#include "render/render.h"
+#endif
 
 #include <math.h>
 #include <stdlib.h>
@@ -420,15 +425,30 @@ static int act_export(tui_state *st)
 }
 
 /* ==== RENDERING HOOK ========================================================
- * The one place the explorer renders. Rendering (src/render/, issue 9) is
- * not in this build yet: when it lands, this function calls the renderer
- * on the session's problem and iterate and returns the file name. */
+ * The one place the explorer renders: the session's current iterate, the
+ * field von Mises, the mesh view's displacement scale, into the export
+ * directory as signorini-SCENE-LLEVEL-METHOD-itN.png. Called on the main
+ * thread while no job runs, so the session is not stepping meanwhile. */
 int tui_render_png(const tui_state *st, char *file, size_t len, cx_diag *d)
 {
-    (void)st;
     if (len)
         file[0] = '\0';
+#if CX_HAVE_RENDER
+    if (!st->session || !cx_session_method(st->session))
+        return cx_diag_set(d, CX_EINVAL, "nothing to render yet");
+    char params[256];
+    cx_render_state rs;
+    cx_render_state_init(&rs, &st->scene, st->session, st->level, params, sizeof params);
+    cx_render_opts o;
+    cx_render_opts_default(&o);
+    o.scale = st->disp_scale;
+    snprintf(file, len, "%s/signorini-%s-L%d-%s-it%d.png", st->export_dir, st->scene.id, st->level,
+             rs.method, cx_session_iterate(st->session)->iter);
+    return cx_render_png(&rs, &o, file, NULL, d);
+#else
+    (void)st;
     return cx_diag_set(d, CX_EUNSUPPORTED, "rendering not available in this build");
+#endif
 }
 /* ==== END OF RENDERING HOOK ================================================== */
 

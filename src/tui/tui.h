@@ -110,7 +110,7 @@ typedef struct tui_job {
 
 /* ---- the state ----------------------------------------------------------- */
 
-#define TUI_MAX_METHODS 64
+#define TUI_MAX_METHODS 64       /* registry entries the explorer tracks */
 
 typedef struct tui_state {
     /* scenes */
