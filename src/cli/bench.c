@@ -28,9 +28,9 @@ typedef struct bench_paper {
  * (cli/paper_NNN.c). */
 static const bench_paper bench_papers[] = {
     {"000", "Tables 1-2: MPRGP and SNM1-4 (nK/kmax) on two blocks", cli_paper_000},
+    {"001", "Table 1: semismooth* Newton, 3D Tresca on the prism, reduction to the contact face", cli_paper_001},
     {"002", "Koko: Uzawa block relaxation, Tables 1-6 (hertz, halfball), r = auto", cli_paper_002},
-    {"001", "Table 1: semismooth* Newton, 3D Tresca on the prism, reduction to the contact face", cli_bench_paper_001},
-    {"003", "masonry walls: Tables 1-7 (sizes; PSOR, LSSNN, PDAS, PDPC, Graves, Schur variants)", cli_bench_paper_003},
+    {"003", "masonry walls: Tables 1-7 (sizes; PSOR, LSSNN, PDAS, PDPC, Graves, Schur variants)", cli_paper_003},
     {NULL, NULL, NULL}
 };
 

@@ -38,8 +38,8 @@ int cli_render_check(const cli_render_args *r, int dim, cx_diag *d);
 int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, int level,
                        int quiet, cx_diag *d);
 int cli_paper_002(int argc, char **argv);   /* cli/paper_002.c */
-int cli_bench_paper_001(int argc, char **argv);   /* cli/paper_001.c */
-int cli_bench_paper_003(int argc, char **argv);   /* cli/paper_003.c */
+int cli_paper_001(int argc, char **argv);   /* cli/paper_001.c */
+int cli_paper_003(int argc, char **argv);   /* cli/paper_003.c */
 
 /* Print "signorini CMD: message" on stderr and return CLI_EXIT_ERROR. */
 int cli_fail(const char *cmd, const char *msg);

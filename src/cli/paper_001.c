@@ -246,7 +246,7 @@ static void p001_print(const p001_row *r, int n)
            "the paper's values are lost, so its iteration counts compare in shape only.\n");
 }
 
-int cli_bench_paper_001(int argc, char **argv)
+int cli_paper_001(int argc, char **argv)
 {
     int want[P001_LEVELS + 1], repeat = 3, solves = 1;
     p001_levels("1-7", want);

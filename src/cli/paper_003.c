@@ -192,7 +192,7 @@ static int p003_sizes(const cx_scene *sc, int g, int max_build)
     return CLI_EXIT_OK;
 }
 
-int cli_bench_paper_003(int argc, char **argv)
+int cli_paper_003(int argc, char **argv)
 {
     int max_level = 100, small = 25;
     double time_limit = 30;
