@@ -2,11 +2,12 @@
 """The explorer end to end in a real terminal: tmux on a private socket,
 a fixed size, keys sent, the pane captured and polled (no fixed sleeps).
 Checks: the scene name; N step keys give iteration N and a falling kkt;
-switching method, parameter and friction keeps "factorised: 1"; the
-contact strip shows stick and slip on 'slider' with Tresca; '?' shows the
-help; a resize to 40x12 says "terminal too small" and back redraws; 'q'
-and Ctrl-C exit 0 with the terminal restored; ASCII without a UTF-8
-locale."""
+a parameter, friction or tolerance change on ssn-tresca keeps
+"factorised: 1"; a second round of 'm' through the methods factorises
+nothing (the counter read after the first round stays); the contact strip
+shows stick and slip on 'slider' with Tresca; '?' shows the help; a
+resize to 40x12 says "terminal too small" and back redraws; 'q' and
+Ctrl-C exit 0 with the terminal restored; ASCII without a UTF-8 locale."""
 import os
 import re
 import shutil
@@ -76,6 +77,32 @@ def pane(fmt):
     return tmux("display-message", "-p", "-t", "t", fmt).strip()
 
 
+def header():
+    """(method, friction law, factorised count) read from the header line;
+    None when the header is not there."""
+    lines = screen().splitlines()
+    m = re.search(r"│ (\S+) (none|tresca|coulomb)\s+│ factorised: (\d+)", lines[0] if lines else "")
+    return (m.group(1), m.group(2), int(m.group(3))) if m else None
+
+
+def status():
+    """The status line (the last line that is not blank)."""
+    lines = [l for l in screen().splitlines() if l.strip()]
+    return lines[-1].strip() if lines else ""
+
+
+def settled(what):
+    """Wait until the explorer has read every key sent so far and the job
+    they started has ended: keys are read in order, so the help opened by
+    '?' shows that the keys before it were read; an unbound key ('z')
+    closes it; then wait for the progress line to go."""
+    keys("?")
+    ok = wait_for(has("help: keys of the explorer"), f"the help (a barrier after {what})")
+    keys("z")
+    return ok and wait_for(lambda t: "help: keys" not in t and "(keys still work)" not in t and header(),
+                           f"the job of {what} to end")
+
+
 rcfile = os.path.join(workdir, "rc")
 
 
@@ -134,7 +161,14 @@ try:
     # ---- 'signorini' alone: the explorer on hertz --------------------------
     start(exe)
     wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
-    check("factorised: 1" in screen(), "factorised: 1 after the build")
+    check(header() is not None and header()[2] == 1, f"factorised: 1 after the build: {header()}")
+    keys("q")
+    exited_cleanly("q after 'signorini' alone")
+
+    # ---- hertz on ssn-tresca -----------------------------------------------------
+    start(f"{exe} tui hertz --method ssn-tresca")
+    wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
+    check(header() == ("ssn-tresca", "none", 1), f"ssn-tresca, no friction, factorised: 1 after the build: {header()}")
 
     # ---- N step keys: iteration N, the kkt falls ---------------------------
     for _ in range(5):
@@ -144,17 +178,53 @@ try:
     check(max(rows) == 5, f"iteration counter 5: {sorted(rows)}")
     check(rows.get(5, 1) < rows.get(1, 0), f"kkt falls from step 1 to 5: {rows}")
 
-    # ---- method, parameter, friction: factorised once -----------------------
-    keys("m")                     # next method that fits
-    wait_for(lambda t: "ready (nothing reassembled)" in t or "the only method" in t, "the method switch")
-    check("factorised: 1" in screen(), "factorised: 1 after a method switch")
+    # ---- parameter, friction, tolerance on ssn-tresca: factorised once ----------
     keys("Down", "Down", "Down", "Right")   # method -> tol -> max iter -> rho, x2
     wait_for(lambda t: re.search(r"rho\s+.0\.002", t) is not None, "rho 0.002")
-    keys("f")                     # Tresca
-    wait_for(lambda t: "tresca" in t.splitlines()[0], "Tresca in the header")
+    settled("the rho change")
+    check(header() == ("ssn-tresca", "none", 1), f"factorised: 1 after the rho change: {header()}")
+    keys("f")                     # Tresca; the cursor goes to the friction row
+    wait_for(lambda t: header() is not None and header()[1] == "tresca", "Tresca in the header")
+    settled("the friction change")
+    check(header() == ("ssn-tresca", "tresca", 1), f"factorised: 1 after the friction change: {header()}")
+    keys("Down", "Down", "Down", "Right")   # friction -> slip s -> method -> tol, x10
+    wait_for(has("tolerance 1e-09"), "the tolerance 1e-09")
+    check(re.search(r"tol\s+.1e-09", screen()) is not None, "tol 1e-09 in the setup")
     keys("r")
     wait_for(has("converged"), "the Tresca run to converge")
-    check("factorised: 1" in screen(), "factorised: 1 after parameter and friction changes")
+    check(header() == ("ssn-tresca", "tresca", 1),
+          f"factorised: 1 after parameter, friction and tolerance changes: {header()}")
+
+    # ---- 'm' round the methods twice: the second round factorises nothing ---------
+    def round_of_methods(n):
+        """Press 'm' until ssn-tresca is the session's method again (not a
+        refusal that leaves it there); the (method, counter, status) seen."""
+        seen = []
+        for _ in range(60):
+            keys("m")
+            if not settled(f"'m' in round {n}"):
+                break
+            h, msg = header(), status()
+            seen.append((h[0], h[2], msg))
+            if h[0] == "ssn-tresca" and msg == "ssn-tresca ready (nothing reassembled)":
+                return seen
+        check(False, f"ssn-tresca back after round {n} of 'm': {seen}")
+        return seen
+
+    first = round_of_methods(1)
+    nfact = header()[2] if header() else -1
+    others = [m for m, _, msg in first if m != "ssn-tresca" and msg == f"{m} ready (nothing reassembled)"]
+    check(others, f"round 1 of 'm' switched to other methods: {first}")
+    counts = [f for _, f, _ in first]
+    check(counts == sorted(counts) and counts[0] >= 1, f"the counter never goes down in round 1: {first}")
+    second = round_of_methods(2)
+    for n, seen in ((1, first), (2, second)):
+        print(f"round {n} of 'm':", ", ".join(f"{m} [{f}]" + ("" if msg.startswith(m + " ready") else f" ({msg})")
+                                            for m, f, msg in seen))
+    check([m for m, _, _ in second] == others + ["ssn-tresca"],
+          f"round 2 visits the methods round 1 switched to, skipping the refused ones: {first} / {second}")
+    check(all(f == nfact for _, f, _ in second), f"factorised: {nfact} all through round 2: {second}")
+    check(header() == ("ssn-tresca", "tresca", nfact), f"factorised: {nfact} after round 2: {header()}")
 
     # ---- help ----------------------------------------------------------------
     keys("?")
@@ -167,7 +237,7 @@ try:
     tmux("resize-window", "-t", "t", "-x", "40", "-y", "12")
     wait_for(has("terminal too small"), "'terminal too small' at 40x12")
     tmux("resize-window", "-t", "t", "-x", "80", "-y", "24")
-    wait_for(has("factorised: 1"), "the full screen back at 80x24")
+    wait_for(lambda t: f"factorised: {nfact}" in t and "─ runs ─" in t, "the full screen back at 80x24")
     check(pane("#{pane_dead}") == "0", "alive after the resizes")
 
     # ---- export ----------------------------------------------------------------
@@ -177,8 +247,11 @@ try:
     check(os.path.exists(os.path.join(workdir, "signorini-hertz-L32-runs.json")), "the JSON is written")
 
     # ---- slider with Tresca: stick and slip in the strip --------------------------
-    keys("n")                     # the next scene: slider
+    keys("q")
+    exited_cleanly("q on hertz")
+    start(f"{exe} tui slider --friction tresca")
     wait_for(lambda t: "slider L4" in t and "built in" in t, "slider to be built")
+    check(header() == ("ssn-tresca", "tresca", 1), f"slider on ssn-tresca with Tresca: {header()}")
     keys("r")
     wait_for(has("converged"), "the slider run to converge")
     strip = [l for l in screen().splitlines() if "pts" in l and "dofs" not in l]
