@@ -70,9 +70,11 @@ void cx_session_destroy(cx_session **sp)
     cx_session *s = *sp;
     session_drop_method(s);
     cx_schur_destroy(&s->schur);
-    for (int i = 0; i < s->nentries; i++)
-        if (s->entries[i].destroy)
+    for (int i = 0; i < s->nentries; i++) {
+        if (s->entries[i].destroy && s->entries[i].obj)
             s->entries[i].destroy(s->entries[i].obj);
+        cx_free(s->entries[i].msg);
+    }
     cx_free(s->entries);
     session_free_iterate(&s->it);
     cx_free(s->work);
@@ -143,7 +145,9 @@ int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build
     for (int i = 0; i < s->nentries; i++)
         if (strcmp(s->entries[i].key, key) == 0) {
             *obj = s->entries[i].obj;
-            return CX_OK;
+            return s->entries[i].status == CX_OK
+                       ? CX_OK
+                       : cx_diag_set(d, s->entries[i].status, "%s", s->entries[i].msg);
         }
     if (s->nentries == s->centries) {
         int cap = s->centries ? 2 * s->centries : 4;
@@ -155,16 +159,27 @@ int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build
     }
     cx_counters before = s->run;
     void *made = NULL;
-    int st = build(&made, s->p, arg, &s->run, d);
+    cx_diag bd;
+    cx_diag_clear(&bd);
+    int st = build(&made, s->p, arg, &s->run, &bd);
     session_count_cache(s, &before);
-    if (st != CX_OK)
+    if (d && st != CX_OK)
+        *d = bd;
+    /* a matrix that cannot be factorised stays so: remember the failure, so
+     * that no method switch pays for the same failed factorisation again */
+    char *msg = st == CX_ENUMERIC ? cx_malloc(strlen(bd.msg) + 1) : NULL;
+    if (st != CX_OK && !msg)
         return st;
     cx_cache_entry *e = &s->entries[s->nentries++];
     snprintf(e->key, sizeof e->key, "%s", key);
     e->obj = made;
     e->destroy = destroy;
+    e->status = st;
+    e->msg = msg;
+    if (msg)
+        memcpy(msg, bd.msg, strlen(bd.msg) + 1);
     *obj = made;
-    return CX_OK;
+    return st;
 }
 
 int cx_session_cache_size(const cx_session *s)

@@ -9,6 +9,8 @@ typedef struct cx_cache_entry {
     char key[CX_CACHE_KEYLEN];
     void *obj;
     cx_cache_destroy_fn destroy;
+    int status;                  /* CX_ENUMERIC: the build failed on the matrix itself */
+    char *msg;                   /* its message (a failed build is not tried again) */
 } cx_cache_entry;
 
 struct cx_session {

@@ -144,6 +144,8 @@ int cx_session_schur(cx_session *s, cx_schur **S, cx_diag *d);
  * call builds it with build(obj, problem, arg, counters, d), counting its
  * work in the cache counters and the current run's; later calls with the
  * same key return it without work. destroy frees it with the session.
+ * A build that fails with CX_ENUMERIC (the matrix cannot be factorised) is
+ * remembered: later calls return the same status and message, no work.
  * Keys are at most CX_CACHE_KEYLEN - 1 characters (longer: CX_EINVAL). */
 #define CX_CACHE_KEYLEN 96
 typedef int (*cx_cache_build_fn)(void **obj, const cx_problem *p, const void *arg,

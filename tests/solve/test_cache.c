@@ -1,5 +1,6 @@
 /* The session's keyed operator cache: built once per key, counted in the
- * cache counters, freed with the session, failures not cached. */
+ * cache counters, freed with the session; a bad argument is not cached, a
+ * matrix that cannot be factorised is (the failure, tried once). */
 #include "check.h"
 #include "solve_fixture.h"
 
@@ -22,6 +23,20 @@ static int build_vector(void **obj, const cx_problem *p, const void *arg, cx_cou
     builds++;
     *obj = v;
     return CX_OK;
+}
+
+static int singular_builds;
+
+/* A factorisation that fails on the matrix itself (CX_ENUMERIC). */
+static int build_singular(void **obj, const cx_problem *p, const void *arg, cx_counters *cnt,
+                          cx_diag *d)
+{
+    (void)obj;
+    (void)p;
+    (void)arg;
+    cnt->factorizations++;
+    singular_builds++;
+    return cx_diag_set(d, CX_ENUMERIC, "not positive definite at column 7");
 }
 
 static void destroy_vector(void *obj)
@@ -54,6 +69,17 @@ int main(void)
     CX_CHECK(cx_session_cache_get(s, "vec scale=-1", build_vector, &bad, destroy_vector, &e, &d) == CX_EINVAL);
     CX_CHECK(strcmp(d.msg, "negative scale") == 0);
     CX_CHECK(cx_session_cache_size(s) == 2);
+
+    /* a matrix that cannot be factorised: tried once, the failure kept */
+    long f0 = cx_session_cache_counters(s)->factorizations;
+    for (int k = 0; k < 3; k++) {
+        cx_diag_clear(&d);
+        CX_CHECK(cx_session_cache_get(s, "singular", build_singular, NULL, NULL, &e, &d) == CX_ENUMERIC);
+        CX_CHECK(strcmp(d.msg, "not positive definite at column 7") == 0);
+    }
+    CX_CHECK(singular_builds == 1);
+    CX_CHECK(cx_session_cache_counters(s)->factorizations == f0 + 1);
+    CX_CHECK(cx_session_cache_get(s, "singular", build_singular, NULL, NULL, &e, NULL) == CX_ENUMERIC);
 
     char longkey[CX_CACHE_KEYLEN + 1];
     memset(longkey, 'k', sizeof longkey - 1);
