@@ -3,34 +3,11 @@
 exit codes, and one-line errors for bad options and bad scenes."""
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
-exe = sys.argv[1]
-failures = 0
-checks = 0
-
-
-def check(cond, what):
-    global failures, checks
-    checks += 1
-    if not cond:
-        failures += 1
-        print(f"FAIL: {what}")
-
-
-def run(*args):
-    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=300)
-    return r.returncode, r.stdout, r.stderr
-
-
-def one_line_error(code, err, *needles):
-    lines = err.strip().splitlines()
-    check(code == 1, f"exit 1 for an error, got {code}: {err!r}")
-    check(len(lines) == 1, f"one line on stderr, got {lines!r}")
-    for n in needles:
-        check(n in err, f"{n!r} in {err!r}")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from clicheck import check, finish, run, one_line_error  # noqa: E402
 
 
 # ---- solve --json on hertz ----
@@ -120,5 +97,4 @@ check(any(p["key"] == "rho" for p in ms["ssn-tresca"]["params"]), "parameters li
 code, out, err = run("list")
 check(code == 0 and "hertz" in out and "ssn-tresca" in out, "text list")
 
-print(f"cli: {checks} checks, {failures} failed")
-sys.exit(1 if failures else 0)
+finish("cli")

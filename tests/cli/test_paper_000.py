@@ -4,25 +4,11 @@ the refusal of Coulomb by mprgp, and 'bench paper 000' (first row: the
 paper's n/m, our counts beside the paper's, bad options as one-line errors)."""
 import json
 import re
-import subprocess
+import os
 import sys
 
-exe = sys.argv[1]
-failures = 0
-checks = 0
-
-
-def check(cond, what):
-    global failures, checks
-    checks += 1
-    if not cond:
-        failures += 1
-        print(f"FAIL: {what}")
-
-
-def run(*args):
-    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=300)
-    return r.returncode, r.stdout, r.stderr
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from clicheck import check, finish, run  # noqa: E402
 
 
 # ---- solve twoblocks with each paper-000 method ----
@@ -59,5 +45,4 @@ if row:
     check(m is not None and 2 <= int(m.group(2)) <= 15, f"SNM1 cell {cells[2]}")
     check("!" not in row[0], f"every method converged: {row[0]}")
 
-print(f"cli paper 000: {checks} checks, {failures} failed")
-sys.exit(1 if failures else 0)
+finish("cli paper 000")

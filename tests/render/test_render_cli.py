@@ -6,36 +6,13 @@ written, and bad paths / options give one line and leave no file."""
 import base64
 import os
 import struct
-import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
 import zlib
 
-exe = sys.argv[1]
-failures = 0
-checks = 0
-
-
-def check(cond, what):
-    global failures, checks
-    checks += 1
-    if not cond:
-        failures += 1
-        print(f"FAIL: {what}")
-
-
-def run(*args):
-    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=300)
-    return r.returncode, r.stdout, r.stderr
-
-
-def one_line_error(code, err, *needles):
-    lines = err.strip().splitlines()
-    check(code == 1, f"exit 1 for an error, got {code}: {err!r}")
-    check(len(lines) == 1, f"one line on stderr, got {lines!r}")
-    for n in needles:
-        check(n in err, f"{n!r} in {err!r}")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from clicheck import check, finish, run, one_line_error  # noqa: E402
 
 
 def png_info(path):
@@ -159,5 +136,4 @@ with tempfile.TemporaryDirectory() as tmp:
     code, out, err = run("render", "--help")
     check(code == 0 and "--field" in out, "render --help")
 
-print(f"render cli: {checks} checks, {failures} failed")
-sys.exit(1 if failures else 0)
+finish("render cli")
