@@ -27,7 +27,7 @@ const char bench_common_help[] =
     "                       environment says); 1 gives steadier ratios on a busy machine\n"
     "  --csv FILE           also write the rows as CSV (header lines start with '#')\n"
     "  --json               print JSON {meta, rows} on stdout instead of the table\n"
-    "  --png FILE           a plot (needs the renderer)\n"
+    "  --png FILE           the plot of the runs (PNG, through the renderer)\n"
     "  --cache DIR          reference solutions (default: signorini-ref/ beside\n"
     "                       the --csv file, else in the current directory)\n";
 
