@@ -185,6 +185,8 @@ void bench_common_default(bench_common *c, int repeat);
 /* Check what needs checking once the options are read (PNG, cache dir). */
 int bench_common_finish(bench_common *c, cx_diag *d);
 extern const char bench_common_help[];
+/* If argv asks for --help / -h: print usage and the common options, return 1. */
+int bench_print_help(int argc, char **argv, const char *usage);
 /* The friction law and value of a scene under the common options. */
 int bench_common_law(const bench_common *c, const cx_scene *s, cx_friction *law, double *value,
                      cx_diag *d);

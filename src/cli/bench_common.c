@@ -110,6 +110,16 @@ static void common_set_threads(int n)
         omp(n);
 }
 
+int bench_print_help(int argc, char **argv, const char *usage)
+{
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            printf("%s%s", usage, bench_common_help);
+            return 1;
+        }
+    return 0;
+}
+
 int bench_common_finish(bench_common *c, cx_diag *d)
 {
     if (c->threads > 0)

@@ -188,11 +188,8 @@ static int scaling_level_costs(const bench_problem_spec *spec, int repeat, doubl
 
 int bench_scaling(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            printf("%s%s", scaling_usage, bench_common_help);
-            return CLI_EXIT_OK;
-        }
+    if (bench_print_help(argc, argv, scaling_usage))
+        return CLI_EXIT_OK;
     cx_diag d;
     cx_diag_clear(&d);
     scaling_args a;

@@ -190,11 +190,8 @@ static void wp_time_to_accuracy(bench_table *t, double baseline)
 
 int bench_wp(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            printf("%s%s", wp_usage, bench_common_help);
-            return CLI_EXIT_OK;
-        }
+    if (bench_print_help(argc, argv, wp_usage))
+        return CLI_EXIT_OK;
     cx_diag d;
     cx_diag_clear(&d);
     wp_args a;
