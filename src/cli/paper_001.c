@@ -134,7 +134,7 @@ static int p001_level(const cx_scene *sc, int level, int repeat, int solves, p00
     const cx_problem *pp = cx_session_problem(s);
     cx_schur *S = NULL;
     t0 = cx_clock_now();
-    if ((st = cx_session_schur(s, &S, d)))
+    if ((st = cx_session_schur(s, &S, NULL, d)))
         goto done;
     row->schur = cx_clock_now() - t0;
 

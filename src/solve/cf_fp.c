@@ -147,6 +147,7 @@ static int cffp_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
                            cx_session_reason_msg(st->child)[0] ? ": " : "",
                            cx_session_reason_msg(st->child));
     memcpy(it->u, in->u, sizeof(double) * (size_t)p->n);
+    it->u_partial = in->u_partial;   /* expanded once, when the whole run ends */
     memcpy(it->lN, in->lN, sizeof(double) * (size_t)m);
     memcpy(it->lT, in->lT, sizeof(double) * (size_t)p->nt);
 

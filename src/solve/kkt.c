@@ -31,32 +31,14 @@ void cx_kkt_scales(const cx_problem *p, const double *u, const double *lN, const
     *disp = fmax(norminf(p->n, u), L / k);
 }
 
-double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, const double *lT,
-                    double *work, cx_counters *cnt, cx_kkt *parts)
+/* The natural-map residuals of the contact and friction conditions, into
+ * k->contact and k->friction; work: m + nt doubles. */
+static void kkt_maps(const cx_problem *p, const double *u, const double *lN, const double *lT,
+                     double *work, cx_kkt *k)
 {
-    int n = p->n, m = p->m, nt = p->nt, dim = p->dim;
+    int m = p->m, dim = p->dim;
     int fric = p->friction != CX_FRICTION_NONE;
-    cx_kkt k = {INFINITY, INFINITY, INFINITY, INFINITY};
-    if (!cx_vec_finite(n, u) || !cx_vec_finite(m, lN) || (fric && !cx_vec_finite(nt, lT))) {
-        if (parts)
-            *parts = k;
-        return INFINITY;
-    }
-    double *r = work, *Nu = work + n, *Tu = work + n + m;
-
-    /* ---- equilibrium: K u - f + N' lN + T' lT ---- */
-    cx_csc_gemv_t(&p->N, 1.0, lN, 0.0, r);
-    if (fric)
-        cx_csc_gemv_t(&p->T, 1.0, lT, 1.0, r);
-    double nB = norminf(n, r), nf = norminf(n, p->f);
-    cx_csc_gemv(&p->K, 1.0, u, 1.0, r);
-    if (cnt)
-        cnt->matvecs++;
-    cx_vec_axpy(n, -1.0, p->f, r);
-    double nr = norminf(n, r);
-    k.equilibrium = nf + nB > 0 ? nr / (nf + nB) : (nr > 0 ? 1.0 : 0.0);
-
-    /* ---- natural maps of the contact and friction conditions ---- */
+    double *Nu = work, *Tu = work + m;
     double L, U;
     cx_kkt_scales(p, u, lN, lT, &L, &U);
     double rho = L / U;
@@ -64,7 +46,7 @@ double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, cons
     double rc = 0;
     for (int i = 0; i < m; i++)
         rc = fmax(rc, fabs(lN[i] - fmax(0.0, lN[i] + rho * (Nu[i] - p->g[i]))));
-    k.contact = rc / L;
+    k->contact = rc / L;
 
     double rf = 0;
     if (fric) {
@@ -82,8 +64,71 @@ double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, cons
                 rf = fmax(rf, fabs(lT[dt * i + c] - scale * z[c]));
         }
     }
-    k.friction = rf / L;
-    k.total = fmax(k.equilibrium, fmax(k.contact, k.friction));
+    k->friction = rf / L;
+    k->total = fmax(k->equilibrium, fmax(k->contact, k->friction));
+}
+
+/* r = N' lN + T' lT (n); false if an input is not finite. */
+static int kkt_contact_forces(const cx_problem *p, const double *u, const double *lN, const double *lT,
+                              double *r)
+{
+    int fric = p->friction != CX_FRICTION_NONE;
+    if (!cx_vec_finite(p->n, u) || !cx_vec_finite(p->m, lN) || (fric && !cx_vec_finite(p->nt, lT)))
+        return 0;
+    cx_csc_gemv_t(&p->N, 1.0, lN, 0.0, r);
+    if (fric)
+        cx_csc_gemv_t(&p->T, 1.0, lT, 1.0, r);
+    return 1;
+}
+
+static double kkt_ratio(double num, double den) { return den > 0 ? num / den : (num > 0 ? 1.0 : 0.0); }
+
+double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, const double *lT,
+                    double *work, cx_counters *cnt, cx_kkt *parts)
+{
+    int n = p->n;
+    cx_kkt k = {INFINITY, INFINITY, INFINITY, INFINITY};
+    double *r = work;
+    if (!kkt_contact_forces(p, u, lN, lT, r)) {
+        if (parts)
+            *parts = k;
+        return INFINITY;
+    }
+    /* ---- equilibrium: K u - f + N' lN + T' lT ---- */
+    double nB = norminf(n, r), nf = norminf(n, p->f);
+    cx_csc_gemv(&p->K, 1.0, u, 1.0, r);
+    if (cnt)
+        cnt->matvecs++;
+    cx_vec_axpy(n, -1.0, p->f, r);
+    k.equilibrium = kkt_ratio(norminf(n, r), nf + nB);
+    kkt_maps(p, u, lN, lT, work + n, &k);
+    if (parts)
+        *parts = k;
+    return k.total;
+}
+
+double cx_kkt_error_condensed(const cx_problem *p, const double *S, const double *fc, const double *u,
+                              const double *lN, const double *lT, double *work, cx_kkt *parts)
+{
+    int n = p->n, nc = p->nc;
+    cx_kkt k = {INFINITY, INFINITY, INFINITY, INFINITY};
+    double *r = work;
+    if (!kkt_contact_forces(p, u, lN, lT, r)) {
+        if (parts)
+            *parts = k;
+        return INFINITY;
+    }
+    /* ---- equilibrium on the contact rows: S u_c - fc + (N' lN + T' lT)_c ---- */
+    double nB = norminf(n, r), nf = norminf(n, p->f), nr = 0;
+    for (int a = 0; a < nc; a++) {
+        double sum = r[p->cdofs[a]] - fc[a];
+        const double *Sa = S + (size_t)nc * a;   /* row a = column a: S is symmetric */
+        for (int b = 0; b < nc; b++)
+            sum += Sa[b] * u[p->cdofs[b]];
+        nr = fmax(nr, fabs(sum));
+    }
+    k.equilibrium = kkt_ratio(nr, nf + nB);
+    kkt_maps(p, u, lN, lT, work + n, &k);
     if (parts)
         *parts = k;
     return k.total;

@@ -80,6 +80,15 @@ typedef struct cx_kkt {
 double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, const double *lT,
                     double *work, cx_counters *cnt, cx_kkt *parts);
 
+/* The same error for an iterate whose u is exact on the contact dofs and
+ * whose other dofs solve their equilibrium rows (u_i = K_ii^-1 (f_i -
+ * K_ic u_c)), from the Schur complement S (nc x nc, column-major, in
+ * p->cdofs order) and the condensed load fc: the equilibrium rows of the
+ * other dofs are zero, those of the contact dofs are S u_c - fc + (N'lN +
+ * T'lT)_c. u's other dofs enter only the displacement scale. */
+double cx_kkt_error_condensed(const cx_problem *p, const double *S, const double *fc, const double *u,
+                              const double *lN, const double *lT, double *work, cx_kkt *parts);
+
 /* The scales used by cx_kkt_error, exposed for methods that need a
  * consistent rho: multiplier scale, displacement scale, rho = mult / disp. */
 void cx_kkt_scales(const cx_problem *p, const double *u, const double *lN, const double *lT,

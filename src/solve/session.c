@@ -41,7 +41,8 @@ int cx_session_create_(cx_session **sp, cx_problem **pp, cx_session *parent, cx_
     s->it.status = CX_NEW(unsigned char, p->m);
     s->it.changed = CX_NEW(unsigned char, p->m);
     s->work = CX_NEW(double, p->n + p->m + p->nt);
-    if (!s->it.u || !s->it.lN || !s->it.lT || !s->it.status || !s->it.changed || !s->work) {
+    s->uc = CX_NEW(double, p->nc);
+    if (!s->it.u || !s->it.lN || !s->it.lT || !s->it.status || !s->it.changed || !s->work || !s->uc) {
         cx_session_destroy(&s);
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
@@ -70,6 +71,8 @@ void cx_session_destroy(cx_session **sp)
     cx_session *s = *sp;
     session_drop_method(s);
     cx_schur_destroy(&s->schur);
+    cx_free(s->schur_load);
+    cx_free(s->uc);
     for (int i = 0; i < s->nentries; i++) {
         if (s->entries[i].destroy && s->entries[i].obj)
             s->entries[i].destroy(s->entries[i].obj);
@@ -120,18 +123,28 @@ static void session_count_cache(cx_session *s, const cx_counters *before)
     s->cache.dual_products += s->run.dual_products - before->dual_products;
 }
 
-int cx_session_schur(cx_session *s, cx_schur **S, cx_diag *d)
+int cx_session_schur(cx_session *s, cx_schur **S, const double **fc, cx_diag *d)
 {
-    if (s->parent)
-        return cx_session_schur(s->parent, S, d);
+    if (s->parent)   /* a nested session has its parent's K and f */
+        return cx_session_schur(s->parent, S, fc, d);
     if (!s->schur) {
         cx_counters before = s->run;
-        int st = cx_schur_create(&s->schur, &s->p->K, s->p->cdofs, s->p->nc, &s->run, d);
+        int st = CX_ENOMEM;
+        if ((s->schur_load = CX_NEW(double, s->p->nc)))
+            st = cx_schur_create(&s->schur, &s->p->K, s->p->cdofs, s->p->nc, &s->run, d);
+        if (st == CX_OK)
+            st = cx_schur_condense(s->schur, s->p->f, s->schur_load);
         session_count_cache(s, &before);
-        if (st != CX_OK)
-            return st;
+        if (st != CX_OK) {
+            cx_schur_destroy(&s->schur);
+            cx_free(s->schur_load);
+            s->schur_load = NULL;
+            return st == CX_ENOMEM ? cx_diag_set(d, st, "out of memory") : st;
+        }
     }
     *S = s->schur;
+    if (fc)
+        *fc = s->schur_load;
     return CX_OK;
 }
 
@@ -200,6 +213,7 @@ static void session_clear_run(cx_session *s)
     memset(it->status, 0, (size_t)p->m);
     memset(it->changed, 0, (size_t)p->m);
     it->iter = 0;
+    it->u_partial = 0;
     it->reason = CX_ITERATING;
     it->kkt = INFINITY;
     it->kkt_parts = (cx_kkt){INFINITY, INFINITY, INFINITY, INFINITY};

@@ -15,7 +15,9 @@ typedef struct cx_cache_entry {
 
 struct cx_session {
     cx_problem *p;               /* owned */
-    cx_schur *schur;             /* operator cache: K condensed onto p->cdofs, lazy */
+    cx_schur *schur;             /* operator cache: K condensed onto p->cdofs, lazy ... */
+    double *schur_load;          /* ... and f condensed with it (nc) */
+    double *uc;                  /* nc: scratch to expand a partial iterate */
     cx_cache_entry *entries;     /* operator cache: everything else, by key */
     int nentries, centries;
     cx_counters cache;           /* work of building the cache, all runs */

@@ -70,6 +70,8 @@ typedef struct cx_iterate {
     double own;          /* the method's own criterion (NaN if none) */
     int own_done;        /* set by the method when its own criterion is met */
     double *u;           /* n */
+    int u_partial;       /* 1: only u's contact dofs (p->cdofs) are of this
+                            iterate, the rest is of an earlier one (below) */
     double *lN;          /* m */
     double *lT;          /* nt */
     unsigned char *status;    /* m, cx_point_status */
@@ -134,10 +136,10 @@ int cx_session_set_friction(cx_session *s, cx_friction law, double value, cx_dia
 const cx_counters *cx_session_cache_counters(const cx_session *s);
 
 /* Operator cache (lazy, built once per session, shared by every method):
- * the static condensation of K onto the contact dofs p->cdofs. Its work is
- * counted in the cache counters and, when built during a run, in the run's
- * counters too. */
-int cx_session_schur(cx_session *s, cx_schur **S, cx_diag *d);
+ * the static condensation of K onto the contact dofs p->cdofs, and of the
+ * load f (*fc, nc values; fc may be NULL). Its work is counted in the cache
+ * counters and, when built during a run, in the run's counters too. */
+int cx_session_schur(cx_session *s, cx_schur **S, const double **fc, cx_diag *d);
 /* Any other shared operator (a factorisation of K + r M, the dual operator,
  * a regularised K, ...), built lazily once per session under a key that
  * names it and every value it depends on ("ubr:K+rM r=2.2e+02"). The first
@@ -187,6 +189,18 @@ typedef int (*cx_observer)(void *ctx, const cx_session *s, const cx_iterate *it)
 int cx_solver_solve(cx_session *s, cx_observer obs, void *ctx, cx_diag *d);
 
 const cx_iterate *cx_session_iterate(const cx_session *s);
+/* Partial iterates. A method that works on the system condensed onto the
+ * contact dofs (the session's Schur complement) may update only u's
+ * contact dofs in a step and set it->u_partial: expanding u costs a solve
+ * with the whole factor, more than the rest of such a step. The kkt error
+ * is then computed on the condensed system, where the equilibrium rows of
+ * the other dofs are zero by construction; its displacement scale takes
+ * the other dofs from the last expansion. The step that ends a run
+ * expands u (the run's last iterate is always whole) and decides the
+ * outcome on the whole iterate's kkt error. Anyone who reads u during a
+ * run (the explorer draws it) calls this first: it expands u if partial
+ * and recomputes the kkt error (and the outcome) on the whole iterate. */
+int cx_session_complete_iterate(cx_session *s, cx_diag *d);
 /* Why the run broke down (the method's message), or "" . */
 const char *cx_session_reason_msg(const cx_session *s);
 
@@ -211,8 +225,10 @@ const char *cx_session_reason_msg(const cx_session *s);
  *         read cx_session_iterate(child): u, lN, lT, iter, reason
  *     cx_session_destroy(&child);                               (in destroy)
  *
- * The child's iterate counters are the work of its own run. The child must
- * be destroyed before the parent. */
+ * The child's iterate counters are the work of its own run. Its last
+ * iterate may be partial (u_partial, above): the method that runs it copies
+ * u_partial with u, or calls cx_session_complete_iterate(child). The child
+ * must be destroyed before the parent. */
 int cx_session_nested_create(cx_session **child, cx_session *parent, cx_diag *d);
 /* Tresca friction with per-point slip bounds sb (m nodal forces >= 0; e.g.
  * s_i = F_i lN_i of a fixed-point step, or a bound times Hertz's pressure

@@ -86,6 +86,79 @@ static void solver_classify(cx_session *s)
     }
 }
 
+/* The kkt error of the iterate: on the condensed system if u is partial. */
+static int solver_kkt(cx_session *s, cx_diag *d)
+{
+    cx_iterate *it = &s->it;
+    if (!it->u_partial) {
+        it->kkt = cx_kkt_error(s->p, it->u, it->lN, it->lT, s->work, cx_session_counters(s), &it->kkt_parts);
+        return CX_OK;
+    }
+    cx_schur *S;
+    const double *fc;
+    CX_TRY(cx_session_schur(s, &S, &fc, d));
+    it->kkt = cx_kkt_error_condensed(s->p, cx_schur_matrix(S), fc, it->u, it->lN, it->lT, s->work,
+                                     &it->kkt_parts);
+    return CX_OK;
+}
+
+/* Expand a partial iterate's u from its contact dofs; its kkt error is
+ * then that of the whole iterate. */
+static int solver_expand(cx_session *s, cx_diag *d)
+{
+    cx_iterate *it = &s->it;
+    const cx_problem *p = s->p;
+    cx_schur *S;
+    CX_TRY(cx_session_schur(s, &S, NULL, d));
+    for (int k = 0; k < p->nc; k++)
+        s->uc[k] = it->u[p->cdofs[k]];
+    int st = cx_schur_expand(S, p->f, s->uc, it->u);
+    cx_session_sync_counters_(s);
+    if (st != CX_OK)
+        return cx_diag_set(d, st, "expanding the iterate from the contact dofs failed");
+    it->u_partial = 0;
+    return solver_kkt(s, d);
+}
+
+/* The outcome after a step, from the kkt error and the limits; time: the
+ * run's time including this step. */
+static int solver_outcome(const cx_session *s, double time)
+{
+    const cx_iterate *it = &s->it;
+    if (it->kkt <= s->opt.tol)
+        return CX_CONVERGED_KKT;
+    if (it->own_done && s->opt.own_stop)
+        return CX_CONVERGED_OWN;
+    if (it->iter >= s->opt.max_iter)
+        return CX_DIVERGED_MAXIT;
+    if (s->opt.stall_window > 0 && it->iter - s->best_iter >= s->opt.stall_window)
+        return CX_DIVERGED_STALL;
+    if (s->opt.time_limit > 0 && time >= s->opt.time_limit)
+        return CX_DIVERGED_TIME;
+    return CX_ITERATING;
+}
+
+/* Stall detection: the best kkt so far, and when it last halved. */
+static void solver_track_best(cx_session *s)
+{
+    if (s->it.kkt < 0.5 * s->best_kkt) {
+        s->best_kkt = s->it.kkt;
+        s->best_iter = s->it.iter;
+    }
+}
+
+int cx_session_complete_iterate(cx_session *s, cx_diag *d)
+{
+    cx_iterate *it = &s->it;
+    if (!it->u_partial)
+        return CX_OK;
+    CX_TRY(solver_expand(s, d));
+    solver_track_best(s);
+    if (it->reason == CX_ITERATING && isfinite(it->kkt))
+        it->reason = solver_outcome(s, it->time);
+    return CX_OK;
+}
+
 int cx_solver_step(cx_session *s, cx_diag *d)
 {
     cx_iterate *it = &s->it;
@@ -99,12 +172,34 @@ int cx_solver_step(cx_session *s, cx_diag *d)
     it->inner = 0;
     cx_diag local;
     cx_diag_clear(&local);
+    /* the step's time: the method's step and the expansion of a partial
+     * iterate, not the kkt error */
     double t0 = cx_clock_now();
     int st = s->method->step(s->state, s, it, &local);
     it->step_time = cx_clock_now() - t0;
-    it->time += it->step_time;
     it->iter++;
     it->inner_total += it->inner;
+    if (st == CX_OK)
+        st = solver_kkt(s, &local);
+    double run_time = it->time + it->step_time;
+    if (st == CX_OK && isfinite(it->kkt)) {
+        solver_track_best(s);
+        /* a run that ends here ends on the whole iterate; a nested run's
+         * is read by the method that runs it, which may need only the
+         * contact dofs (cf-fp) */
+        if (it->u_partial && !s->parent && solver_outcome(s, run_time) != CX_ITERATING) {
+            double t1 = cx_clock_now();
+            st = solver_expand(s, &local);
+            it->step_time += cx_clock_now() - t1;
+            if (st == CX_OK)
+                solver_track_best(s);
+        }
+    } else if (st != CX_OK && st != CX_ENOMEM && it->u_partial) {
+        cx_diag ignored;
+        solver_expand(s, &ignored);   /* the last good iterate, whole */
+    }
+    it->time += it->step_time;
+    cx_session_sync_counters_(s);
     if (st == CX_ENOMEM) {
         it->reason = CX_DIVERGED_BREAKDOWN;
         snprintf(s->reason_msg, sizeof s->reason_msg, "out of memory");
@@ -114,34 +209,15 @@ int cx_solver_step(cx_session *s, cx_diag *d)
         /* a method that cannot go on is an outcome, with its reason */
         it->reason = CX_DIVERGED_BREAKDOWN;
         snprintf(s->reason_msg, sizeof s->reason_msg, "%s", cx_diag_msg(&local, st));
-        cx_session_sync_counters_(s);
         return CX_OK;
     }
-
-    it->kkt = cx_kkt_error(s->p, it->u, it->lN, it->lT, s->work, cx_session_counters(s),
-                           &it->kkt_parts);
-    cx_session_sync_counters_(s);
     if (!isfinite(it->kkt)) {
         it->reason = CX_DIVERGED_NAN;
         snprintf(s->reason_msg, sizeof s->reason_msg, "NaN or Inf in the iterate at iteration %d", it->iter);
         return CX_OK;
     }
     solver_classify(s);
-
-    if (it->kkt < 0.5 * s->best_kkt) {
-        s->best_kkt = it->kkt;
-        s->best_iter = it->iter;
-    }
-    if (it->kkt <= s->opt.tol)
-        it->reason = CX_CONVERGED_KKT;
-    else if (it->own_done && s->opt.own_stop)
-        it->reason = CX_CONVERGED_OWN;
-    else if (it->iter >= s->opt.max_iter)
-        it->reason = CX_DIVERGED_MAXIT;
-    else if (s->opt.stall_window > 0 && it->iter - s->best_iter >= s->opt.stall_window)
-        it->reason = CX_DIVERGED_STALL;
-    else if (s->opt.time_limit > 0 && it->time >= s->opt.time_limit)
-        it->reason = CX_DIVERGED_TIME;
+    it->reason = solver_outcome(s, it->u_partial ? run_time : it->time);
     return CX_OK;
 }
 

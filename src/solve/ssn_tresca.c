@@ -29,8 +29,9 @@
  * dofs with the session's Schur complement S of K (one sparse Cholesky for
  * the whole session, DESIGN.md §5), so each iteration is one dense
  * symmetric-indefinite solve of order nc + |active| (Bunch-Kaufman: S may
- * be singular when only the contact holds the body) plus one solve with the
- * sparse factor to expand u. The constraint rows are scaled by the
+ * be singular when only the contact holds the body). The step updates u on
+ * the contact dofs only (a partial iterate, solve.h): the solve with the
+ * sparse factor that expands u is left to the end of the run. The constraint rows are scaled by the
  * stiffness scale so that both blocks have like magnitudes. The first
  * iteration takes every point in contact and sticking (the bonded problem),
  * which holds the body whatever K's null space. */
@@ -45,9 +46,9 @@ typedef struct {
     int nrow;             /* constraint rows: m normal, then nt tangential (Tresca) */
     int *rp, *rc;         /* nrow + 1 / nnz: CSR rows over contact-dof positions */
     double *rv;           /* nnz row values */
-    double *fc;           /* nc: load condensed onto the contact dofs */
+    const double *fc;     /* nc: load condensed onto the contact dofs (the session's) */
     double *uc;           /* nc: contact-dof displacements of the iterate */
-    double *uprev;        /* n: the previous u, for the paper's criterion */
+    double *uprev;        /* nc: the previous uc, for the paper's criterion */
     double *Bu;           /* nrow: rows times uc */
     signed char *set;     /* nrow: normal 1 contact / 0 free; tangential 0 stick, +1/-1 slip */
     signed char *prev;    /* nrow: the sets of the previous iteration */
@@ -63,6 +64,7 @@ typedef struct {
     int dt;               /* tangential rows per point (dim - 1) */
     double *q;            /* nt: 3D slip direction per point (its two tangential rows) */
     double *beta;         /* m: 3D linearised tangential stiffness of a slip point */
+    int warm;             /* 1: the first sets come from the starting iterate */
 } ssn_state;
 
 static const cx_param ssn_params[] = {
@@ -80,7 +82,6 @@ static void ssn_destroy(void *state)
     cx_free(st->rp);
     cx_free(st->rc);
     cx_free(st->rv);
-    cx_free(st->fc);
     cx_free(st->uc);
     cx_free(st->uprev);
     cx_free(st->Bu);
@@ -143,6 +144,13 @@ static int ssn_build_rows(ssn_state *st, const cx_problem *p)
     return CX_OK;
 }
 
+/* The bonded start: every point in contact and sticking. */
+static void ssn_bonded(ssn_state *st, int m)
+{
+    for (int r = 0; r < st->nrow; r++)
+        st->set[r] = r < m ? 1 : 0;
+}
+
 static int ssn_init(void *state, cx_session *s, const cx_param_values *params, cx_diag *d)
 {
     ssn_state *st = state;
@@ -159,9 +167,8 @@ static int ssn_init(void *state, cx_session *s, const cx_param_values *params, c
     st->kappa = p->kscale > 0 ? p->kscale : 1;
     st->rho = cx_param_get(params, "rho") * st->kappa;
     st->lwork = 64 * (ns > 0 ? ns : 1);
-    st->fc = CX_NEW(double, st->nc);
     st->uc = CX_NEW(double, st->nc);
-    st->uprev = CX_NEW(double, p->n);
+    st->uprev = CX_NEW(double, st->nc);
     st->Bu = CX_NEW(double, st->nrow);
     st->set = CX_NEW(signed char, st->nrow);
     st->prev = CX_NEW(signed char, st->nrow);
@@ -173,19 +180,23 @@ static int ssn_init(void *state, cx_session *s, const cx_param_values *params, c
     st->q = CX_NEW(double, p->nt);
     st->beta = CX_NEW(double, p->m);
     int status = CX_ENOMEM;
-    if (!st->q || !st->beta || !st->fc || !st->uc || !st->uprev || !st->Bu || !st->set || !st->prev || !st->act ||
+    if (!st->q || !st->beta || !st->uc || !st->uprev || !st->Bu || !st->set || !st->prev || !st->act ||
         !st->M || !st->x || !st->ipiv || !st->work || (status = ssn_build_rows(st, p)) != CX_OK) {
         ssn_destroy(st);
         return cx_diag_set(d, status, "out of memory");
     }
-    if ((status = cx_session_schur(s, &st->S, d)) != CX_OK ||
-        (status = cx_schur_condense(st->S, p->f, st->fc)) != CX_OK) {
+    if ((status = cx_session_schur(s, &st->S, &st->fc, d)) != CX_OK) {
         ssn_destroy(st);
         return status;
     }
-    /* the bonded start: every point in contact and sticking */
-    for (int r = 0; r < st->nrow; r++)
-        st->set[r] = r < p->m ? 1 : 0;
+    /* start from the sets of the session's starting iterate if it has
+     * contact forces (cx_session_set_start, e.g. cf-fp's last step), else
+     * bonded: every point in contact and sticking */
+    const cx_iterate *start = cx_session_iterate(s);
+    st->warm = 0;
+    for (int i = 0; i < p->m; i++)
+        st->warm |= start->lN[i] > 0;
+    ssn_bonded(st, p->m);
     memset(st->prev, 0x7f, (size_t)st->nrow);  /* no previous sets */
     return CX_OK;
 }
@@ -269,23 +280,11 @@ static int ssn_nslip3d(const ssn_state *st, const cx_problem *p)
     return n;
 }
 
-static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
+/* Solve the condensed saddle-point system of the current sets; the new
+ * iterate into uc, it->lN, it->lT. */
+static int ssn_solve(ssn_state *st, const cx_problem *p, cx_iterate *it, cx_diag *d)
 {
-    ssn_state *st = state;
-    const cx_problem *p = cx_session_problem(s);
     int nc = st->nc, m = p->m;
-
-    if (it->iter > 0)
-        ssn_predict(st, p, it);
-    if (memcmp(st->set, st->prev, (size_t)st->nrow) == 0 && ssn_nslip3d(st, p) == 0) {
-        /* the sets repeat: the last iterate solves the problem */
-        it->own = 0;
-        it->own_done = 1;
-        return CX_OK;
-    }
-    memcpy(st->prev, st->set, (size_t)st->nrow);
-
-    /* ---- the condensed saddle-point system on the active rows ---- */
     int na = 0;
     /* a row with no free dof (a contact node whose tangential motion is
      * prescribed, e.g. on a symmetry axis) constrains nothing */
@@ -341,13 +340,50 @@ static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
         else
             it->lT[r - m] = st->kappa * st->x[nc + a];
     }
-    memcpy(st->uprev, it->u, sizeof(double) * (size_t)p->n);
-    CX_TRY(cx_schur_expand(st->S, p->f, st->uc, it->u));
+    return CX_OK;
+}
 
-    /* the paper's err = ||u^k - u^(k-1)|| / ||u^k|| */
-    cx_vec_axpy(p->n, -1.0, it->u, st->uprev);
-    double nu = cx_vec_norm2(p->n, it->u);
-    it->own = nu > 0 ? cx_vec_norm2(p->n, st->uprev) / nu : 0;
+static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
+{
+    ssn_state *st = state;
+    const cx_problem *p = cx_session_problem(s);
+    int nc = st->nc;
+
+    if (it->iter == 0 && st->warm) {
+        /* a warm start: the sets of the starting iterate */
+        for (int k = 0; k < nc; k++)
+            st->uc[k] = it->u[p->cdofs[k]];
+        memcpy(st->uprev, st->uc, sizeof(double) * (size_t)nc);
+    }
+    if (it->iter > 0 || st->warm)
+        ssn_predict(st, p, it);
+    if (memcmp(st->set, st->prev, (size_t)st->nrow) == 0 && ssn_nslip3d(st, p) == 0) {
+        /* the sets repeat: the last iterate solves the problem */
+        it->own = 0;
+        it->own_done = 1;
+        return CX_OK;
+    }
+    memcpy(st->prev, st->set, (size_t)st->nrow);
+    int status = ssn_solve(st, p, it, d);
+    if (status == CX_ENUMERIC && it->iter == 0 && st->warm) {
+        /* the start's sets do not hold the body: start bonded after all */
+        ssn_bonded(st, p->m);
+        memcpy(st->prev, st->set, (size_t)st->nrow);
+        cx_diag_clear(d);
+        status = ssn_solve(st, p, it, d);
+    }
+    CX_TRY(status);
+
+    /* u on the contact dofs only: the solver expands it when the run ends */
+    for (int k = 0; k < nc; k++)
+        it->u[p->cdofs[k]] = st->uc[k];
+    it->u_partial = 1;
+
+    /* the paper's err = ||u^k - u^(k-1)|| / ||u^k||, over the contact dofs */
+    cx_vec_axpy(nc, -1.0, st->uc, st->uprev);
+    double nu = cx_vec_norm2(nc, st->uc);
+    it->own = nu > 0 ? cx_vec_norm2(nc, st->uprev) / nu : 0;
+    memcpy(st->uprev, st->uc, sizeof(double) * (size_t)nc);
     return CX_OK;
 }
 

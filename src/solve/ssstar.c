@@ -273,12 +273,12 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
         ssstar_destroy(st);
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
-    if ((status = cx_session_schur(s, &st->S, d)) != CX_OK ||
-        (status = cx_schur_condense(st->S, p->f, st->r)) != CX_OK) {
+    const double *fc;
+    if ((status = cx_session_schur(s, &st->S, &fc, d)) != CX_OK) {
         ssstar_destroy(st);
         return status;
     }
-    ssstar_reduce(st, cx_schur_matrix(st->S), st->r, nc);
+    ssstar_reduce(st, cx_schur_matrix(st->S), fc, nc);
     st->kappa = 0;
     for (int v = 0; v < nv; v++)
         st->kappa = fmax(st->kappa, st->A[(size_t)nv * v + v]);
@@ -444,7 +444,8 @@ static int ssstar_newton(ssstar_state *st, cx_counters *cnt, int iter, cx_diag *
     return CX_OK;
 }
 
-/* The iterate from (xi, lam): u expanded from u_c = R' xi, lN = lam,
+/* The iterate from (xi, lam): u_c = R' xi on the contact dofs (a partial
+ * iterate: the solver expands u when the run ends), lN = lam,
  * lT = -(A xi - b)_T (the tangential rows of the reduced equilibrium). */
 static int ssstar_write(ssstar_state *st, const cx_problem *p, cx_iterate *it)
 {
@@ -466,7 +467,10 @@ static int ssstar_write(ssstar_state *st, const cx_problem *p, cx_iterate *it)
                 it->lT[dt * i + a] = -st->r[v];
         }
     }
-    return cx_schur_expand(st->S, p->f, st->uc, it->u);
+    for (int k = 0; k < p->nc; k++)
+        it->u[p->cdofs[k]] = st->uc[k];
+    it->u_partial = 1;
+    return CX_OK;
 }
 
 static int ssstar_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)

@@ -339,6 +339,8 @@ static void job_run(tui_state *st)
     } else if (j->kind == TUI_JOB_STEP) {
         atomic_store(&j->phase, TUI_PHASE_STEP);
         j->status = cx_solver_step(st->session, &j->diag);
+        if (j->status == CX_OK)   /* the mesh view draws the whole u */
+            j->status = cx_session_complete_iterate(st->session, &j->diag);
     } else if (j->kind == TUI_JOB_RESOLVE) {
         cx_session *s = st->session;
         const cx_problem *p = cx_session_problem(s);

@@ -102,7 +102,7 @@ static void check_reduction_ways(int level)
     cx_session *s = fixture_session("prism", level, &sc);
     const cx_problem *p = cx_session_problem(s);
     cx_schur *S = NULL;
-    CX_CHECK_OK(cx_session_schur(s, &S, &d));
+    CX_CHECK_OK(cx_session_schur(s, &S, NULL, &d));
     size_t nc = (size_t)p->nc;
     double *S2 = malloc(sizeof(double) * nc * nc);
     CX_CHECK_OK(cx_schur_by_solves(&p->K, p->cdofs, p->nc, S2, &cnt, &d));
