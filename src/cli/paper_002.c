@@ -167,9 +167,9 @@ static int p2_hertz(int nlev, int tables, cx_diag *d)
             cx_session_clear_method(s);
             st = cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, d);
             if (!st)
-                st = p2_run(s, "cf-fp", "inner_set=r=0.29", 1, 0, 200, &r4[k], d);
+                st = p2_run(s, "cf-fp", "inner=ubr-tf inner_set=r=0.29", 1, 0, 200, &r4[k], d);
             if (!st)
-                st = p2_run(s, "cf-fp", "inner_set=r=0.29 warm=0", 1, 0, 200, &r4c[k], d);
+                st = p2_run(s, "cf-fp", "inner=ubr-tf inner_set=r=0.29 warm=0", 1, 0, 200, &r4c[k], d);
         }
     }
     if (!st && (tables & 1)) {
@@ -247,7 +247,7 @@ static int p2_ball(int nlev, int tables, cx_diag *d)
                 cx_session_clear_method(s);
             st = cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, d);
             if (!st)
-                st = p2_run(s, "cf-fp", "inner_set=r=6.25", 1, 0, 200, &r7[k], d);
+                st = p2_run(s, "cf-fp", "inner=ubr-tf inner_set=r=6.25", 1, 0, 200, &r7[k], d);
         }
     }
     if (!st && (tables & 16)) {

@@ -4,8 +4,12 @@
  * The fixed point s^(m+1) = F lN^m: each outer iteration solves the Tresca
  * problem with the per-point slip bounds s_i = F_i lN_i of the previous
  * iterate (the first with s = 0) by any registered method that supports
- * Tresca friction (the parameter inner, default ubr-tf; inner_set passes
- * it parameters, e.g. "r=0.29"). The inner method runs in a nested session
+ * Tresca friction (the parameter inner; inner_set passes it parameters,
+ * e.g. "r=0.29"). inner=auto (the default) takes ssn-tresca, exact and
+ * warm-started from the last fixed-point step's sets, so that a step
+ * costs one small dense solve once the sets settle; where it refuses the
+ * problem (its dense condensed system would be too large) ubr-tf, the
+ * paper's choice. The inner method runs in a nested session
  * (solve.h): ordinary stepping with all its bookkeeping, the parent's
  * operator cache (so ubr-tf's factorisation of K + r(N'WN + T'WT) is built
  * once and reused by every fixed-point step: one factorisation per run)
@@ -15,7 +19,7 @@
  * eps_f^m = max(0.1^m, eps_min): given to the inner method's own 'eps' if it
  * has one (ubr-tf's criterion (5.6)), else used as its kkt tolerance. Own
  * criterion: |s^(m+1) - s^m| / |s^(m+1)| < eps_fp (1e-4 in the paper).
- * Allocation happens at each inner init (nested runs); the paper notes the
+ * Allocation happens at each inner init (one per step); the paper notes the
  * fixed point converges for small F only, which the kkt error shows. */
 #include "solve/solve.h"
 
@@ -38,8 +42,9 @@ typedef struct {
 } cffp_state;
 
 static const cx_param cffp_params[] = {
-    {"inner", CX_PARAM_STRING, 0, 0, 0, "ubr-tf",
-     "id of the inner method (any method that supports Tresca friction)", 0},
+    {"inner", CX_PARAM_STRING, 0, 0, 0, "auto",
+     "id of the inner method (any method that supports Tresca friction), or auto: ssn-tresca where "
+     "it takes the problem, else ubr-tf", 0},
     {"inner_set", CX_PARAM_STRING, 0, 0, 0, "default",
      "parameters of the inner method, key=value[,key=value] (default: its own)", 0},
     {"eps_fp", CX_PARAM_REAL, 1e-4, 1e-16, 1, NULL,
@@ -79,7 +84,8 @@ static int cffp_init(void *state, cx_session *s, const cx_param_values *params, 
     cffp_state *st = state;
     const cx_problem *p = cx_session_problem(s);
     const char *id = cx_param_get_str(params, "inner");
-    st->inner = cx_method_find(id);
+    int automatic = strcmp(id, "auto") == 0;
+    st->inner = cx_method_find(automatic ? "ssn-tresca" : id);
     if (!st->inner)
         return cx_diag_set(d, CX_EINVAL, "parameter 'inner' of method 'cf-fp': unknown method '%s' "
                            "(see 'signorini list')", id);
@@ -91,7 +97,6 @@ static int cffp_init(void *state, cx_session *s, const cx_param_values *params, 
                            "support Tresca friction", id);
     cx_param_default(&st->iparams, st->inner->params);
     CX_TRY(cffp_parse_inner_set(st, cx_param_get_str(params, "inner_set"), d));
-    st->has_eps = cx_param_find(&st->iparams, "eps") >= 0;
     st->eps_fp = cx_param_get(params, "eps_fp");
     st->eps_min = cx_param_get(params, "eps_min");
     st->inner_max_iter = (int)cx_param_get(params, "inner_max_iter");
@@ -110,10 +115,21 @@ static int cffp_init(void *state, cx_session *s, const cx_param_values *params, 
         if (status != CX_OK)
             status = cx_diag_set(d, CX_EUNSUPPORTED, "method 'cf-fp': inner %s", cx_diag_msg(d, status));
     }
+    if (status == CX_OK && automatic) {
+        /* the choice of auto: ssn-tresca unless its init refuses the problem */
+        status = cx_session_set_method(st->child, st->inner, &st->iparams, NULL, d);
+        if (status == CX_EUNSUPPORTED || status == CX_ENUMERIC) {
+            st->inner = cx_method_find("ubr-tf");
+            cx_param_default(&st->iparams, st->inner->params);
+            status = cffp_parse_inner_set(st, cx_param_get_str(params, "inner_set"), d);
+        }
+        cx_session_clear_method(st->child);
+    }
     if (status != CX_OK) {
         cffp_destroy(st);
         return status;
     }
+    st->has_eps = cx_param_find(&st->iparams, "eps") >= 0;
     return CX_OK;
 }
 
@@ -134,10 +150,13 @@ static int cffp_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     o.tol = st->has_eps ? 1e-15 : eps_m;
     if (st->has_eps)
         st->iparams.num[cx_param_find(&st->iparams, "eps")] = eps_m;
+    /* bounds and start first, with no method selected, so that the inner
+     * method is initialised once */
+    cx_session_clear_method(st->child);
+    CX_TRY(cx_session_set_slip_bounds(st->child, st->sb, d));
     if (st->warm)
         CX_TRY(cx_session_set_start(st->child, it->u, it->lN, it->lT, d));
     CX_TRY(cx_session_set_method(st->child, st->inner, &st->iparams, &o, d));
-    CX_TRY(cx_session_set_slip_bounds(st->child, st->sb, d));
     CX_TRY(cx_solver_solve(st->child, NULL, NULL, d));
     const cx_iterate *in = cx_session_iterate(st->child);
     it->inner = in->iter;
@@ -167,7 +186,7 @@ const cx_method cx_method_cf_fp = {
     .id = "cf-fp",
     .name = "Coulomb by successive Tresca problems (fixed point)",
     .source = "002 §5",
-    .summary = "fixed point s = F lN over any Tresca method (inner=ubr-tf), one factorisation for all steps",
+    .summary = "fixed point s = F lN over any Tresca method (inner=auto: ssn-tresca, else ubr-tf), one factorisation for all steps",
     .supports = CX_COULOMB | CX_2D | CX_3D,
     .state_size = sizeof(cffp_state),
     .params = cffp_params,

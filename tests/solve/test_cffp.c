@@ -15,7 +15,7 @@ static void check_hertz_coulomb(void)
     CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, &d));
 
     /* the paper's run: inner ubr-tf at r = 0.29E, its criteria */
-    CX_CHECK_OK(fixture_run(s, "cf-fp", "inner_set=r=0.29", 1, 0, 100, &d));
+    CX_CHECK_OK(fixture_run(s, "cf-fp", "inner=ubr-tf inner_set=r=0.29", 1, 0, 100, &d));
     const cx_iterate *it = cx_session_iterate(s);
     fprintf(stderr, "hertz 20 coulomb: cf-fp %d fixed-point steps, %ld Tresca iterations, kkt %.2e, "
             "%d stick %d slip, %ld factorisations, %ld solves\n", it->iter, it->inner_total, it->kkt,
@@ -30,7 +30,7 @@ static void check_hertz_coulomb(void)
 
     /* to kkt 1e-8 over ubr-tf (tight inner tolerance), then over ssn-tresca:
      * the same solution */
-    CX_CHECK_OK(fixture_run(s, "cf-fp", "inner_set=r=1,eps=1e-12 eps_min=1e-12 eps_fp=1e-12", 0, 1e-8,
+    CX_CHECK_OK(fixture_run(s, "cf-fp", "inner=ubr-tf inner_set=r=1,eps=1e-12 eps_min=1e-12 eps_fp=1e-12", 0, 1e-8,
                             100, &d));
     fprintf(stderr, "  over ubr-tf to kkt: %d steps, kkt %.2e, %ld factorisations\n", it->iter, it->kkt,
             it->counters.factorizations);
@@ -66,7 +66,7 @@ static void check_halfball_coulomb(void)
     cx_session *s = fixture_session("halfball", 4, &sc);
     const cx_problem *p = cx_session_problem(s);
     CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, &d));
-    CX_CHECK_OK(fixture_run(s, "cf-fp", "inner_set=r=4,eps=1e-12 eps_min=1e-12 eps_fp=1e-12", 0, 1e-8, 100, &d));
+    CX_CHECK_OK(fixture_run(s, "cf-fp", "inner=ubr-tf inner_set=r=4,eps=1e-12 eps_min=1e-12 eps_fp=1e-12", 0, 1e-8, 100, &d));
     const cx_iterate *it = cx_session_iterate(s);
     fprintf(stderr, "halfball 4 coulomb: cf-fp %d steps, %ld Tresca iterations, kkt %.2e, %d stick %d slip\n",
             it->iter, it->inner_total, it->kkt, it->nstick, it->nslip);
