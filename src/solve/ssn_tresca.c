@@ -29,7 +29,9 @@
  * dofs with the session's Schur complement S of K (one sparse Cholesky for
  * the whole session, DESIGN.md §5), so each iteration is one dense
  * symmetric-indefinite solve of order nc + |active| (Bunch-Kaufman: S may
- * be singular when only the contact holds the body). The step updates u on
+ * be singular when only the contact holds the body), or, when every active
+ * row pins a dof of its own (a flat obstacle along an axis), a Cholesky of
+ * order nc - |active| (ssn_solve_pinned). The step updates u on
  * the contact dofs only (a partial iterate, solve.h): the solve with the
  * sparse factor that expands u is left to the end of the run. The constraint rows are scaled by the
  * stiffness scale so that both blocks have like magnitudes. The first
@@ -65,6 +67,11 @@ typedef struct {
     double *q;            /* nt: 3D slip direction per point (its two tangential rows) */
     double *beta;         /* m: 3D linearised tangential stiffness of a slip point */
     int warm;             /* 1: the first sets come from the starting iterate */
+    int *unit;            /* nrow: the contact-dof position of a row with one entry, else -1 */
+    int *pin;             /* nc: the active row pinning a contact dof, or -1 */
+    int *fpos;            /* nc: the free contact dofs of the pinned system */
+    double *Mf;           /* nc^2: their block of the condensed matrix */
+    double *up;           /* nc: the pinned values */
 } ssn_state;
 
 static const cx_param ssn_params[] = {
@@ -94,6 +101,11 @@ static void ssn_destroy(void *state)
     cx_free(st->work);
     cx_free(st->q);
     cx_free(st->beta);
+    cx_free(st->unit);
+    cx_free(st->pin);
+    cx_free(st->fpos);
+    cx_free(st->Mf);
+    cx_free(st->up);
     memset(st, 0, sizeof *st);
 }
 
@@ -179,12 +191,20 @@ static int ssn_init(void *state, cx_session *s, const cx_param_values *params, c
     st->work = CX_NEW(double, st->lwork);
     st->q = CX_NEW(double, p->nt);
     st->beta = CX_NEW(double, p->m);
+    st->unit = CX_NEW(int, st->nrow);
+    st->pin = CX_NEW(int, st->nc);
+    st->fpos = CX_NEW(int, st->nc);
+    st->Mf = CX_NEW(double, (size_t)st->nc * (size_t)st->nc);
+    st->up = CX_NEW(double, st->nc);
     int status = CX_ENOMEM;
-    if (!st->q || !st->beta || !st->uc || !st->uprev || !st->Bu || !st->set || !st->prev || !st->act ||
+    if (!st->unit || !st->pin || !st->fpos || !st->Mf || !st->up ||
+        !st->q || !st->beta || !st->uc || !st->uprev || !st->Bu || !st->set || !st->prev || !st->act ||
         !st->M || !st->x || !st->ipiv || !st->work || (status = ssn_build_rows(st, p)) != CX_OK) {
         ssn_destroy(st);
         return cx_diag_set(d, status, "out of memory");
     }
+    for (int r = 0; r < st->nrow; r++)
+        st->unit[r] = st->rp[r + 1] - st->rp[r] == 1 ? st->rc[st->rp[r]] : -1;
     if ((status = cx_session_schur(s, &st->S, &st->fc, d)) != CX_OK) {
         ssn_destroy(st);
         return status;
@@ -280,6 +300,69 @@ static int ssn_nslip3d(const ssn_state *st, const cx_problem *p)
     return n;
 }
 
+/* The saddle-point system when every active row has one entry, on a dof
+ * of its own (a flat obstacle along a coordinate axis): the row pins that
+ * dof, u_c = g_r / v_r (0 for a stick row), and what remains is the
+ * symmetric positive definite system of the free contact dofs, a Cholesky
+ * of order nc - na instead of a Bunch-Kaufman of order nc + na; the
+ * multiplier of row r is what its dof's equilibrium row lacks,
+ * (x_c - (M u)_c) / v_r. M, x: the top-left nc x nc block (leading
+ * dimension ns) and the top nc entries of the saddle-point system, as
+ * ssn_solve built them. The solution into uc, the multiplier of the a-th
+ * active row into lam[a]. CX_EUNSUPPORTED if the rows are not all such, or
+ * CX_ENUMERIC if the free block is not definite (the active set does not
+ * hold the body): the caller then solves the whole system. */
+static int ssn_solve_pinned(ssn_state *st, const cx_problem *p, int na, int ns, double *lam)
+{
+    int nc = st->nc, m = p->m, nf = 0;
+    for (int k = 0; k < nc; k++)
+        st->pin[k] = -1;
+    for (int a = 0; a < na; a++) {
+        int r = st->act[a], c = st->unit[r];
+        if (c < 0 || st->pin[c] >= 0)
+            return CX_EUNSUPPORTED;
+        st->pin[c] = r;
+        st->up[c] = (r < m ? p->g[r] : 0.0) / st->rv[st->rp[r]];
+    }
+    for (int k = 0; k < nc; k++)
+        if (st->pin[k] < 0)
+            st->fpos[nf++] = k;
+    const double *M = st->M, *x = st->x;
+    double *rhs = st->uc;   /* the free right-hand side, then the free solution */
+    for (int j = 0; j < nf; j++) {
+        const double *col = M + (size_t)ns * st->fpos[j];
+        for (int i = 0; i < nf; i++)
+            st->Mf[i + (size_t)nf * j] = col[st->fpos[i]];
+    }
+    for (int i = 0; i < nf; i++) {
+        double sum = x[st->fpos[i]];
+        for (int a = 0; a < na; a++) {
+            int c = st->unit[st->act[a]];
+            sum -= M[st->fpos[i] + (size_t)ns * c] * st->up[c];
+        }
+        rhs[i] = sum;
+    }
+    CX_TRY(cx_dense_cholesky(nf, st->Mf, NULL));
+    cx_dense_cholesky_solve(nf, st->Mf, rhs, 1);
+    if (!cx_vec_finite(nf, rhs))
+        return CX_ENUMERIC;
+    /* scatter in place: fpos[i] >= i, so from the end nothing is overwritten early */
+    for (int i = nf - 1; i >= 0; i--)
+        st->uc[st->fpos[i]] = rhs[i];
+    for (int a = 0; a < na; a++) {
+        int c = st->unit[st->act[a]];
+        st->uc[c] = st->up[c];
+    }
+    for (int a = 0; a < na; a++) {
+        int r = st->act[a], c = st->unit[r];
+        double Mu = 0;
+        for (int k = 0; k < nc; k++)
+            Mu += M[c + (size_t)ns * k] * st->uc[k];
+        lam[a] = (x[c] - Mu) / st->rv[st->rp[r]];
+    }
+    return CX_OK;
+}
+
 /* Solve the condensed saddle-point system of the current sets; the new
  * iterate into uc, it->lN, it->lT. */
 static int ssn_solve(ssn_state *st, const cx_problem *p, cx_iterate *it, cx_diag *d)
@@ -318,14 +401,19 @@ static int ssn_solve(ssn_state *st, const cx_problem *p, cx_iterate *it, cx_diag
     }
     if (st->tangential && st->dt == 2)
         ssn_add_slip3d(st, p, ns);
-    int status = cx_dense_sym_solve(ns, st->M, st->x, st->ipiv, st->work, st->lwork, NULL);
-    if (status != CX_OK)
-        return cx_diag_set(d, status,
-                           "ssn-tresca: singular saddle-point system at iteration %d: the active set "
-                           "(%d rows) does not hold the body", it->iter + 1, na);
+    double *lam = st->Bu;   /* na <= nrow: the active rows' multipliers */
+    if (ssn_solve_pinned(st, p, na, ns, lam) != CX_OK) {
+        int status = cx_dense_sym_solve(ns, st->M, st->x, st->ipiv, st->work, st->lwork, NULL);
+        if (status != CX_OK)
+            return cx_diag_set(d, status,
+                               "ssn-tresca: singular saddle-point system at iteration %d: the active set "
+                               "(%d rows) does not hold the body", it->iter + 1, na);
+        memcpy(st->uc, st->x, sizeof(double) * (size_t)nc);
+        for (int a = 0; a < na; a++)
+            lam[a] = st->kappa * st->x[nc + a];
+    }
 
     /* ---- the new iterate ---- */
-    memcpy(st->uc, st->x, sizeof(double) * (size_t)nc);
     memset(it->lN, 0, sizeof(double) * (size_t)m);
     for (int i = 0; st->tangential && st->dt == 1 && i < m; i++)
         it->lT[i] = st->set[m + i] * p->s[i];
@@ -336,9 +424,9 @@ static int ssn_solve(ssn_state *st, const cx_problem *p, cx_iterate *it, cx_diag
     for (int a = 0; a < na; a++) {
         int r = st->act[a];
         if (r < m)
-            it->lN[r] = st->kappa * st->x[nc + a];
+            it->lN[r] = lam[a];
         else
-            it->lT[r - m] = st->kappa * st->x[nc + a];
+            it->lT[r - m] = lam[a];
     }
     return CX_OK;
 }
