@@ -14,8 +14,7 @@
 #include <math.h>
 #include <string.h>
 
-extern void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k, const double *alpha,
-                   const double *a, const int *lda, const double *beta, double *c, const int *ldc);
+extern void dlauum_(const char *uplo, const int *n, double *a, const int *lda, int *info);
 extern void dtrmv_(const char *uplo, const char *trans, const char *diag, const int *n, const double *a,
                    const int *lda, double *x, const int *incx);
 
@@ -139,25 +138,35 @@ static int schur_factor(cx_schur *s, cx_csc *M, int *cmember, int *perm, cx_diag
     return cx_cholmod_check_pivots(s->L, M, "schur: Cholesky factorisation", d);
 }
 
-/* S = L22 L22' - D, rows and columns in the caller's order. */
+/* S = L22 L22' - D, rows and columns in the caller's order. The product
+ * of two triangles costs nc^3/3 (dlauum) where a general rank-nc update
+ * (dsyrk) costs nc^3; dlauum forms U U' of an upper triangle, so L22 is
+ * taken in reversed order, U = J L22 J, and L22 L22' = J U U' J. */
 static int schur_form(cx_schur *s, const double *dshift)
 {
-    int nc = s->nc;
+    int nc = s->nc, info = 0;
     size_t ld = (size_t)nc;
-    double *T = CX_NEW(double, ld * ld);
-    if (!T)
+    double *U = CX_NEW(double, ld * ld);
+    if (!U)
         return CX_ENOMEM;
     schur_extract(s);
-    double one = 1, zero = 0;
+    for (size_t j = 0; j < ld; j++)
+        for (size_t i = 0; i <= j; i++)
+            U[i + j * ld] = s->L22[(ld - 1 - i) + (ld - 1 - j) * ld];
     if (nc > 0)
-        dsyrk_("L", "N", &nc, &nc, &one, s->L22, &nc, &zero, T, &nc);
+        dlauum_("U", &nc, U, &nc, &info);
+    if (info != 0) {
+        cx_free(U);
+        return CX_EEXTERNAL;
+    }
     for (int a = 0; a < nc; a++)
         for (int b = 0; b < nc; b++) {
-            int ta = s->tpos[a], tb = s->tpos[b];
-            double v = ta >= tb ? T[ta + (size_t)tb * ld] : T[tb + (size_t)ta * ld];
+            /* (J U U' J)[ta, tb], read from U U''s upper triangle */
+            size_t ra = ld - 1 - (size_t)s->tpos[a], rb = ld - 1 - (size_t)s->tpos[b];
+            double v = ra <= rb ? U[ra + rb * ld] : U[rb + ra * ld];
             s->S[a + (size_t)b * ld] = v - (a == b ? dshift[a] : 0);
         }
-    cx_free(T);
+    cx_free(U);
     return CX_OK;
 }
 
