@@ -7,7 +7,7 @@
  * and lam / v > 0 on S) with the symbolic analysis kept, and solves twice:
  * the affine predictor (sigma = 0) and Mehrotra's corrector with
  * sigma = (mu_aff / mu)^3 and the second-order term; step 0.99 of the way
- * to the boundary. The diagonal scaling of §5 (A to unit diagonal) is the
+ * to the boundary (sigma = paper: the paper's own alternation, below). The diagonal scaling of §5 (A to unit diagonal) is the
  * start v_i = s d_i, lam_i = s / d_i with d_i = A_ii^-1/2: products
  * lam_i v_i, hence the path, are those of the scaled problem. With
  * schur = 1 the same on the dense reduced LCP (Table 7). Own criterion:
@@ -22,6 +22,8 @@ typedef struct {
     cx_lcp_solver ip;     /* A + diag(lam / v) */
     double *dv, *dl, *dva, *dla, *r, *rhs, *D, *w2;
     double tol, bnorm;
+    int paper;            /* sigma = paper: 0 / 0.99 alternating, one solve per iteration */
+    int k;                /* interior-point iterations done */
 } pdpc_state;
 
 static const cx_param pdpc_params[] = {
@@ -29,6 +31,9 @@ static const cx_param pdpc_params[] = {
     CX_LCP_PARAM_SCHUR,
     {"tol", CX_PARAM_REAL, 1e-10, 1e-15, 1e-2, NULL,
      "stop the interior point when mu and the residual fall below tol (relative)", 0},
+    {"sigma", CX_PARAM_CHOICE, 0, 0, 1, "mehrotra|paper",
+     "centring: Mehrotra's predictor-corrector (two solves per factorisation), or the paper's "
+     "alternation sigma = 0 (odd iterations) / 0.99 (even) with its step rule alpha3 (003 §4)", 0},
     {NULL, 0, 0, 0, 0, NULL, NULL, 0}
 };
 
@@ -48,6 +53,7 @@ static int pdpc_init(void *state, cx_session *s, const cx_param_values *params, 
     const cx_lcp *L = st->run.L;
     int n = L->n;
     st->tol = cx_param_get(params, "tol");
+    st->paper = (int)cx_param_get(params, "sigma") == 1;
     st->dv = CX_NEW(double, n), st->dl = CX_NEW(double, n);
     st->dva = CX_NEW(double, n), st->dla = CX_NEW(double, n);
     st->r = CX_NEW(double, n), st->rhs = CX_NEW(double, n);
@@ -125,6 +131,32 @@ static int pdpc_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     for (int i = 0; i < n; i++)
         st->D[i] = L->S[i] ? lam[i] / v[i] : 0;
     CX_TRY(cx_lcp_factor(&st->ip, 0.0, NULL, st->D, d));
+    st->k++;
+    if (st->paper) {
+        /* 003 §4 Steps 3-5: sigma = 0 on odd iterations, 0.99 on even; one
+         * direction; alpha = min(alpha1, alpha2[, alpha3]) where alpha3 =
+         * 0.99 (1 - sigma) lam'v / (dlam'dv) when dlam'dv > 0 (the paper's
+         * dSigma'du < 0) keeps lam'v falling. alpha1, alpha2 are the
+         * suprema of open sets (the boundary): taken x 0.9995 to stay
+         * interior. */
+        double sg = st->k % 2 ? 0.0 : 0.99;
+        for (int i = 0; i < n; i++)
+            st->w2[i] = L->S[i] ? sg * mu : 0;
+        double *cmp = st->dla;
+        memcpy(cmp, st->w2, sizeof(double) * (size_t)n);
+        CX_TRY(pdpc_direction(st, cmp, st->dv, st->dl, d));
+        double a1 = pdpc_max_step(L, v, st->dv), a2 = pdpc_max_step(L, lam, st->dl);
+        double a = fmin(a1 < 1 ? 0.9995 * a1 : 1, a2 < 1 ? 0.9995 * a2 : 1), dd = 0;
+        for (int i = 0; i < n; i++)
+            if (L->S[i])
+                dd += st->dl[i] * st->dv[i];
+        if (dd > 0)
+            a = fmin(a, 0.99 * (1 - sg) * mu * nc / dd);
+        cx_vec_axpy(n, a, st->dv, v);
+        cx_vec_axpy(n, a, st->dl, lam);
+        it->inner = 1;
+        return cx_lcp_run_publish(run, s, it);
+    }
     /* predictor: sigma = 0 */
     for (int i = 0; i < n; i++)
         st->w2[i] = 0;
