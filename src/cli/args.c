@@ -30,6 +30,15 @@ int cli_option(int argc, char **argv, int *i, const char *name, const char **val
     return 1;
 }
 
+int cli_parse_level(const char *v, int *level, cx_diag *d)
+{
+    long n;
+    if (cx_parse_int(v, 1, 1 << 20, &n))
+        return cx_diag_set(d, CX_EINVAL, "--level '%s': expected a positive integer", v);
+    *level = (int)n;
+    return CX_OK;
+}
+
 int cli_load_scene(const char *id, cx_scene *s, cx_diag *d)
 {
     char path[512];

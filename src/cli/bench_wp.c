@@ -78,11 +78,8 @@ static int wp_parse(int argc, char **argv, wp_args *a, cx_diag *d)
         if (r)
             continue;
         const char *v;
-        long n;
         if ((r = cli_option(argc, argv, &i, "--level", &v, d)) > 0) {
-            if (cx_parse_int(v, 1, 1 << 20, &n))
-                return cx_diag_set(d, CX_EINVAL, "--level '%s': expected a positive integer", v);
-            a->level = (int)n;
+            CX_TRY(cli_parse_level(v, &a->level, d));
         } else if (r == 0 && (r = cli_option(argc, argv, &i, "--tols", &v, d)) > 0) {
             CX_TRY(wp_list("--tols", v, a->tols, &a->ntols, d));
         } else if (r == 0 && (r = cli_option(argc, argv, &i, "--sweep", &v, d)) > 0) {

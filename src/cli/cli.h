@@ -49,6 +49,9 @@ int cli_fail(const char *cmd, const char *msg);
  * (-1, message in d). Otherwise 0. */
 int cli_option(int argc, char **argv, int *i, const char *name, const char **value, cx_diag *d);
 
+/* The value of --level: a positive integer, or a one-line error. */
+int cli_parse_level(const char *v, int *level, cx_diag *d);
+
 /* Load a scene by id or path. */
 int cli_load_scene(const char *id, cx_scene *s, cx_diag *d);
 

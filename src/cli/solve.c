@@ -78,9 +78,7 @@ static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
         case OPT_F: a->F = v; break;
         case OPT_SLIP: a->slip = v; break;
         case OPT_LEVEL:
-            if (cx_parse_int(v, 1, 1 << 20, &n))
-                return cx_diag_set(d, CX_EINVAL, "--level '%s': expected a positive integer", v);
-            a->level = (int)n;
+            CX_TRY(cli_parse_level(v, &a->level, d));
             break;
         case OPT_TOL:
             if (cx_parse_double(v, &a->opt.tol) || !(a->opt.tol > 0))
