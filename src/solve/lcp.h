@@ -109,6 +109,40 @@ typedef struct cx_pdas_guard {
 int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *lam,
                      unsigned char *act, cx_pdas_guard *g, int *same, double *work, cx_diag *d);
 
+/* The damped PDAS step (pdas and the projection, search = 1): PDAS is the
+ * semismooth Newton method for F(v) = 0, F_i = min(v_i, lam_i / c) on S and
+ * lam_i / c elsewhere (lam = (A + eps I) v - b). Each step takes the set
+ * {i in S : lam_i - c v_i > 0} at the current v, solves on it for the
+ * Newton point vn (vn = 0 on the set) and moves v to v + alpha (vn - v),
+ * alpha = 1, 1/2, ... until ||F||^2 falls (Armijo). A full step from an
+ * iterate of plain PDAS is the plain PDAS step. The search is what keeps
+ * the iterates from the swings of plain block pivoting on A + eps I, which
+ * is no M-matrix: a set that leaves a brick without support moves it by
+ * F / eps, and hundreds of joints flip at once (running bond). *same = 1
+ * when the set repeats after a full step: v solves the LCP. The set and
+ * the factor are kept while the set does not change (a shortened step only
+ * moves along the same Newton direction). Indices within roundoff of the
+ * switch keep their side. The first step is always full (the paper's first
+ * PDAS step from the start); with memory > 0 a step is accepted when the
+ * residual falls below the largest of the last `memory` ones (Grippo,
+ * Lampariello & Lucidi's nonmonotone rule). */
+#define CX_PDAS_HALVINGS 40
+#define CX_PDAS_MEMORY 8
+#define CX_PDAS_PROJ_MEMORY 4   /* the projection's (lcp.c) */
+typedef struct cx_pdas_search {
+    double *Av, *Ad, *vn;   /* n each: A v, A (vn - v), the Newton point */
+    double alpha;           /* the last step length; 0 before the first */
+    double merit;           /* ||F(v)|| at the current v */
+    long short_steps;       /* steps with alpha < 1 */
+    int memory;             /* nonmonotone: compare with the largest of the last memory merits (0: monotone) */
+    int steps;              /* steps taken */
+    double hist[CX_PDAS_MEMORY];
+} cx_pdas_search;
+
+int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, double *lam,
+                            unsigned char *act, cx_pdas_search *ls, cx_pdas_guard *g, int *same,
+                            double *work, cx_diag *d);
+
 /* Solve again with the set act on A + eps I (a new eps, same set). */
 int cx_lcp_pdas_resolve(cx_lcp_solver *s, double eps, double *v, double *lam,
                         const unsigned char *act, double *work, cx_diag *d);
@@ -147,18 +181,27 @@ typedef struct cx_lcp_run {
     double c;             /* PDAS / projection parameter tau * amax */
     cx_lcp_solver proj;   /* unregularised masked solves (projection) */
     cx_pdas_guard guard;  /* of the PDAS iterations (method and projection) */
+    int search;           /* 1: damped PDAS (line search); 0: plain block pivoting */
+    cx_pdas_search ls;    /* the damped steps' state (method and projection) */
     double *v, *lam, *work;
     unsigned char *act;
 } cx_lcp_run;
 
-/* Parameters every regularised method shares (append to its table). */
-#define CX_LCP_PARAMS_COMMON                                                                  \
-    {"eps", CX_PARAM_REAL, 1e-8, 0, 1e-2, NULL,                                               \
-     "regularisation A + eps I, relative to the largest diagonal entry of A", 0},             \
+/* Parameters of the projection stage every LCP method shares, and with eps
+ * those of every regularised method (append to its table). */
+#define CX_LCP_PARAMS_STAGE                                                                   \
     {"project", CX_PARAM_BOOL, 1, 0, 1, NULL,                                                  \
      "1: finish with the projection (PDAS on the unregularised A, 003 §4)", 0},               \
     {"tau", CX_PARAM_REAL, 1e-3, 1e-12, 1e12, NULL,                                           \
-     "PDAS / projection parameter, relative to the largest diagonal entry of A", 0}
+     "PDAS / projection parameter, relative to the largest diagonal entry of A", 0},          \
+    {"search", CX_PARAM_BOOL, 1, 0, 1, NULL,                                                   \
+     "1: PDAS steps (method and projection) with a line search on the natural residual "       \
+     "(ours); 0: plain block pivoting with Judice-Pires single pivots (the paper's)", 0}
+
+#define CX_LCP_PARAMS_COMMON                                                                  \
+    {"eps", CX_PARAM_REAL, 1e-8, 0, 1e-2, NULL,                                               \
+     "regularisation A + eps I, relative to the largest diagonal entry of A", 0},             \
+    CX_LCP_PARAMS_STAGE
 
 #define CX_LCP_PARAM_SCHUR                                                                    \
     {"schur", CX_PARAM_BOOL, 0, 0, 1, NULL,                                                   \

@@ -9,7 +9,13 @@
  * rows and columns replaced by the identity (same pattern, so the symbolic
  * analysis is done once), or, with schur = 1, of the dense reduced
  * Schur-complement LCP (Table 7). Start v = 0, lam = -b. Own criterion:
- * the set repeats (then the iterate solves the LCP exactly). */
+ * the set repeats (then the iterate solves the LCP exactly).
+ *
+ * search = 1 (default, ours): the step towards the new subsystem's solution
+ * is shortened until the natural residual falls (lcp.h); a full step is the
+ * paper's. Plain block pivoting (search = 0) cycles on running bond from
+ * 1/25 on; Judice-Pires single pivots then end it after hundreds of
+ * factorisations, or not at all. */
 #include "solve/lcp.h"
 
 #include <string.h>
@@ -62,7 +68,12 @@ static int pdas_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     cx_lcp_run *r = &st->run;
     if (r->stage == 0) {
         int same = 0;
-        CX_TRY(cx_lcp_pdas_step(&st->reg, st->eps, r->c, r->v, r->lam, r->act, &r->guard, &same, r->work, d));
+        if (r->search)
+            CX_TRY(cx_lcp_pdas_search_step(&st->reg, st->eps, r->c, r->v, r->lam, r->act, &r->ls,
+                                           &r->guard, &same, r->work, d));
+        else
+            CX_TRY(cx_lcp_pdas_step(&st->reg, st->eps, r->c, r->v, r->lam, r->act, &r->guard, &same,
+                                    r->work, d));
         if (same && st->eps > r->eps) {
             /* the next eps, started from this set */
             st->eps = st->eps / 100 > r->eps ? st->eps / 100 : r->eps;
@@ -71,10 +82,10 @@ static int pdas_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
             same = 0;
         }
         if (!same) {
-            int changed = 0;
+            int active = 0;
             for (int i = 0; i < r->L->n; i++)
-                changed += r->act[i] != 0;
-            it->own = changed;
+                active += r->act[i] != 0;
+            it->own = active;
             return cx_lcp_run_publish(r, s, it);
         }
         cx_lcp_run_stage_done(r, it);

@@ -29,10 +29,7 @@ static const cx_param psor_params[] = {
      * with the condition of A + eps I (1e-8 did not finish 1/5 in 10^5) */
     {"eps", CX_PARAM_REAL, 1e-6, 0, 1e-2, NULL,
      "regularisation A + eps I, relative to the largest diagonal entry of A", 0},
-    {"project", CX_PARAM_BOOL, 1, 0, 1, NULL,
-     "1: finish with the projection (PDAS on the unregularised A, 003 §4)", 0},
-    {"tau", CX_PARAM_REAL, 1e-3, 1e-12, 1e12, NULL,
-     "PDAS / projection parameter, relative to the largest diagonal entry of A", 0},
+    CX_LCP_PARAMS_STAGE,
     {"omega", CX_PARAM_REAL, 0, 0, 2, NULL, "relaxation in (0, 2); 0: 2 / (1 + sin(pi / n))", 0},
     {"sweeps", CX_PARAM_INT, 2000, 1, 1e6, NULL, "sweeps per step", 0},
     {"tol", CX_PARAM_REAL, 0, 0, 1, NULL, "largest change per sweep, relative; 0: n eps_machine", 0},

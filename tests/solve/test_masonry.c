@@ -181,14 +181,15 @@ static void test_agreement(void)
                 if (ms[k].set && strcmp(ms[k].set, "sigma=paper") == 0)
                     CX_CHECK(it->iter - it->own >= 50 && it->iter - it->own <= 100);
                 /* the projection: one iteration after the regularised methods
-                 * on the full LCP; a few after the interior point (its last
-                 * iterate is not a vertex) and on the reduced running bond
-                 * and laminae (whose singular Schur complement lets bricks
-                 * slide) */
+                 * on the full LCP; more after the interior point (its last
+                 * iterate is not a vertex: near-degenerate contacts) and on
+                 * the reduced running bond and laminae (whose singular Schur
+                 * complement lets bricks slide). Measured with the damped
+                 * projection: pdpc 1-6, the schur variants 1-12. */
                 if (strcmp(ms[k].id, "graves") == 0)
                     ;
                 else if (ms[k].set || strcmp(ms[k].id, "pdpc") == 0)
-                    CX_CHECK(it->own >= 1 && it->own <= 6);
+                    CX_CHECK(it->own >= 1 && it->own <= 15);
                 else
                     CX_CHECK(it->own == 1);
             }
@@ -243,6 +244,29 @@ static void test_settlement(void)
         free(uall);
         cx_session_destroy(&s);
     }
+}
+
+/* Running bond 1/25 (n = 9267): the level where plain block pivoting on
+ * A + eps I starts to cycle (about 800 factorisations, 747 of them
+ * Judice-Pires single pivots). The damped PDAS of lcp.h: measured 44
+ * iterations, 40 factorisations, a 2-iteration projection, kkt 4e-13. */
+static void test_pdas_running_bond(void)
+{
+    cx_scene sc;
+    cx_session *s = fixture_session("runningbond", 25, &sc);
+    const cx_problem *p = cx_session_problem(s);
+    const cx_counters *cnt = cx_session_counters(s);
+    long f0 = cnt->factorizations;
+    const cx_iterate *it = solve(s, "pdas", NULL);
+    long f = cnt->factorizations - f0;
+    fprintf(stderr, "runningbond 1/25 pdas: %d iterations, %ld factorisations, projection %g, kkt "
+            "%.1e\n", it->iter, f, it->own, it->kkt);
+    CX_CHECK(it->reason > 0);
+    CX_CHECK_LE(it->kkt, 1e-10);
+    CX_CHECK_LE(complementarity(p, it->u, it->lN), 1e-10);
+    CX_CHECK(f >= 20 && f <= 80);
+    CX_CHECK(it->own >= 1 && it->own <= 3);
+    cx_session_destroy(&s);
 }
 
 /* Theorem 4.2: the LSSNN residual ||R v - y|| (equivalently q(v), the
@@ -318,6 +342,7 @@ int main(void)
     test_null_space();
     test_agreement();
     test_settlement();
+    test_pdas_running_bond();
     test_lssnn_monotone();
     test_graves_no_solution();
     return check_finish("solve_masonry");
