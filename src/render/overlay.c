@@ -30,7 +30,7 @@ static void ov_title(const cx_render_scene *sc, cairo_t *cr, double s)
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     snprintf(line, sizeof line, "%s — %s", st->title && st->title[0] ? st->title : st->scene,
              cx_field_label(sc->o->field));
-    cx_text(cr, line, 20 * s, 14 * s, 22 * s, 1, 0, 0);
+    cx_text_fit(cr, line, 20 * s, 14 * s, 22 * s, 1, 0, 0, sc->w - 40 * s);
     if (p->friction == CX_FRICTION_COULOMB)
         snprintf(fr, sizeof fr, "Coulomb F = %g", p->F);
     else if (p->friction == CX_FRICTION_TRESCA)
@@ -41,7 +41,7 @@ static void ov_title(const cx_render_scene *sc, cairo_t *cr, double s)
              st->scene, st->level, p->n, p->m, st->method, st->params && st->params[0] ? " " : "",
              st->params ? st->params : "", fr, st->kkt);
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-    cx_text(cr, line, 20 * s, 46 * s, 15 * s, 0, 0, 0);
+    cx_text_fit(cr, line, 20 * s, 46 * s, 15 * s, 0, 0, 0, sc->w - 40 * s);
 }
 
 static const char *ov_units(int f)

@@ -2,6 +2,7 @@
 #include "render/text.h"
 
 #include <cairo.h>
+#include <string.h>
 
 static void text_font(cairo_t *cr, double size, int bold)
 {
@@ -41,4 +42,30 @@ void cx_text_vertical(cairo_t *cr, const char *s, double x, double y, double siz
     cairo_rotate(cr, -1.5707963267948966);
     cx_text(cr, s, 0, 0, size, bold, 0.5, 0.5);
     cairo_restore(cr);
+}
+
+double cx_text_fit(cairo_t *cr, const char *s, double x, double y, double size, int bold,
+                   double ax, double ay, double maxw)
+{
+    /* shrink to at most 3/4 of the size, then cut at a character boundary
+     * and end with an ellipsis */
+    double w = cx_text_width(cr, s, size, bold);
+    if (w <= maxw)
+        return cx_text(cr, s, x, y, size, bold, ax, ay);
+    double fit = size * maxw / w;
+    if (fit >= 0.75 * size)
+        return cx_text(cr, s, x, y, fit, bold, ax, ay);
+    size *= 0.75;
+    char buf[1024];
+    size_t len = strlen(s) < sizeof buf - 4 ? strlen(s) : sizeof buf - 4;
+    memcpy(buf, s, len);
+    for (;;) {
+        while (len > 0 && ((unsigned char)buf[len] & 0xC0) == 0x80)
+            len--;   /* never split a UTF-8 sequence */
+        memcpy(buf + len, "\xE2\x80\xA6", 4);   /* U+2026 */
+        if (len == 0 || cx_text_width(cr, buf, size, bold) <= maxw)
+            break;
+        len--;
+    }
+    return cx_text(cr, buf, x, y, size, bold, ax, ay);
 }

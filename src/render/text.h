@@ -15,5 +15,9 @@ double cx_text(cairo_t *cr, const char *s, double x, double y, double size, int 
 double cx_text_width(cairo_t *cr, const char *s, double size, int bold);
 /* The same, rotated by -90 degrees (reading upwards), centred at (x, y). */
 void cx_text_vertical(cairo_t *cr, const char *s, double x, double y, double size, int bold);
+/* cx_text within maxw: the size shrinks down to 3/4, then the text is cut
+ * with an ellipsis. */
+double cx_text_fit(cairo_t *cr, const char *s, double x, double y, double size, int bold,
+                   double ax, double ay, double maxw);
 
 #endif
