@@ -509,15 +509,18 @@ void cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it)
     }
 }
 
+int cx_lcp_run_pdas_step(cx_lcp_run *r, cx_lcp_solver *solver, double eps, int *same, cx_diag *d)
+{
+    if (r->search)
+        return cx_lcp_pdas_search_step(solver, eps, r->c, r->v, r->lam, r->act, &r->ls, &r->guard,
+                                       same, r->work, d);
+    return cx_lcp_pdas_step(solver, eps, r->c, r->v, r->lam, r->act, &r->guard, same, r->work, d);
+}
+
 int cx_lcp_run_project(cx_lcp_run *r, cx_session *s, cx_iterate *it, cx_diag *d)
 {
     int same = 0;
-    if (r->search)
-        CX_TRY(cx_lcp_pdas_search_step(&r->proj, 0.0, r->c, r->v, r->lam, r->act, &r->ls, &r->guard,
-                                       &same, r->work, d));
-    else
-        CX_TRY(cx_lcp_pdas_step(&r->proj, 0.0, r->c, r->v, r->lam, r->act, &r->guard, &same,
-                                r->work, d));
+    CX_TRY(cx_lcp_run_pdas_step(r, &r->proj, 0.0, &same, d));
     if (same) {
         r->stage = 2;
         it->own_done = 1;

@@ -213,6 +213,9 @@ void cx_lcp_run_clear(cx_lcp_run *r);
 /* The method's own stage has converged on (r->v): start the projection, or
  * end the run when it is off. */
 void cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it);
+/* One PDAS step of the run on A + eps I with this solver: damped or plain
+ * as the run's search parameter says. */
+int cx_lcp_run_pdas_step(cx_lcp_run *r, cx_lcp_solver *solver, double eps, int *same, cx_diag *d);
 /* One projection iteration; ends the run when the set repeats. During the
  * projection (and at the end of the run) the method's own criterion is the
  * number of projection iterations (solves) done. */

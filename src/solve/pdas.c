@@ -68,12 +68,7 @@ static int pdas_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     cx_lcp_run *r = &st->run;
     if (r->stage == 0) {
         int same = 0;
-        if (r->search)
-            CX_TRY(cx_lcp_pdas_search_step(&st->reg, st->eps, r->c, r->v, r->lam, r->act, &r->ls,
-                                           &r->guard, &same, r->work, d));
-        else
-            CX_TRY(cx_lcp_pdas_step(&st->reg, st->eps, r->c, r->v, r->lam, r->act, &r->guard, &same,
-                                    r->work, d));
+        CX_TRY(cx_lcp_run_pdas_step(r, &st->reg, st->eps, &same, d));
         if (same && st->eps > r->eps) {
             /* the next eps, started from this set */
             st->eps = st->eps / 100 > r->eps ? st->eps / 100 : r->eps;
