@@ -392,7 +392,7 @@ static int ld_masonry(ld_state *L)
     CX_TRY(ld_require(L, "bond"));
     CX_TRY(ld_choice(L, "bond", ld_bonds, 0, 2, ld_bonds, &bond));
     s->bond = (cx_bond)bond;
-    s->gap_h = 0.5;
+    s->gap_h = 0.01;
     CX_TRY(ld_real(L, "gap", 0, 1, 1, "a number in (0, 1) (the gap g as a fraction of H)", &s->gap_h));
     if (s->element != CX_EL_TRI6)
         return ld_bad(L, "element", "expected tri6 (generator masonry)");

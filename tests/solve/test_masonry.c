@@ -173,13 +173,14 @@ static void test_agreement(void)
                 CX_CHECK_LE(it->kkt, 1e-10);
                 CX_CHECK_LE(e, 1e-8);
                 CX_CHECK_LE(c, 1e-10);
-                /* pdpc: Mehrotra's centring needs about 20 interior-point
+                /* pdpc: Mehrotra's centring needs about 15 interior-point
                  * iterations (plus the projection), the paper's sigma =
-                 * 0 / 0.99 alternation about three times as many */
+                 * 0 / 0.99 alternation two to four times as many
+                 * (measured 39-72) */
                 if (strcmp(ms[k].id, "pdpc") == 0 && !ms[k].set)
                     CX_CHECK(it->iter - it->own <= 30);
                 if (ms[k].set && strcmp(ms[k].set, "sigma=paper") == 0)
-                    CX_CHECK(it->iter - it->own >= 50 && it->iter - it->own <= 100);
+                    CX_CHECK(it->iter - it->own >= 30 && it->iter - it->own <= 100);
                 /* the projection: one iteration after the regularised methods
                  * on the full LCP; more after the interior point (its last
                  * iterate is not a vertex: near-degenerate contacts) and on
@@ -199,9 +200,14 @@ static void test_agreement(void)
 }
 
 /* The settlement: the Signorini points close their gap, the wall above the
- * settlement zone comes down, the rest stays (1/10). */
+ * settlement zone comes down by g, the rest only by its elastic shortening
+ * (1/10). Stack bond on rollers is a set of columns in uniaxial strain: the
+ * top of a supported column under its own weight (rho g = 1, height 1)
+ * sinks by 1 / (2 M), M = E (1 - nu) / ((1 + nu) (1 - 2 nu)) the constrained
+ * modulus. */
 static void test_settlement(void)
 {
+    const double E = 4e3, nu = 0.3, M = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
     for (int g = 0; g < 3; g++) {
         cx_scene sc;
         int N = 10;
@@ -218,7 +224,7 @@ static void test_settlement(void)
                 touching += it->lN[i] > 0;
             }
         CX_CHECK(touching > 0);
-        /* the top course: far left down by about g, far right nearly still */
+        /* the top course: far left and far right */
         double left = 0, right = 0;
         int nl = 0, nr = 0;
         for (int k = 0; k < p->mesh->nnodes; k++) {
@@ -231,42 +237,70 @@ static void test_settlement(void)
                 right += uall[2 * k + 1], nr++;
         }
         left /= nl, right /= nr;
-        fprintf(stderr, "%s 1/%d: g %.3g, top left u_y %.4g, top right u_y %.4g, %d points on the "
-                "ground\n", scenes[g], N, gap, left, right, touching);
-        /* stack bond: the columns over the settlement come down by g;
-         * running bond (the courses corbel) and laminae (the strips bend)
-         * follow less, but far more than the supported right */
-        if (g == 0)
-            CX_CHECK(left < -0.99 * gap && left > -1.01 * gap);
-        else
-            CX_CHECK(left < -0.02 * gap);
-        CX_CHECK(fabs(right) < 0.02 * fabs(left));
+        fprintf(stderr, "%s 1/%d: g %.3g, top left u_y %.4g, top right u_y %.4g (1D column "
+                "%.4g), %d points on the ground\n", scenes[g], N, gap, left, right, -0.5 / M,
+                touching);
+        /* stack bond: the columns exactly (measured: right to 4 digits, the
+         * settlement to 2e-4 of g); running bond and laminae couple the
+         * columns, the right carries less (measured 0.47 and 0.53 of the
+         * column's shortening) and the settlement is g to 1 % */
+        if (g == 0) {
+            CX_CHECK_NEAR(right, -0.5 / M, 1e-3, 0);
+            CX_CHECK(left - right < -0.99 * gap && left - right > -1.01 * gap);
+        } else {
+            CX_CHECK(right < 0 && right > -0.5 / M);
+            CX_CHECK(left - right < -0.95 * gap && left - right > -1.05 * gap);
+        }
         free(uall);
         cx_session_destroy(&s);
     }
 }
 
-/* Running bond 1/25 (n = 9267): the level where plain block pivoting on
- * A + eps I starts to cycle (about 800 factorisations, 747 of them
- * Judice-Pires single pivots). The damped PDAS of lcp.h: measured 44
- * iterations, 40 factorisations, a 2-iteration projection, kkt 4e-13. */
-static void test_pdas_running_bond(void)
+/* The stress case g = H/2 (joints slide by a node spacing), running bond
+ * 1/25 (n = 9267): the level where plain block pivoting on A + eps I starts
+ * to cycle (about 800 factorisations, 747 of them Judice-Pires single
+ * pivots). The damped PDAS of lcp.h: measured 44 iterations, 40
+ * factorisations, a 2-iteration projection, kkt 4e-13. */
+static void gap_half(cx_scene *sc) { sc->gap_h = 0.5; }
+
+static void test_pdas_running_bond_stress(void)
 {
     cx_scene sc;
-    cx_session *s = fixture_session("runningbond", 25, &sc);
+    cx_session *s = fixture_session_edited("runningbond", 25, &sc, gap_half);
     const cx_problem *p = cx_session_problem(s);
     const cx_counters *cnt = cx_session_counters(s);
     long f0 = cnt->factorizations;
     const cx_iterate *it = solve(s, "pdas", NULL);
     long f = cnt->factorizations - f0;
-    fprintf(stderr, "runningbond 1/25 pdas: %d iterations, %ld factorisations, projection %g, kkt "
-            "%.1e\n", it->iter, f, it->own, it->kkt);
+    fprintf(stderr, "runningbond 1/25 g = H/2 pdas: %d iterations, %ld factorisations, projection "
+            "%g, kkt %.1e\n", it->iter, f, it->own, it->kkt);
     CX_CHECK(it->reason > 0);
     CX_CHECK_LE(it->kkt, 1e-10);
     CX_CHECK_LE(complementarity(p, it->u, it->lN), 1e-10);
     CX_CHECK(f >= 20 && f <= 80);
     CX_CHECK(it->own >= 1 && it->own <= 3);
     cx_session_destroy(&s);
+}
+
+/* The scenes' gap g = H/100 at 1/25, as the paper describes its runs: PDAS
+ * in a few iterations on every geometry and a one-iteration projection
+ * (measured 13, 11, 12 iterations with the projection). */
+static void test_pdas_paper_gap(void)
+{
+    for (int g = 0; g < 3; g++) {
+        cx_scene sc;
+        cx_session *s = fixture_session(scenes[g], 25, &sc);
+        const cx_problem *p = cx_session_problem(s);
+        const cx_iterate *it = solve(s, "pdas", NULL);
+        fprintf(stderr, "%s 1/25 pdas: %d iterations, projection %g, kkt %.1e\n", scenes[g],
+                it->iter, it->own, it->kkt);
+        CX_CHECK(it->reason > 0);
+        CX_CHECK_LE(it->kkt, 1e-10);
+        CX_CHECK_LE(complementarity(p, it->u, it->lN), 1e-10);
+        CX_CHECK(it->iter >= 5 && it->iter <= 20);
+        CX_CHECK(it->own == 1);
+        cx_session_destroy(&s);
+    }
 }
 
 /* Theorem 4.2: the LSSNN residual ||R v - y|| (equivalently q(v), the
@@ -342,7 +376,8 @@ int main(void)
     test_null_space();
     test_agreement();
     test_settlement();
-    test_pdas_running_bond();
+    test_pdas_running_bond_stress();
+    test_pdas_paper_gap();
     test_lssnn_monotone();
     test_graves_no_solution();
     return check_finish("solve_masonry");

@@ -26,29 +26,35 @@ typedef struct {
     const char *ref;   /* reference method (NULL: ssn-tresca, ssn-coulomb for Coulomb) */
     const char *fails; /* a method known not to converge here: it must say so
                           (a negative reason), never crash or claim success */
+    double gap_h;      /* masonry: the settlement gap as a fraction of H (0: the scene's) */
 } method_case;
 
+static double case_gap;
+static void set_case_gap(cx_scene *sc) { sc->gap_h = case_gap; }
+
 static const method_case cases[] = {
-    {"hertz", 8, CX_FRICTION_NONE, 0, 1e-12, 2, 12, 1e-8, NULL, NULL},
-    {"hertz", 16, CX_FRICTION_NONE, 0, 1e-12, 2, 12, 1e-8, NULL, NULL},
-    {"hertz", 16, CX_FRICTION_TRESCA, 20, 1e-12, 2, 15, 1e-8, NULL, NULL},
-    {"slider", 2, CX_FRICTION_TRESCA, 1.5, 1e-12, 2, 15, 1e-8, NULL, NULL},
-    {"slider", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8, NULL, NULL},
-    {"block3d", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8, NULL, NULL},
-    {"twoblocks", 2, CX_FRICTION_TRESCA, 1.7e7, 1e-12, 2, 15, 1e-8, NULL, NULL},
-    {"twoblocks", 4, CX_FRICTION_TRESCA, 5e7, 1e-12, 2, 15, 1e-8, NULL, NULL},
-    {"twoblocks", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8, NULL, NULL},
-    {"twoblocks", 3, CX_FRICTION_COULOMB, 0.3, 1e-12, 1, 12, 1e-8, NULL, NULL},
-    {"halfball", 4, CX_FRICTION_NONE, 0, 1e-10, 1, 12, 1e-8, NULL, NULL},
-    {"prism", 1, CX_FRICTION_TRESCA, 1.5e8, 1e-12, 2, 15, 1e-8, NULL, NULL},
-    {"prism", 2, CX_FRICTION_TRESCA, 1.5e8, 1e-12, 2, 15, 1e-8, NULL, NULL},
-    {"prism", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8, NULL, NULL},
-    /* paper 003: floating bodies; pdas is the reference. On running bond the
-     * solution is degenerate (bricks free to slide on frictionless joints) and
-     * ssn-tresca's active sets cycle: it must stop with a failure reason. */
-    {"stackbond", 5, CX_FRICTION_NONE, 0, 1e-10, 2, 30, 1e-8, "pdas", NULL},
-    {"runningbond", 5, CX_FRICTION_NONE, 0, 1e-10, 2, 30, 1e-8, "pdas", "ssn-tresca"},
-    {"laminae", 5, CX_FRICTION_NONE, 0, 1e-10, 2, 30, 1e-8, "pdas", NULL},
+    {"hertz", 8, CX_FRICTION_NONE, 0, 1e-12, 2, 12, 1e-8, NULL, NULL, 0},
+    {"hertz", 16, CX_FRICTION_NONE, 0, 1e-12, 2, 12, 1e-8, NULL, NULL, 0},
+    {"hertz", 16, CX_FRICTION_TRESCA, 20, 1e-12, 2, 15, 1e-8, NULL, NULL, 0},
+    {"slider", 2, CX_FRICTION_TRESCA, 1.5, 1e-12, 2, 15, 1e-8, NULL, NULL, 0},
+    {"slider", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8, NULL, NULL, 0},
+    {"block3d", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8, NULL, NULL, 0},
+    {"twoblocks", 2, CX_FRICTION_TRESCA, 1.7e7, 1e-12, 2, 15, 1e-8, NULL, NULL, 0},
+    {"twoblocks", 4, CX_FRICTION_TRESCA, 5e7, 1e-12, 2, 15, 1e-8, NULL, NULL, 0},
+    {"twoblocks", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8, NULL, NULL, 0},
+    {"twoblocks", 3, CX_FRICTION_COULOMB, 0.3, 1e-12, 1, 12, 1e-8, NULL, NULL, 0},
+    {"halfball", 4, CX_FRICTION_NONE, 0, 1e-10, 1, 12, 1e-8, NULL, NULL, 0},
+    {"prism", 1, CX_FRICTION_TRESCA, 1.5e8, 1e-12, 2, 15, 1e-8, NULL, NULL, 0},
+    {"prism", 2, CX_FRICTION_TRESCA, 1.5e8, 1e-12, 2, 15, 1e-8, NULL, NULL, 0},
+    {"prism", 2, CX_FRICTION_NONE, 0, 1e-12, 1, 12, 1e-8, NULL, NULL, 0},
+    /* paper 003: floating bodies; pdas is the reference. On running bond
+     * with the stress gap g = H/2 the solution is degenerate (bricks free to
+     * slide on frictionless joints) and ssn-tresca's active sets cycle: it
+     * must stop with a failure reason. */
+    {"stackbond", 5, CX_FRICTION_NONE, 0, 1e-10, 2, 30, 1e-8, "pdas", NULL, 0},
+    {"runningbond", 5, CX_FRICTION_NONE, 0, 1e-10, 2, 30, 1e-8, "pdas", NULL, 0},
+    {"runningbond", 5, CX_FRICTION_NONE, 0, 1e-10, 2, 30, 1e-8, "pdas", "ssn-tresca", 0.5},
+    {"laminae", 5, CX_FRICTION_NONE, 0, 1e-10, 2, 30, 1e-8, "pdas", NULL, 0},
 };
 
 /* Methods that cannot meet a case's tolerance as it stands: linearly
@@ -99,7 +105,8 @@ static void run_case(const method_case *c)
 {
     cx_scene sc;
     cx_diag d;
-    cx_session *s = fixture_session(c->scene, c->level, &sc);
+    case_gap = c->gap_h;
+    cx_session *s = fixture_session_edited(c->scene, c->level, &sc, c->gap_h > 0 ? set_case_gap : NULL);
     CX_CHECK_OK(cx_session_set_friction(s, c->law, c->value, &d));
     const cx_problem *p = cx_session_problem(s);
 
