@@ -199,7 +199,7 @@ typedef struct cx_lcp_run {
      "(ours); 0: plain block pivoting with Judice-Pires single pivots (the paper's)", 0}
 
 #define CX_LCP_PARAMS_COMMON                                                                  \
-    {"eps", CX_PARAM_REAL, 1e-8, 0, 1e-2, NULL,                                               \
+    {"eps", CX_PARAM_REAL, 1e-10, 0, 1e-2, NULL,                                              \
      "regularisation A + eps I, relative to the largest diagonal entry of A", 0},             \
     CX_LCP_PARAMS_STAGE
 
