@@ -14,7 +14,8 @@
  * search = 1 (default, ours): the step towards the new subsystem's solution
  * is shortened until the natural residual falls (lcp.h); a full step is the
  * paper's. Plain block pivoting (search = 0) cycles on running bond from
- * 1/25 on; Judice-Pires single pivots then end it after hundreds of
+ * 1/25 on in the stress case g = H/2 (the scenes' g = H/100 does not need
+ * the search); Judice-Pires single pivots then end it after hundreds of
  * factorisations, or not at all. */
 #include "solve/lcp.h"
 
