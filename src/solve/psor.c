@@ -25,7 +25,7 @@ typedef struct {
 } psor_state;
 
 static const cx_param psor_params[] = {
-    /* eps 1e-6 (relative) rather than the others' 1e-8: PSOR's sweeps grow
+    /* eps 1e-6 (relative) rather than the others' 1e-10: PSOR's sweeps grow
      * with the condition of A + eps I (1e-8 did not finish 1/5 in 10^5) */
     {"eps", CX_PARAM_REAL, 1e-6, 0, 1e-2, NULL,
      "regularisation A + eps I, relative to the largest diagonal entry of A", 0},
