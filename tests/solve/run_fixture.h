@@ -1,4 +1,4 @@
-/* Shared by the paper-002 tests: run a method with "key=value ..."
+/* Shared by the solve tests: run a method with "key=value ..."
  * parameters and options, and the energy-norm distance of two solutions. */
 #ifndef CX_TEST_RUN_FIXTURE_H
 #define CX_TEST_RUN_FIXTURE_H

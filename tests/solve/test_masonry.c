@@ -2,7 +2,7 @@
  * the null space of K, the agreement of every LCP method, complementarity
  * after the projection (which takes one iteration), the settlement, the
  * monotone LSSNN residual and Graves' "no solution". */
-#include "solve_fixture.h"
+#include "run_fixture.h"
 #include "solve/lcp.h"
 #include "check.h"
 
@@ -99,19 +99,6 @@ static void test_null_space(void)
 
 /* ---- solving ------------------------------------------------------------- */
 
-static double energy_diff(const cx_problem *p, const double *u, const double *v)
-{
-    int n = p->n;
-    double *e = malloc(sizeof(double) * n), *Ke = malloc(sizeof(double) * n), *Kv = malloc(sizeof(double) * n);
-    for (int k = 0; k < n; k++)
-        e[k] = u[k] - v[k];
-    cx_csc_gemv(&p->K, 1.0, e, 0.0, Ke);
-    cx_csc_gemv(&p->K, 1.0, v, 0.0, Kv);
-    double num = sqrt(fabs(cx_vec_dot(n, e, Ke))), den = sqrt(fabs(cx_vec_dot(n, v, Kv)));
-    free(e), free(Ke), free(Kv);
-    return den > 0 ? num / den : num;
-}
-
 static const cx_iterate *solve(cx_session *s, const char *id, const char *set)
 {
     cx_diag d;
@@ -165,7 +152,7 @@ static void test_agreement(void)
                 if (level > ms[k].max_level)
                     continue;
                 it = solve(s, ms[k].id, ms[k].set);
-                double e = energy_diff(p, it->u, uref), c = complementarity(p, it->u, it->lN);
+                double e = fixture_energy_diff(p, it->u, uref), c = complementarity(p, it->u, it->lN);
                 fprintf(stderr, "%s 1/%d %s %s: %d iterations, kkt %.1e, agreement %.1e, "
                         "complementarity %.1e, own %g\n", scenes[g], level, ms[k].id,
                         ms[k].set ? ms[k].set : "", it->iter, it->kkt, e, c, it->own);

@@ -9,7 +9,7 @@
  * the harness asserts the kkt error, whatever a method's own criterion).
  * A method may also refuse a case at init with CX_EUNSUPPORTED and a reason
  * the flags cannot express (the dual methods when K is singular). */
-#include "solve_fixture.h"
+#include "run_fixture.h"
 #include "check.h"
 
 #include <math.h>
@@ -84,23 +84,6 @@ static const method_setting *setting_of(const cx_method *m)
     return NULL;
 }
 
-/* ||u - v||_K / ||v||_K */
-static double energy_diff(const cx_problem *p, const double *u, const double *v)
-{
-    int n = p->n;
-    double *e = malloc(sizeof(double) * (size_t)n), *Ke = malloc(sizeof(double) * (size_t)n);
-    double *Kv = malloc(sizeof(double) * (size_t)n);
-    for (int k = 0; k < n; k++)
-        e[k] = u[k] - v[k];
-    cx_csc_gemv(&p->K, 1.0, e, 0.0, Ke);
-    cx_csc_gemv(&p->K, 1.0, v, 0.0, Kv);
-    double num = sqrt(fabs(cx_vec_dot(n, e, Ke))), den = sqrt(fabs(cx_vec_dot(n, v, Kv)));
-    free(e);
-    free(Ke);
-    free(Kv);
-    return den > 0 ? num / den : num;
-}
-
 static void run_case(const method_case *c)
 {
     cx_scene sc;
@@ -161,7 +144,7 @@ static void run_case(const method_case *c)
         }
         CX_CHECK(it->reason > 0);
         CX_CHECK_LE(it->kkt, om.tol);
-        CX_CHECK_LE(energy_diff(p, it->u, uref), agree);
+        CX_CHECK_LE(fixture_energy_diff(p, it->u, uref), agree);
         if (strcmp(m->id, ref) == 0) {
             CX_CHECK(it->iter >= c->min_it && it->iter <= c->max_it);
             /* ssn-tresca: one factorisation for the session (cached, so 0
