@@ -219,6 +219,7 @@ static void session_clear_run(cx_session *s)
     it->kkt_parts = (cx_kkt){INFINITY, INFINITY, INFINITY, INFINITY};
     it->own = NAN;
     it->own_done = 0;
+    it->progress = 0;
     it->nfree = p->m;
     it->ncontact = it->nstick = it->nslip = it->nchanged = 0;
     it->inner = it->inner_total = 0;

@@ -69,6 +69,9 @@ typedef struct cx_iterate {
     cx_kkt kkt_parts;
     double own;          /* the method's own criterion (NaN if none) */
     int own_done;        /* set by the method when its own criterion is met */
+    int progress;        /* set by a method whose own criterion made headway
+                            the kkt error cannot show (a regularised first
+                            stage at its O(eps) floor): restarts the stall clock */
     double *u;           /* n */
     int u_partial;       /* 1: only u's contact dofs (p->cdofs) are of this
                             iterate, the rest is of an earlier one (below) */
@@ -109,7 +112,7 @@ typedef struct cx_method {
      * the session's cache. Refuse with CX_EUNSUPPORTED and a reason. */
     int (*init)(void *state, cx_session *s, const cx_param_values *params, cx_diag *d);
     /* One outer iteration: update it->u, it->lN, it->lT (and it->own,
-     * it->own_done, it->inner). No printing, no kkt. A non-zero status or
+     * it->own_done, it->progress, it->inner). No printing, no kkt. A non-zero status or
      * CX_DIVERGED_BREAKDOWN in it->reason ends the run. */
     int (*step)(void *state, cx_session *s, cx_iterate *it, cx_diag *d);
     void (*destroy)(void *state);

@@ -138,11 +138,14 @@ static int solver_outcome(const cx_session *s, double time)
     return CX_ITERATING;
 }
 
-/* Stall detection: the best kkt so far, and when it last halved. */
+/* Stall detection: the best kkt so far, and when it last halved (or the
+ * method last reported progress of its own). */
 static void solver_track_best(cx_session *s)
 {
     if (s->it.kkt < 0.5 * s->best_kkt) {
         s->best_kkt = s->it.kkt;
+        s->best_iter = s->it.iter;
+    } else if (s->it.progress) {
         s->best_iter = s->it.iter;
     }
 }
@@ -169,6 +172,7 @@ int cx_solver_step(cx_session *s, cx_diag *d)
 
     it->own = NAN;
     it->own_done = 0;
+    it->progress = 0;
     it->inner = 0;
     cx_diag local;
     cx_diag_clear(&local);

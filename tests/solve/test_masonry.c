@@ -135,7 +135,7 @@ static void test_agreement(void)
         const char *id, *set;
         int max_level;
     } ms[] = {{"pdpc", NULL, 10}, {"lssnn", NULL, 10}, {"graves", NULL, 10}, {"pdas", "schur=1", 10},
-              {"lssnn", "schur=1", 10}, {"pdpc", "schur=1", 10}, {"psor", NULL, 5},
+              {"lssnn", "schur=1", 10}, {"pdpc", "schur=1", 10}, {"psor", NULL, 10},
               {"pdpc", "sigma=paper", 10}};
     for (int g = 0; g < 3; g++)
         for (int level = 5; level <= 10; level += 5) {
