@@ -6,6 +6,8 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 /* ---- the change of variables u = u0 + T v (cached) ------------------------ */
 
@@ -312,6 +314,25 @@ static int pdas_solve_set(cx_lcp_solver *s, double eps, double *v, double *lam,
 
 /* ---- PDAS step -------------------------------------------------------------- */
 
+/* The first set {i in S : lam_i - c v_i > 0} from a start (v, lam); an
+ * index within roundoff of the switch takes the start's side (active where
+ * v_i = 0): at a projection's start the degenerate joints (closed, without
+ * force) keep the regularised solution's side, which the rounding of lam
+ * (the reduced LCP's condensation) would otherwise decide. Returns the
+ * number of active unknowns. */
+static int pdas_first_set(const cx_lcp *L, double c, const double *v, const double *lam,
+                          unsigned char *act)
+{
+    double tol = CX_PDAS_ROUNDOFF * (cx_vec_norminf(L->n, lam) + c * cx_vec_norminf(L->n, v));
+    int active = 0;
+    for (int i = 0; i < L->n; i++) {
+        double t = lam[i] - c * v[i];
+        act[i] = L->S[i] && (t > tol || (t >= -tol && v[i] == 0));
+        active += act[i];
+    }
+    return active;
+}
+
 int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *lam,
                      unsigned char *act, cx_pdas_guard *g, int *same, double *work, cx_diag *d)
 {
@@ -319,9 +340,7 @@ int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *
     int n = L->n;
     *same = 0;
     if (act[0] == 2) {
-        /* the first set, from the start (v, lam) */
-        for (int i = 0; i < n; i++)
-            act[i] = L->S[i] && lam[i] - c * v[i] > 0;
+        pdas_first_set(L, c, v, lam, act);
         g->best = n + 1, g->tries = CX_PDAS_TRIES;
     } else {
         /* infeasible: active with lam < 0, inactive with v < 0 (to roundoff) */
@@ -378,16 +397,18 @@ int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, d
     cx_lcp_apply(L, v, ls->Av);
     for (int i = 0; i < n; i++)
         lam[i] = L->S[i] ? ls->Av[i] + eps * v[i] - L->b[i] : 0;
-    double tol = CX_PDAS_ROUNDOFF * (cx_vec_norminf(n, lam) + c * cx_vec_norminf(n, v));
-    for (int i = 0; i < n; i++) {
-        if (!L->S[i]) {
-            act[i] = 0;
-            continue;
+    if (first) {
+        pdas_first_set(L, c, v, lam, act);
+    } else {
+        double tol = CX_PDAS_ROUNDOFF * (cx_vec_norminf(n, lam) + c * cx_vec_norminf(n, v));
+        for (int i = 0; i < n; i++) {
+            if (!L->S[i])
+                continue;
+            double t = lam[i] - c * v[i];
+            unsigned char a = t > tol ? 1 : t < -tol ? 0 : act[i];
+            changed += a != act[i];
+            act[i] = a;
         }
-        double t = lam[i] - c * v[i];
-        unsigned char a = first ? t > 0 : t > tol ? 1 : t < -tol ? 0 : act[i];
-        changed += a != act[i];
-        act[i] = a;
     }
     if (!first && changed == 0 && ls->alpha == 1) {
         *same = 1;
@@ -408,9 +429,19 @@ int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, d
     for (int k = 0; k < ls->memory && k < ls->steps; k++)
         ref = fmax(ref, ls->hist[(ls->steps - 1 - k) % CX_PDAS_MEMORY]);
     ls->hist[ls->steps++ % CX_PDAS_MEMORY] = th0;
-    for (int k = 0; !first && k < CX_PDAS_HALVINGS; k++, alpha *= 0.5)
+    int k = 0;
+    for (; !first && k < CX_PDAS_HALVINGS; k++, alpha *= 0.5)
         if ((th = pdas_merit(L, eps, c, v, ls->vn, ls->Av, ls->Ad, alpha)) <= ref - 1e-4 * alpha * th0)
             break;
+    if (k == CX_PDAS_HALVINGS) {
+        /* no descent along the Newton direction: v sits on a kink of F (an
+         * index with v_i = lam_i / c), where the set's derivative is not
+         * F's; the full step (plain PDAS) leaves it (laminae 1/20, reduced:
+         * stuck at a wrong set with kkt 3e-3 without it) */
+        alpha = 1;
+        th = pdas_merit(L, eps, c, v, ls->vn, ls->Av, ls->Ad, alpha);
+        ls->full_restarts++;
+    }
     if (alpha < 1)
         ls->short_steps++;
     for (int i = 0; i < n; i++) {
@@ -447,26 +478,27 @@ int cx_lcp_run_init(cx_lcp_run *r, cx_session *s, const cx_param_values *params,
         CX_TRY(cx_lcp_get(s, &r->map, d));
     r->reduced = reduced;
     r->L = reduced ? &r->map->red : &r->map->full;
-    int n = r->L->n;
     double scale = r->L->amax > 0 ? r->L->amax : 1;
     r->eps = cx_param_get(params, "eps") * scale;
     r->c = cx_param_get(params, "tau") * scale;
     r->project = cx_param_get(params, "project") != 0;
     r->search = cx_param_get(params, "search") != 0;
     r->guard.eps_fallback = CX_PDAS_EPS_FALLBACK * scale;
-    r->v = CX_NEW(double, n);
-    r->lam = CX_NEW(double, n);
-    r->work = CX_NEW(double, 2 * (size_t)r->map->full.n + 2 * (size_t)n);
-    r->act = CX_NEW(unsigned char, n);
-    r->ls.Av = CX_NEW(double, n);
-    r->ls.Ad = CX_NEW(double, n);
-    r->ls.vn = CX_NEW(double, n);
+    /* a reduced run's projection works on the full LCP (stage_done) */
+    int nmax = r->map->full.n;
+    r->v = CX_NEW(double, nmax);
+    r->lam = CX_NEW(double, nmax);
+    r->work = CX_NEW(double, 4 * (size_t)nmax);
+    r->act = CX_NEW(unsigned char, nmax);
+    r->ls.Av = CX_NEW(double, nmax);
+    r->ls.Ad = CX_NEW(double, nmax);
+    r->ls.vn = CX_NEW(double, nmax);
     if (!r->v || !r->lam || !r->work || !r->act || !r->ls.Av || !r->ls.Ad || !r->ls.vn) {
         cx_lcp_run_clear(r);
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
     if (r->project) {
-        int st = cx_lcp_solver_init(&r->proj, r->L, cx_session_counters(s), d);
+        int st = cx_lcp_solver_init(&r->proj, &r->map->full, cx_session_counters(s), d);
         if (st) {
             cx_lcp_run_clear(r);
             return st;
@@ -486,27 +518,50 @@ void cx_lcp_run_clear(cx_lcp_run *r)
     memset(r, 0, sizeof *r);
 }
 
-void cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it)
+int cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it, cx_diag *d)
 {
-    if (r->project) {
-        r->stage = 1;
-        /* lam from the current v on the constrained unknowns: the PDAS
-         * start of the projection (003 §4) */
-        cx_lcp_apply(r->L, r->v, r->work);
-        for (int i = 0; i < r->L->n; i++) {
-            r->lam[i] = r->L->S[i] ? r->work[i] - r->L->b[i] : 0;
-            r->act[i] = 2;   /* no previous set */
-        }
-        r->ls.alpha = 0;
-        r->ls.steps = 0;
-        /* nonmonotone: near the solution the full PDAS steps of the
-         * projection may raise the residual for a step or two (reduced
-         * running bond: monotone steps took 132 iterations, 12 with this) */
-        r->ls.memory = CX_PDAS_PROJ_MEMORY;
-    } else {
+    if (!r->project) {
         r->stage = 2;
         it->own_done = 1;
+        return CX_OK;
     }
+    r->stage = 1;
+    if (getenv("DBGSET")) {
+        FILE *fp = fopen(getenv("DBGSET"), "w");
+        for (int i = 0; i < r->L->n; i++)
+            if (r->L->S[i])
+                fprintf(fp, "%d %d %.6e\n", r->reduced ? r->map->sidx[i] : i, r->act[i], r->v[i]);
+        fclose(fp);
+    }
+    if (r->reduced) {
+        /* the projection of a reduced run works on the full LCP: the same
+         * equations, without the rounding of the dense condensation, which
+         * on running bond let the reduced solves move bricks and took the
+         * projection 5-9 iterations */
+        const cx_lcp *F = &r->map->full;
+        int st = cx_schur_expand(r->map->schur, F->b, r->v, r->work);
+        if (st != CX_OK)
+            return cx_diag_set(d, st, "expanding the reduced solution for the projection failed");
+        memcpy(r->v, r->work, sizeof(double) * (size_t)F->n);
+        double scale = (F->amax > 0 ? F->amax : 1) / (r->L->amax > 0 ? r->L->amax : 1);
+        r->c *= scale;
+        r->guard.eps_fallback *= scale;
+        r->L = F;
+        r->reduced = 0;
+    }
+    /* lam from the current v on the constrained unknowns: the PDAS start of
+     * the projection (003 §4) */
+    cx_lcp_apply(r->L, r->v, r->work);
+    for (int i = 0; i < r->L->n; i++) {
+        r->lam[i] = r->L->S[i] ? r->work[i] - r->L->b[i] : 0;
+        r->act[i] = 2;   /* no previous set */
+    }
+    r->ls.alpha = 0;
+    r->ls.steps = 0;
+    /* nonmonotone: near the solution the full PDAS steps of the projection
+     * may raise the residual for a step or two */
+    r->ls.memory = CX_PDAS_PROJ_MEMORY;
+    return CX_OK;
 }
 
 int cx_lcp_run_pdas_step(cx_lcp_run *r, cx_lcp_solver *solver, double eps, int *same, cx_diag *d)

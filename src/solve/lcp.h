@@ -134,6 +134,7 @@ typedef struct cx_pdas_search {
     double alpha;           /* the last step length; 0 before the first */
     double merit;           /* ||F(v)|| at the current v */
     long short_steps;       /* steps with alpha < 1 */
+    long full_restarts;     /* full steps taken because no shortened one descended */
     int memory;             /* nonmonotone: compare with the largest of the last memory merits (0: monotone) */
     int steps;              /* steps taken */
     double hist[CX_PDAS_MEMORY];
@@ -179,7 +180,7 @@ typedef struct cx_lcp_run {
     int proj_iters;       /* projection iterations (PDAS solves on A) */
     double eps;           /* regularisation eps * amax */
     double c;             /* PDAS / projection parameter tau * amax */
-    cx_lcp_solver proj;   /* unregularised masked solves (projection) */
+    cx_lcp_solver proj;   /* unregularised masked solves on the full LCP (projection) */
     cx_pdas_guard guard;  /* of the PDAS iterations (method and projection) */
     int search;           /* 1: damped PDAS (line search); 0: plain block pivoting */
     cx_pdas_search ls;    /* the damped steps' state (method and projection) */
@@ -211,8 +212,10 @@ int cx_lcp_run_init(cx_lcp_run *r, cx_session *s, const cx_param_values *params,
                     cx_diag *d);
 void cx_lcp_run_clear(cx_lcp_run *r);
 /* The method's own stage has converged on (r->v): start the projection, or
- * end the run when it is off. */
-void cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it);
+ * end the run when it is off. A reduced run's projection works on the full
+ * LCP (r->L and r->v switch to it): the same equations without the
+ * rounding of the dense condensation. */
+int cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it, cx_diag *d);
 /* One PDAS step of the run on A + eps I with this solver: damped or plain
  * as the run's search parameter says. */
 int cx_lcp_run_pdas_step(cx_lcp_run *r, cx_lcp_solver *solver, double eps, int *same, cx_diag *d);

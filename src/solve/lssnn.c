@@ -144,7 +144,7 @@ static int lssnn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
             wmax = wi, t = i;
     }
     if (t < 0 || wmax <= 1e-13 * (bn > 0 ? bn : 1)) {
-        cx_lcp_run_stage_done(r, it);
+        CX_TRY(cx_lcp_run_stage_done(r, it, d));
         if (r->stage == 2)
             return CX_OK;
         return cx_lcp_run_project(r, s, it, d);

@@ -84,7 +84,7 @@ static int pdas_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
             it->own = active;
             return cx_lcp_run_publish(r, s, it);
         }
-        cx_lcp_run_stage_done(r, it);
+        CX_TRY(cx_lcp_run_stage_done(r, it, d));
         if (r->stage == 2)
             return CX_OK;
     }

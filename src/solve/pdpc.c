@@ -122,7 +122,7 @@ static int pdpc_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     double vmax = cx_vec_norminf(n, v), lmax = cx_vec_norminf(n, lam);
     it->own = fmax(rn / sc, mu / (1 + vmax * lmax));
     if (nc == 0 || it->own <= st->tol) {
-        cx_lcp_run_stage_done(run, it);
+        CX_TRY(cx_lcp_run_stage_done(run, it, d));
         if (run->stage == 2)
             return CX_OK;
         return cx_lcp_run_project(run, s, it, d);

@@ -118,7 +118,7 @@ static int psor_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
         it->progress = 1;
     }
     if (it->own <= st->tol || st->done >= st->max_sweeps) {
-        cx_lcp_run_stage_done(r, it);
+        CX_TRY(cx_lcp_run_stage_done(r, it, d));
         if (r->stage == 1) {
             CX_TRY(cx_lcp_run_project(r, s, it, d));
             return CX_OK;
