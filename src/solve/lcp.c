@@ -6,8 +6,6 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <stdio.h>
-#include <stdlib.h>
 
 /* ---- the change of variables u = u0 + T v (cached) ------------------------ */
 
@@ -479,7 +477,9 @@ int cx_lcp_run_init(cx_lcp_run *r, cx_session *s, const cx_param_values *params,
     r->reduced = reduced;
     r->L = reduced ? &r->map->red : &r->map->full;
     double scale = r->L->amax > 0 ? r->L->amax : 1;
-    r->eps = cx_param_get(params, "eps") * scale;
+    /* the regularised methods' eps (pdpc has none) */
+    int k = cx_param_find(params, reduced ? "schur_eps" : "eps");
+    r->eps = k >= 0 ? params->num[k] * scale : 0;
     r->c = cx_param_get(params, "tau") * scale;
     r->project = cx_param_get(params, "project") != 0;
     r->search = cx_param_get(params, "search") != 0;
@@ -526,13 +526,6 @@ int cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it, cx_diag *d)
         return CX_OK;
     }
     r->stage = 1;
-    if (getenv("DBGSET")) {
-        FILE *fp = fopen(getenv("DBGSET"), "w");
-        for (int i = 0; i < r->L->n; i++)
-            if (r->L->S[i])
-                fprintf(fp, "%d %d %.6e\n", r->reduced ? r->map->sidx[i] : i, r->act[i], r->v[i]);
-        fclose(fp);
-    }
     if (r->reduced) {
         /* the projection of a reduced run works on the full LCP: the same
          * equations, without the rounding of the dense condensation, which

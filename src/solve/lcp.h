@@ -204,9 +204,18 @@ typedef struct cx_lcp_run {
      "regularisation A + eps I, relative to the largest diagonal entry of A", 0},             \
     CX_LCP_PARAMS_STAGE
 
+/* The reduced LCP's own eps. Regularising only the slacks, eps 1e-10
+ * opened a degenerate running-bond joint by 2e-6 (1/10), and the paper's
+ * n_c eps_machine (Table 7; 4e-13 - 6e-13 at 1/20 - 1/25) still did at 1/20
+ * (lssnn) and 1/25: the projection then took 5-8 iterations. With 1e-14 it
+ * takes one on every wall from 1/5 to 1/25; 1e-16 leaves the dense factor
+ * singular. */
 #define CX_LCP_PARAM_SCHUR                                                                    \
     {"schur", CX_PARAM_BOOL, 0, 0, 1, NULL,                                                   \
      "1: solve the reduced Schur-complement LCP on the contact unknowns (dense, 003 Table 7)", 0}
+#define CX_LCP_PARAM_SCHUR_EPS                                                                \
+    {"schur_eps", CX_PARAM_REAL, 1e-14, 0, 1e-2, NULL,                                        \
+     "eps of the reduced LCP (schur = 1) in place of eps, relative to its largest diagonal entry", 0}
 
 int cx_lcp_run_init(cx_lcp_run *r, cx_session *s, const cx_param_values *params, int reduced,
                     cx_diag *d);

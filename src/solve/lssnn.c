@@ -35,6 +35,7 @@ typedef struct {
 static const cx_param lssnn_params[] = {
     CX_LCP_PARAMS_COMMON,
     CX_LCP_PARAM_SCHUR,
+    CX_LCP_PARAM_SCHUR_EPS,
     {"update", CX_PARAM_BOOL, 1, 0, 1, NULL,
      "1: add/delete one row of the LDL' factor per pivot (CHOLMOD Modify); 0: refactorise", 0},
     {NULL, 0, 0, 0, 0, NULL, NULL, 0}

@@ -32,6 +32,7 @@ static const cx_param pdas_params[] = {
     {"eps0", CX_PARAM_REAL, 0, 0, 1, NULL,
      "continuation: start with this eps (relative) and divide by 100 down to eps (0: off)", 0},
     CX_LCP_PARAM_SCHUR,
+    CX_LCP_PARAM_SCHUR_EPS,
     {NULL, 0, 0, 0, 0, NULL, NULL, 0}
 };
 

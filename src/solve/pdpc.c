@@ -27,7 +27,7 @@ typedef struct {
 } pdpc_state;
 
 static const cx_param pdpc_params[] = {
-    CX_LCP_PARAMS_COMMON,
+    CX_LCP_PARAMS_STAGE,
     CX_LCP_PARAM_SCHUR,
     {"tol", CX_PARAM_REAL, 1e-10, 1e-15, 1e-2, NULL,
      "stop the interior point when mu and the residual fall below tol (relative)", 0},
