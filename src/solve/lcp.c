@@ -312,23 +312,21 @@ static int pdas_solve_set(cx_lcp_solver *s, double eps, double *v, double *lam,
 
 /* ---- PDAS step -------------------------------------------------------------- */
 
-/* The first set {i in S : lam_i - c v_i > 0} from a start (v, lam); an
- * index within roundoff of the switch takes the start's side (active where
- * v_i = 0): at a projection's start the degenerate joints (closed, without
- * force) keep the regularised solution's side, which the rounding of lam
- * (the reduced LCP's condensation) would otherwise decide. Returns the
- * number of active unknowns. */
-static int pdas_first_set(const cx_lcp *L, double c, const double *v, const double *lam,
-                          unsigned char *act)
+/* The first set {i in S : lam_i - c v_i > 0} from a start (v, lam). With
+ * g->ties_to_v (the projection's start) an index within roundoff of the
+ * switch takes the start's side (active where v_i = 0): the degenerate
+ * joints (closed, without force) keep the regularised solution's side,
+ * which the rounding of lam would otherwise decide. */
+static void pdas_first_set(const cx_lcp *L, double c, const double *v, const double *lam,
+                           const cx_pdas_guard *g, unsigned char *act)
 {
-    double tol = CX_PDAS_ROUNDOFF * (cx_vec_norminf(L->n, lam) + c * cx_vec_norminf(L->n, v));
-    int active = 0;
+    double tol = g->ties_to_v
+                     ? CX_PDAS_ROUNDOFF * (cx_vec_norminf(L->n, lam) + c * cx_vec_norminf(L->n, v))
+                     : 0;
     for (int i = 0; i < L->n; i++) {
         double t = lam[i] - c * v[i];
-        act[i] = L->S[i] && (t > tol || (t >= -tol && v[i] == 0));
-        active += act[i];
+        act[i] = L->S[i] && (t > tol || (g->ties_to_v && t >= -tol && v[i] == 0));
     }
-    return active;
 }
 
 int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *lam,
@@ -338,7 +336,7 @@ int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *
     int n = L->n;
     *same = 0;
     if (act[0] == 2) {
-        pdas_first_set(L, c, v, lam, act);
+        pdas_first_set(L, c, v, lam, g, act);
         g->best = n + 1, g->tries = CX_PDAS_TRIES;
     } else {
         /* infeasible: active with lam < 0, inactive with v < 0 (to roundoff) */
@@ -384,6 +382,19 @@ static double pdas_merit(const cx_lcp *L, double eps, double c, const double *v,
     return th;
 }
 
+/* F(v) = 0 to roundoff: v solves the LCP. Shortened steps can end there,
+ * at a kink of F (a degenerate joint), where the kept Newton point lies
+ * beyond the kink (running bond 1/225: stuck at the regularised solution,
+ * kkt 2.5e-8, until the stall rule). lam: on S at v; Av = A v. */
+static int pdas_solved(const cx_lcp *L, double eps, double c, const double *v, const double *lam,
+                       const double *Av)
+{
+    double f = 0;
+    for (int i = 0; i < L->n; i++)
+        f = fmax(f, fabs(L->S[i] ? fmin(v[i], lam[i] / c) : (Av[i] + eps * v[i] - L->b[i]) / c));
+    return f <= CX_PDAS_ROUNDOFF * (cx_vec_norminf(L->n, v) + cx_vec_norminf(L->n, lam) / c);
+}
+
 int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, double *lam,
                             unsigned char *act, cx_pdas_search *ls, cx_pdas_guard *g, int *same,
                             double *work, cx_diag *d)
@@ -396,7 +407,7 @@ int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, d
     for (int i = 0; i < n; i++)
         lam[i] = L->S[i] ? ls->Av[i] + eps * v[i] - L->b[i] : 0;
     if (first) {
-        pdas_first_set(L, c, v, lam, act);
+        pdas_first_set(L, c, v, lam, g, act);
     } else {
         double tol = CX_PDAS_ROUNDOFF * (cx_vec_norminf(n, lam) + c * cx_vec_norminf(n, v));
         for (int i = 0; i < n; i++) {
@@ -408,7 +419,7 @@ int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, d
             act[i] = a;
         }
     }
-    if (!first && changed == 0 && ls->alpha == 1) {
+    if (!first && changed == 0 && (ls->alpha == 1 || pdas_solved(L, eps, c, v, lam, ls->Av))) {
         *same = 1;
         for (int i = 0; i < n; i++)
             lam[i] = act[i] ? lam[i] : 0;
@@ -551,6 +562,7 @@ int cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it, cx_diag *d)
     }
     r->ls.alpha = 0;
     r->ls.steps = 0;
+    r->guard.ties_to_v = 1;
     /* nonmonotone: near the solution the full PDAS steps of the projection
      * may raise the residual for a step or two */
     r->ls.memory = CX_PDAS_PROJ_MEMORY;

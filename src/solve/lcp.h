@@ -102,6 +102,7 @@ typedef struct cx_pdas_guard {
     long single;         /* single pivots taken */
     double eps_fallback; /* eps used when the unregularised system is singular (0: fail) */
     long fallbacks;      /* times it was used */
+    int ties_to_v;       /* first set: ties take v's side (the projection's start) */
 } cx_pdas_guard;
 /* The projection's fallback when its set leaves a motion free (relative). */
 #define CX_PDAS_EPS_FALLBACK 1e-10
