@@ -449,7 +449,6 @@ int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, d
          * stuck at a wrong set with kkt 3e-3 without it) */
         alpha = 1;
         th = pdas_merit(L, eps, c, v, ls->vn, ls->Av, ls->Ad, alpha);
-        ls->full_restarts++;
     }
     if (alpha < 1)
         ls->short_steps++;
@@ -539,9 +538,8 @@ int cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it, cx_diag *d)
     r->stage = 1;
     if (r->reduced) {
         /* the projection of a reduced run works on the full LCP: the same
-         * equations, without the rounding of the dense condensation, which
-         * on running bond let the reduced solves move bricks and took the
-         * projection 5-9 iterations */
+         * equations, a sparse factorisation in place of a dense one of
+         * order n_c, and no rounding of the dense condensation */
         const cx_lcp *F = &r->map->full;
         int st = cx_schur_expand(r->map->schur, F->b, r->v, r->work);
         if (st != CX_OK)

@@ -135,7 +135,6 @@ typedef struct cx_pdas_search {
     double alpha;           /* the last step length; 0 before the first */
     double merit;           /* ||F(v)|| at the current v */
     long short_steps;       /* steps with alpha < 1 */
-    long full_restarts;     /* full steps taken because no shortened one descended */
     int memory;             /* nonmonotone: compare with the largest of the last memory merits (0: monotone) */
     int steps;              /* steps taken */
     double hist[CX_PDAS_MEMORY];

@@ -295,12 +295,12 @@ static void test_pdas_paper_gap(void)
     }
 }
 
-/* The projection after PSOR (1/15) and after the reduced PDAS and LSSNN
- * (1/20, lssnn 1/15): one iteration on every wall, with the CLI's stall window (PSOR's
- * kkt error rests at its O(eps) floor while its sweeps still converge;
- * LSSNN's iterates need not lower it; the reduced PDAS on laminae 1/20 sat
- * on a kink of the residual before a failed line search took the full
- * step). Measured: psor 4-8 steps, pdas 3-29, lssnn 3-166. */
+/* The projection after PSOR (1/15), the reduced PDAS (1/20) and the reduced
+ * LSSNN (1/15): one iteration on every wall, with the CLI's stall window.
+ * PSOR's kkt error rests at its O(eps) floor while its sweeps converge,
+ * LSSNN's iterates need not lower it, and the reduced PDAS on laminae 1/20
+ * sat on a kink of the residual until a failed line search took the full
+ * step. Measured: psor 4-8 steps, pdas 3-29, lssnn 3-166. */
 static void test_projection_one(void)
 {
     static const struct {
