@@ -112,7 +112,7 @@ static void draw_pickers(const tui_state *st, tui_box b)
 {
     int nf = tui_state_nfields(st);
     int y = b.y;
-    const int lw = 9;
+    const int lw = 11;   /* labels up to 10 characters (abar_scale, max_sweeps) */
     tui_rule(y++, b.x, b.w, "setup");
     /* the rows above the session block; scrolled to keep the cursor in view
      * when a method has many parameters */
