@@ -183,7 +183,7 @@ static int lssnn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     it->own = lssnn_objective(st);
     /* one pivot per step: the kkt error of the iterates need not fall,
      * the objective does (Theorem 4.2), and the method is finite */
-    it->progress = it->own < st->q - 1e-14 * fabs(st->q);
+    it->progress = it->own < st->q;
     st->q = it->own;
     return cx_lcp_run_publish(r, s, it);
 }
