@@ -230,7 +230,6 @@ int cx_lcp_factor(cx_lcp_solver *s, double eps, const unsigned char *zero, const
 {
     const cx_lcp *L = s->L;
     int n = L->n;
-    s->eps = eps;
     if (L->dense) {
         for (int j = 0; j < n; j++)
             for (int i = 0; i < n; i++) {
@@ -279,14 +278,23 @@ int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs,
 
 /* Factorise on the set act and move v to the solution of the masked system
  * (lam from it); shared by the plain and the damped step. */
-/* v += the correction that solves the set's equations from v (v = 0 on
- * the active set), with the factor in hand; lam from the result. Where the
- * system is singular the free motion keeps its current value. */
-static int pdas_correct(cx_lcp_solver *s, double eps, double *v, double *lam,
-                        const unsigned char *act, double *work, cx_diag *d)
+static int pdas_solve_set(cx_lcp_solver *s, double eps, double *v, double *lam,
+                          const unsigned char *act, cx_pdas_guard *g, double *work, cx_diag *d)
 {
     const cx_lcp *L = s->L;
     int n = L->n;
+    int st = cx_lcp_factor(s, eps, act, NULL, d);
+    if (st == CX_ENUMERIC && eps == 0 && g->eps_fallback > 0) {
+        /* a motion the set leaves free (a brick between open head joints
+         * slides): the consistent singular system, nearly its minimum-norm
+         * solution */
+        eps = g->eps_fallback;
+        g->fallbacks++;
+        st = cx_lcp_factor(s, eps, act, NULL, d);
+    }
+    CX_TRY(st);
+    /* the correction from the current v (v = 0 on the active set): where
+     * the system is singular the free motion keeps its current value */
     double *r = work + n;
     for (int i = 0; i < n; i++)
         if (act[i])
@@ -300,53 +308,6 @@ static int pdas_correct(cx_lcp_solver *s, double eps, double *v, double *lam,
     for (int i = 0; i < n; i++)
         lam[i] = act[i] ? work[i] + eps * v[i] - L->b[i] : 0;
     return CX_OK;
-}
-
-static int pdas_solve_set(cx_lcp_solver *s, double eps, double *v, double *lam,
-                          const unsigned char *act, cx_pdas_guard *g, double *work, cx_diag *d)
-{
-    int st = cx_lcp_factor(s, eps, act, NULL, d);
-    if (st == CX_ENUMERIC && eps == 0 && g->eps_fallback > 0) {
-        /* a motion the set leaves free (a brick between open head joints
-         * slides): the consistent singular system, nearly its minimum-norm
-         * solution */
-        eps = g->eps_fallback;
-        g->fallbacks++;
-        st = cx_lcp_factor(s, eps, act, NULL, d);
-    }
-    CX_TRY(st);
-    return pdas_correct(s, eps, v, lam, act, work, d);
-}
-
-
-/* F(v) = 0 to roundoff: v solves the LCP. Shortened steps can end there,
- * at a kink of F (a degenerate joint), where the kept Newton point lies
- * beyond the kink (running bond 1/225: stuck at the regularised solution,
- * kkt 2.5e-8, until the stall rule). lam: on S at v; Av = A v. */
-static int pdas_solved(const cx_lcp *L, double eps, double c, const double *v, const double *lam,
-                       const double *Av)
-{
-    double f = 0;
-    for (int i = 0; i < L->n; i++)
-        f = fmax(f, fabs(L->S[i] ? fmin(v[i], lam[i] / c) : (Av[i] + eps * v[i] - L->b[i]) / c));
-    return f <= CX_PDAS_ROUNDOFF * (cx_vec_norminf(L->n, v) + cx_vec_norminf(L->n, lam) / c);
-}
-
-/* The set repeats: one more correction with the factor in hand (iterative
- * refinement) unless F(v) is already zero to roundoff. A correction from a
- * far start carries cond(A) eps_M of its size (laminae 1/225 after pdpc:
- * kkt 1.3e-9 without this). work: 2 n doubles. */
-static int pdas_refine(cx_lcp_solver *s, double c, double *v, double *lam,
-                       const unsigned char *act, double *work, cx_diag *d)
-{
-    const cx_lcp *L = s->L;
-    double eps = s->eps;
-    cx_lcp_apply(L, v, work);
-    for (int i = 0; i < L->n; i++)
-        lam[i] = L->S[i] ? work[i] + eps * v[i] - L->b[i] : 0;
-    if (pdas_solved(L, eps, c, v, lam, work))
-        return CX_OK;
-    return pdas_correct(s, eps, v, lam, act, work, d);
 }
 
 /* ---- PDAS step -------------------------------------------------------------- */
@@ -386,7 +347,7 @@ int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *
                 ninf++, last = i;
         if (ninf == 0) {
             *same = 1;
-            return pdas_refine(s, c, v, lam, act, work, d);
+            return CX_OK;
         }
         /* Judice & Pires: block pivots while the infeasibilities fall (or for
          * a few tries), else Murty's single pivot on the last one, which
@@ -421,6 +382,18 @@ static double pdas_merit(const cx_lcp *L, double eps, double c, const double *v,
     return th;
 }
 
+/* F(v) = 0 to roundoff: v solves the LCP. Shortened steps can end there,
+ * at a kink of F (a degenerate joint), where the kept Newton point lies
+ * beyond the kink (running bond 1/225: stuck at the regularised solution,
+ * kkt 2.5e-8, until the stall rule). lam: on S at v; Av = A v. */
+static int pdas_solved(const cx_lcp *L, double eps, double c, const double *v, const double *lam,
+                       const double *Av)
+{
+    double f = 0;
+    for (int i = 0; i < L->n; i++)
+        f = fmax(f, fabs(L->S[i] ? fmin(v[i], lam[i] / c) : (Av[i] + eps * v[i] - L->b[i]) / c));
+    return f <= CX_PDAS_ROUNDOFF * (cx_vec_norminf(L->n, v) + cx_vec_norminf(L->n, lam) / c);
+}
 
 int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, double *lam,
                             unsigned char *act, cx_pdas_search *ls, cx_pdas_guard *g, int *same,
@@ -448,7 +421,6 @@ int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, d
     }
     if (!first && changed == 0 && (ls->alpha == 1 || pdas_solved(L, eps, c, v, lam, ls->Av))) {
         *same = 1;
-        CX_TRY(pdas_refine(s, c, v, lam, act, work, d));
         for (int i = 0; i < n; i++)
             lam[i] = act[i] ? lam[i] : 0;
         return CX_OK;

@@ -63,7 +63,6 @@ typedef struct cx_lcp_solver {
     cx_csc M;            /* sparse: A's pattern, values rebuilt per factorisation */
     double *Md;          /* dense: n x n */
     cx_counters *cnt;
-    double eps;          /* of the last factorisation */
 } cx_lcp_solver;
 
 int cx_lcp_solver_init(cx_lcp_solver *s, const cx_lcp *L, cx_counters *cnt, cx_diag *d);
