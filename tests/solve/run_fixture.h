@@ -8,10 +8,10 @@
 
 #include <string.h>
 
-/* Run method id on s; own: also stop on its own criterion. Returns the
- * status of set_method (the iterate is cx_session_iterate(s)). */
-static inline int fixture_run(cx_session *s, const char *id, const char *sets, int own, double tol,
-                              int max_iter, cx_diag *d)
+/* Run method id on s with "key=value ..." parameters and options o.
+ * Returns the status of set_method (the iterate is cx_session_iterate(s)). */
+static inline int fixture_run_opts(cx_session *s, const char *id, const char *sets,
+                                   const cx_options *o, cx_diag *d)
 {
     const cx_method *m = cx_method_find(id);
     if (!m)
@@ -22,14 +22,22 @@ static inline int fixture_run(cx_session *s, const char *id, const char *sets, i
     snprintf(buf, sizeof buf, "%s", sets);
     for (char *tok = strtok(buf, " "); tok; tok = strtok(NULL, " "))
         CX_TRY(cx_param_set_pair(&pv, tok, id, d));
+    CX_TRY(cx_session_set_method(s, m, &pv, o, d));
+    return cx_solver_solve(s, NULL, NULL, d);
+}
+
+/* The same with the default options but tol, max_iter, own (also stop on
+ * the method's own criterion) and no stall rule. */
+static inline int fixture_run(cx_session *s, const char *id, const char *sets, int own, double tol,
+                              int max_iter, cx_diag *d)
+{
     cx_options o;
     cx_options_default(&o);
     o.tol = tol;
     o.own_stop = own;
     o.max_iter = max_iter;
     o.stall_window = 0;
-    CX_TRY(cx_session_set_method(s, m, &pv, &o, d));
-    return cx_solver_solve(s, NULL, NULL, d);
+    return fixture_run_opts(s, id, sets, &o, d);
 }
 
 /* ||u - v||_K / ||v||_K */

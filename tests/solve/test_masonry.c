@@ -99,22 +99,17 @@ static void test_null_space(void)
 
 /* ---- solving ------------------------------------------------------------- */
 
-/* stall: the stall window (0: off; the CLI's is 50) */
+/* To the method's own end; stall: the stall window (0: off; the CLI's is
+ * 50). */
 static const cx_iterate *solve_stall(cx_session *s, const char *id, const char *set, int stall)
 {
     cx_diag d;
     cx_options o;
     cx_options_default(&o);
-    o.tol = 1e-14;   /* run to the method's own end */
+    o.tol = 1e-14;
     o.stall_window = stall;
     o.max_iter = 2000;
-    const cx_method *m = cx_method_find(id);
-    cx_param_values pv;
-    cx_param_default(&pv, m->params);
-    if (set)
-        CX_CHECK_OK(cx_param_set_pair(&pv, set, id, &d));
-    CX_CHECK_OK(cx_session_set_method(s, m, &pv, &o, &d));
-    CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
+    CX_CHECK_OK(fixture_run_opts(s, id, set ? set : "", &o, &d));
     return cx_session_iterate(s);
 }
 
