@@ -1,47 +1,10 @@
-/* Option handling shared by the subcommands. */
+/* Reporting a command-line failure (the parsing helpers are base/args.h). */
 #include "cli/cli.h"
 
 #include <stdio.h>
-#include <string.h>
 
 int cli_fail(const char *cmd, const char *msg)
 {
     fprintf(stderr, "signorini %s: %s\n", cmd, msg);
-    return CLI_EXIT_ERROR;
-}
-
-int cli_option(int argc, char **argv, int *i, const char *name, const char **value, cx_diag *d)
-{
-    const char *a = argv[*i];
-    size_t len = strlen(name);
-    if (strncmp(a, name, len) != 0)
-        return 0;
-    if (a[len] == '=') {
-        *value = a + len + 1;
-        return 1;
-    }
-    if (a[len] != '\0')
-        return 0;
-    if (*i + 1 >= argc) {
-        cx_diag_set(d, CX_EINVAL, "option '%s' needs a value", name);
-        return -1;
-    }
-    *value = argv[++*i];
-    return 1;
-}
-
-int cli_parse_level(const char *v, int *level, cx_diag *d)
-{
-    long n;
-    if (cx_parse_int(v, 1, 1 << 20, &n))
-        return cx_diag_set(d, CX_EINVAL, "--level '%s': expected a positive integer", v);
-    *level = (int)n;
-    return CX_OK;
-}
-
-int cli_load_scene(const char *id, cx_scene *s, cx_diag *d)
-{
-    char path[512];
-    CX_TRY(cx_scene_resolve(id, path, sizeof path, d));
-    return cx_scene_load(s, path, d);
+    return CX_EXIT_ERROR;
 }

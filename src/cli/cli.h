@@ -5,14 +5,11 @@
 #ifndef CLI_H
 #define CLI_H
 
+#include "base/args.h"
 #include "scene/scene.h"
-
-enum { CLI_EXIT_OK = 0, CLI_EXIT_ERROR = 1, CLI_EXIT_NOT_CONVERGED = 3 };
 
 int cli_list(int argc, char **argv);
 int cli_solve(int argc, char **argv);
-int cli_bench(int argc, char **argv);   /* cli/bench.c */
-int cli_paper_000(int argc, char **argv);  /* cli/paper_000.c */
 
 /* The explorer (src/tui/loop.c, a peer program layer: declared here rather
  * than included, so that cli/ and tui/ stay independent). argv[0] is the
@@ -37,22 +34,9 @@ int cli_render_check(const cli_render_args *r, int dim, cx_diag *d);
 /* Write what was asked (VTU, PNG image or plot) for a solved session. */
 int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, int level,
                        int quiet, cx_diag *d);
-int cli_paper_002(int argc, char **argv);   /* cli/paper_002.c */
-int cli_paper_001(int argc, char **argv);   /* cli/paper_001.c */
-int cli_paper_003(int argc, char **argv);   /* cli/paper_003.c */
 
-/* Print "signorini CMD: message" on stderr and return CLI_EXIT_ERROR. */
+/* Print "signorini CMD: message" on stderr and return CX_EXIT_ERROR. */
 int cli_fail(const char *cmd, const char *msg);
 
-/* If argv[*i] is option name ("--name value" or "--name=value"), set
- * *value, advance *i past it and return 1; a missing value is an error
- * (-1, message in d). Otherwise 0. */
-int cli_option(int argc, char **argv, int *i, const char *name, const char **value, cx_diag *d);
-
-/* The value of --level: a positive integer, or a one-line error. */
-int cli_parse_level(const char *v, int *level, cx_diag *d);
-
-/* Load a scene by id or path. */
-int cli_load_scene(const char *id, cx_scene *s, cx_diag *d);
 
 #endif

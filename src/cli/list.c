@@ -1,7 +1,7 @@
 /* signorini list [--json]: scenes and methods, with what each supports and
  * each method's parameters (from the registry and the parameter tables). */
 #include "cli/cli.h"
-#include "cli/json.h"
+#include "out/json.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -24,64 +24,64 @@ static void list_supports(unsigned f, char *buf, size_t len)
 
 static void list_json(char (*ids)[CX_SCENE_NAMELEN], int nids)
 {
-    cli_json j;
-    cli_json_init(&j, stdout);
-    cli_json_object(&j, NULL);
-    cli_json_array(&j, "scenes");
+    cx_json j;
+    cx_json_init(&j, stdout);
+    cx_json_object(&j, NULL);
+    cx_json_array(&j, "scenes");
     for (int k = 0; k < nids; k++) {
         cx_scene sc;
         cx_diag d;
-        cli_json_object(&j, NULL);
-        cli_json_str(&j, "id", ids[k]);
-        if (cli_load_scene(ids[k], &sc, &d) == CX_OK) {
-            cli_json_str(&j, "title", sc.title);
-            cli_json_int(&j, "dim", sc.dim);
-            cli_json_str(&j, "element", cx_elem_name(sc.element));
-            cli_json_int(&j, "level", sc.level);
-            cli_json_int(&j, "level_max", sc.level_max);
-            cli_json_str(&j, "friction", cx_friction_name(sc.friction));
-            cli_json_str(&j, "obstacle", cx_obstacle_name(sc.obstacle.kind));
-            cli_json_array(&j, "methods");
+        cx_json_object(&j, NULL);
+        cx_json_str(&j, "id", ids[k]);
+        if (cx_scene_open(ids[k], &sc, &d) == CX_OK) {
+            cx_json_str(&j, "title", sc.title);
+            cx_json_int(&j, "dim", sc.dim);
+            cx_json_str(&j, "element", cx_elem_name(sc.element));
+            cx_json_int(&j, "level", sc.level);
+            cx_json_int(&j, "level_max", sc.level_max);
+            cx_json_str(&j, "friction", cx_friction_name(sc.friction));
+            cx_json_str(&j, "obstacle", cx_obstacle_name(sc.obstacle.kind));
+            cx_json_array(&j, "methods");
             for (int q = 0; q < sc.nmethods; q++)
-                cli_json_str(&j, NULL, sc.methods[q]);
-            cli_json_end_array(&j);
+                cx_json_str(&j, NULL, sc.methods[q]);
+            cx_json_end_array(&j);
         } else {
-            cli_json_str(&j, "error", d.msg);
+            cx_json_str(&j, "error", d.msg);
         }
-        cli_json_end_object(&j);
+        cx_json_end_object(&j);
     }
-    cli_json_end_array(&j);
-    cli_json_array(&j, "methods");
+    cx_json_end_array(&j);
+    cx_json_array(&j, "methods");
     for (int k = 0; k < cx_method_count(); k++) {
         const cx_method *m = cx_method_at(k);
         char buf[128];
-        cli_json_object(&j, NULL);
-        cli_json_str(&j, "id", m->id);
-        cli_json_str(&j, "name", m->name);
-        cli_json_str(&j, "source", m->source);
-        cli_json_str(&j, "summary", m->summary);
+        cx_json_object(&j, NULL);
+        cx_json_str(&j, "id", m->id);
+        cx_json_str(&j, "name", m->name);
+        cx_json_str(&j, "source", m->source);
+        cx_json_str(&j, "summary", m->summary);
         list_supports(m->supports, buf, sizeof buf);
-        cli_json_str(&j, "supports", buf);
-        cli_json_array(&j, "params");
+        cx_json_str(&j, "supports", buf);
+        cx_json_array(&j, "params");
         cx_param_values pv;
         cx_param_default(&pv, m->params);
         for (int q = 0; q < pv.n; q++) {
             static const char *const types[] = {"real", "int", "bool", "choice", "string"};
-            cli_json_object(&j, NULL);
-            cli_json_str(&j, "key", pv.table[q].key);
-            cli_json_str(&j, "type", types[pv.table[q].type]);
+            cx_json_object(&j, NULL);
+            cx_json_str(&j, "key", pv.table[q].key);
+            cx_json_str(&j, "type", types[pv.table[q].type]);
             cx_param_format(&pv, q, buf, sizeof buf);
-            cli_json_str(&j, "default", buf);
+            cx_json_str(&j, "default", buf);
             cx_param_range(&pv.table[q], buf, sizeof buf);
-            cli_json_str(&j, "range", buf);
-            cli_json_str(&j, "help", pv.table[q].help);
-            cli_json_end_object(&j);
+            cx_json_str(&j, "range", buf);
+            cx_json_str(&j, "help", pv.table[q].help);
+            cx_json_end_object(&j);
         }
-        cli_json_end_array(&j);
-        cli_json_end_object(&j);
+        cx_json_end_array(&j);
+        cx_json_end_object(&j);
     }
-    cli_json_end_array(&j);
-    cli_json_end_object(&j);
+    cx_json_end_array(&j);
+    cx_json_end_object(&j);
 }
 
 static void list_text(char (*ids)[CX_SCENE_NAMELEN], int nids)
@@ -90,7 +90,7 @@ static void list_text(char (*ids)[CX_SCENE_NAMELEN], int nids)
     for (int k = 0; k < nids; k++) {
         cx_scene sc;
         cx_diag d;
-        if (cli_load_scene(ids[k], &sc, &d) != CX_OK) {
+        if (cx_scene_open(ids[k], &sc, &d) != CX_OK) {
             printf("  %-12s (cannot load: %s)\n", ids[k], d.msg);
             continue;
         }
@@ -122,7 +122,7 @@ int cli_list(int argc, char **argv)
             json = 1;
         else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(list_usage, stdout);
-            return CLI_EXIT_OK;
+            return CX_EXIT_OK;
         } else {
             char msg[160];
             snprintf(msg, sizeof msg, "unknown option '%s' (see 'signorini list --help')", argv[i]);
@@ -139,5 +139,5 @@ int cli_list(int argc, char **argv)
     else
         list_text(ids, nids);
     cx_free(ids);
-    return CLI_EXIT_OK;
+    return CX_EXIT_OK;
 }

@@ -1,4 +1,5 @@
 /* signorini: elastic contact problems with and without friction. */
+#include "bench/bench.h"
 #include "cli/cli.h"
 #include "cx_config.h"
 
@@ -29,7 +30,7 @@ int main(int argc, char **argv)
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {
         fputs(usage, stdout);
-        return CLI_EXIT_OK;
+        return CX_EXIT_OK;
     }
     const char *cmd = argv[1];
     if (strcmp(cmd, "list") == 0)
@@ -41,11 +42,11 @@ int main(int argc, char **argv)
     if (strcmp(cmd, "render") == 0)
         return cli_render(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
-        return cli_bench(argc - 1, argv + 1);
+        return bench_main(argc - 1, argv + 1);
     if (strcmp(cmd, "version") == 0 || strcmp(cmd, "--version") == 0) {
         printf("signorini %s\n", CX_VERSION);
-        return CLI_EXIT_OK;
+        return CX_EXIT_OK;
     }
     fprintf(stderr, "signorini: unknown command '%s' (see 'signorini --help')\n", cmd);
-    return CLI_EXIT_ERROR;
+    return CX_EXIT_ERROR;
 }

@@ -48,33 +48,33 @@ int cli_render_option(int argc, char **argv, int *i, cli_render_args *r, cx_diag
     if (strcmp(argv[*i], "--edges") == 0) { r->edges = 1; return 1; }
     if (strcmp(argv[*i], "--vtu-ascii") == 0) { r->vtu_ascii = 1; return 1; }
     if (strcmp(argv[*i], "--timing") == 0) { r->timing = 1; return 1; }
-    if ((k = cli_option(argc, argv, i, "--png", &v, d)) != 0) {
+    if ((k = cx_arg_option(argc, argv, i, "--png", &v, d)) != 0) {
         r->png = v;
         return k;
     }
-    if ((k = cli_option(argc, argv, i, "--vtu", &v, d)) != 0) {
+    if ((k = cx_arg_option(argc, argv, i, "--vtu", &v, d)) != 0) {
         r->vtu = v;
         return k;
     }
-    if ((k = cli_option(argc, argv, i, "--plot", &v, d)) != 0) {
+    if ((k = cx_arg_option(argc, argv, i, "--plot", &v, d)) != 0) {
         if (k > 0 && (r->plot = (int)cx_parse_choice(v, "pressure|convergence|work") + 1) <= 0) {
             cx_diag_set(d, CX_EINVAL, "--plot '%s': expected pressure, convergence or work", v);
             return -1;
         }
         return k;
     }
-    if ((k = cli_option(argc, argv, i, "--field", &v, d)) != 0) {
+    if ((k = cx_arg_option(argc, argv, i, "--field", &v, d)) != 0) {
         r->field_name = v;
         return k;
     }
-    if ((k = cli_option(argc, argv, i, "--scale", &v, d)) != 0) {
+    if ((k = cx_arg_option(argc, argv, i, "--scale", &v, d)) != 0) {
         if (k > 0 && (cx_parse_double(v, &r->scale) || !(r->scale > 0) || !isfinite(r->scale))) {
             cx_diag_set(d, CX_EINVAL, "--scale '%s': expected a positive number", v);
             return -1;
         }
         return k;
     }
-    if ((k = cli_option(argc, argv, i, "--size", &v, d)) != 0) {
+    if ((k = cx_arg_option(argc, argv, i, "--size", &v, d)) != 0) {
         char extra;
         if (k > 0 && (sscanf(v, "%dx%d%c", &r->w, &r->h, &extra) != 2 || r->w < 64 || r->h < 64 ||
                       r->w > 16384 || r->h > 16384)) {
@@ -83,7 +83,7 @@ int cli_render_option(int argc, char **argv, int *i, cli_render_args *r, cx_diag
         }
         return k;
     }
-    if ((k = cli_option(argc, argv, i, "--view", &v, d)) != 0) {
+    if ((k = cx_arg_option(argc, argv, i, "--view", &v, d)) != 0) {
         if (k > 0 && (r->view = (int)cx_parse_choice(v, "body|contact")) < 0) {
             cx_diag_set(d, CX_EINVAL, "--view '%s': expected body or contact", v);
             return -1;
@@ -308,7 +308,7 @@ int cli_render(int argc, char **argv)
     for (int i = 1; i < argc; i++)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(render_usage, stdout);
-            return CLI_EXIT_OK;
+            return CX_EXIT_OK;
         }
     int png = 0;
     for (int i = 1; i < argc; i++)

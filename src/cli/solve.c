@@ -1,6 +1,6 @@
 /* signorini solve SCENE [options]: build, solve, report (text or JSON). */
 #include "cli/cli.h"
-#include "cli/json.h"
+#include "out/json.h"
 #include "cx_config.h"
 
 #include <math.h>
@@ -65,7 +65,7 @@ static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
         const char *v = NULL;
         int which = -1;
         for (int k = 0; solve_value_opts[k] && which < 0; k++) {
-            int r = cli_option(argc, argv, &i, solve_value_opts[k], &v, d);
+            int r = cx_arg_option(argc, argv, &i, solve_value_opts[k], &v, d);
             if (r < 0)
                 return CX_EINVAL;
             if (r)
@@ -78,7 +78,7 @@ static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
         case OPT_F: a->F = v; break;
         case OPT_SLIP: a->slip = v; break;
         case OPT_LEVEL:
-            CX_TRY(cli_parse_level(v, &a->level, d));
+            CX_TRY(cx_arg_level(v, &a->level, d));
             break;
         case OPT_TOL:
             if (cx_parse_double(v, &a->opt.tol) || !(a->opt.tol > 0))
@@ -151,80 +151,80 @@ static void solve_write_json(const solve_args *a, const cx_scene *sc, const cx_s
     const cx_param_values *pv = cx_session_params(s);
     double fc[3];
     solve_contact_force(p, it, fc);
-    cli_json j;
-    cli_json_init(&j, stdout);
-    cli_json_object(&j, NULL);
-    cli_json_str(&j, "scene", sc->id);
-    cli_json_int(&j, "level", a->level > 0 ? a->level : sc->level);
-    cli_json_str(&j, "method", m->id);
-    cli_json_str(&j, "friction", cx_friction_name(p->friction));
+    cx_json j;
+    cx_json_init(&j, stdout);
+    cx_json_object(&j, NULL);
+    cx_json_str(&j, "scene", sc->id);
+    cx_json_int(&j, "level", a->level > 0 ? a->level : sc->level);
+    cx_json_str(&j, "method", m->id);
+    cx_json_str(&j, "friction", cx_friction_name(p->friction));
     if (p->friction == CX_FRICTION_TRESCA)
-        cli_json_num(&j, "slip_bound", p->slip_bound);
+        cx_json_num(&j, "slip_bound", p->slip_bound);
     if (p->friction == CX_FRICTION_COULOMB)
-        cli_json_num(&j, "F", p->F);
-    cli_json_int(&j, "dim", p->dim);
-    cli_json_int(&j, "dofs", p->n);
-    cli_json_int(&j, "contact_points", p->m);
-    cli_json_int(&j, "iterations", it->iter);
-    cli_json_bool(&j, "converged", it->reason > 0);
-    cli_json_str(&j, "reason", cx_reason_id(it->reason));
+        cx_json_num(&j, "F", p->F);
+    cx_json_int(&j, "dim", p->dim);
+    cx_json_int(&j, "dofs", p->n);
+    cx_json_int(&j, "contact_points", p->m);
+    cx_json_int(&j, "iterations", it->iter);
+    cx_json_bool(&j, "converged", it->reason > 0);
+    cx_json_str(&j, "reason", cx_reason_id(it->reason));
     if (msg && msg[0])
-        cli_json_str(&j, "message", msg);
-    cli_json_num(&j, "kkt_error", it->kkt);
-    cli_json_object(&j, "kkt_parts");
-    cli_json_num(&j, "equilibrium", it->kkt_parts.equilibrium);
-    cli_json_num(&j, "contact", it->kkt_parts.contact);
-    cli_json_num(&j, "friction", it->kkt_parts.friction);
-    cli_json_end_object(&j);
-    cli_json_num(&j, "own_criterion", it->own);
-    cli_json_num(&j, "tol", cx_session_options(s)->tol);
-    cli_json_object(&j, "time");
-    cli_json_num(&j, "assemble", t_assemble);
-    cli_json_num(&j, "setup", it->init_time);
-    cli_json_num(&j, "solve", it->time - it->init_time);
-    cli_json_num(&j, "total", t_total);
+        cx_json_str(&j, "message", msg);
+    cx_json_num(&j, "kkt_error", it->kkt);
+    cx_json_object(&j, "kkt_parts");
+    cx_json_num(&j, "equilibrium", it->kkt_parts.equilibrium);
+    cx_json_num(&j, "contact", it->kkt_parts.contact);
+    cx_json_num(&j, "friction", it->kkt_parts.friction);
+    cx_json_end_object(&j);
+    cx_json_num(&j, "own_criterion", it->own);
+    cx_json_num(&j, "tol", cx_session_options(s)->tol);
+    cx_json_object(&j, "time");
+    cx_json_num(&j, "assemble", t_assemble);
+    cx_json_num(&j, "setup", it->init_time);
+    cx_json_num(&j, "solve", it->time - it->init_time);
+    cx_json_num(&j, "total", t_total);
     if (a->baseline)
-        cli_json_num(&j, "linear_solve", t_base);
-    cli_json_end_object(&j);
-    cli_json_object(&j, "counts");
-    cli_json_int(&j, "factorizations", it->counters.factorizations);
-    cli_json_int(&j, "solves", it->counters.solves);
-    cli_json_int(&j, "matvecs", it->counters.matvecs);
-    cli_json_int(&j, "dual_products", it->counters.dual_products);
-    cli_json_int(&j, "inner_iterations", it->inner_total);
-    cli_json_end_object(&j);
-    cli_json_int(&j, "active", it->ncontact + it->nstick + it->nslip);
-    cli_json_int(&j, "stick", it->nstick);
-    cli_json_int(&j, "slip", it->nslip);
-    cli_json_int(&j, "free", it->nfree);
-    cli_json_object(&j, "force");
-    cli_json_vec(&j, "applied", p->f_applied, p->dim);
-    cli_json_vec(&j, "contact", fc, p->dim);
-    cli_json_end_object(&j);
-    cli_json_object(&j, "params");
+        cx_json_num(&j, "linear_solve", t_base);
+    cx_json_end_object(&j);
+    cx_json_object(&j, "counts");
+    cx_json_int(&j, "factorizations", it->counters.factorizations);
+    cx_json_int(&j, "solves", it->counters.solves);
+    cx_json_int(&j, "matvecs", it->counters.matvecs);
+    cx_json_int(&j, "dual_products", it->counters.dual_products);
+    cx_json_int(&j, "inner_iterations", it->inner_total);
+    cx_json_end_object(&j);
+    cx_json_int(&j, "active", it->ncontact + it->nstick + it->nslip);
+    cx_json_int(&j, "stick", it->nstick);
+    cx_json_int(&j, "slip", it->nslip);
+    cx_json_int(&j, "free", it->nfree);
+    cx_json_object(&j, "force");
+    cx_json_vec(&j, "applied", p->f_applied, p->dim);
+    cx_json_vec(&j, "contact", fc, p->dim);
+    cx_json_end_object(&j);
+    cx_json_object(&j, "params");
     for (int k = 0; k < pv->n; k++) {
         char buf[64];
         const cx_param *q = &pv->table[k];
         if (q->type == CX_PARAM_REAL && !isnan(pv->num[k]))
-            cli_json_num(&j, q->key, pv->num[k]);
+            cx_json_num(&j, q->key, pv->num[k]);
         else if (q->type == CX_PARAM_INT)
-            cli_json_int(&j, q->key, (long)pv->num[k]);
+            cx_json_int(&j, q->key, (long)pv->num[k]);
         else if (q->type == CX_PARAM_BOOL)
-            cli_json_bool(&j, q->key, pv->num[k] != 0);
+            cx_json_bool(&j, q->key, pv->num[k] != 0);
         else {
             cx_param_format(pv, k, buf, sizeof buf);
-            cli_json_str(&j, q->key, buf);
+            cx_json_str(&j, q->key, buf);
         }
     }
-    cli_json_end_object(&j);
+    cx_json_end_object(&j);
     if (has_p) {
-        cli_json_object(&j, "pressure_error_l2");
-        cli_json_num(&j, "abs", p_abs);
-        cli_json_num(&j, "rel", p_rel);
-        cli_json_end_object(&j);
+        cx_json_object(&j, "pressure_error_l2");
+        cx_json_num(&j, "abs", p_abs);
+        cx_json_num(&j, "rel", p_rel);
+        cx_json_end_object(&j);
     }
-    cli_json_str(&j, "version", CX_VERSION);
-    cli_json_end_object(&j);
+    cx_json_str(&j, "version", CX_VERSION);
+    cx_json_end_object(&j);
 }
 
 static void solve_write_text(const cx_scene *sc, const cx_session *s, double t_assemble,
@@ -269,7 +269,7 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     for (int i = 1; i < argc; i++)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(solve_usage, stdout);
-            return CLI_EXIT_OK;
+            return CX_EXIT_OK;
         }
     cx_diag d;
     cx_diag_clear(&d);
@@ -279,7 +279,7 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
 
     double t0 = cx_clock_now();
     cx_scene sc;
-    if (cli_load_scene(a.scene, &sc, &d))
+    if (cx_scene_open(a.scene, &sc, &d))
         return cli_fail(cmd, d.msg);
 
     /* method, friction and parameters are checked before anything is built */
@@ -331,7 +331,7 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         cx_problem_destroy(&p);
         return cli_fail(cmd, d.msg);
     }
-    int code = CLI_EXIT_ERROR;
+    int code = CX_EXIT_ERROR;
     if (cx_session_set_method(s, m, &pv, &a.opt, &d)) {
         cli_fail(cmd, d.msg);
         goto done;
@@ -362,7 +362,7 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         solve_write_json(&a, &sc, s, t_assemble, t_total, t_base, has_p, p_abs, p_rel, msg);
     else
         solve_write_text(&sc, s, t_assemble, t_total, a.baseline, t_base, has_p, p_abs, p_rel, msg);
-    code = it->reason > 0 ? CLI_EXIT_OK : CLI_EXIT_NOT_CONVERGED;
+    code = it->reason > 0 ? CX_EXIT_OK : CX_EXIT_NOT_CONVERGED;
     if (cli_render_outputs(&a.render, &sc, s, a.level > 0 ? a.level : sc.level, a.json, &d))
         code = cli_fail(cmd, d.msg);
 done:

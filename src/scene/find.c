@@ -137,3 +137,10 @@ int cx_scene_list(char (**ids)[CX_SCENE_NAMELEN], int *count, cx_diag *d)
     *count = n;
     return CX_OK;
 }
+
+int cx_scene_open(const char *id_or_path, cx_scene *s, cx_diag *d)
+{
+    char path[512];
+    CX_TRY(cx_scene_resolve(id_or_path, path, sizeof path, d));
+    return cx_scene_load(s, path, d);
+}

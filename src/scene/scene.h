@@ -100,6 +100,9 @@ int cx_scene_load(cx_scene *s, const char *path, cx_diag *d);
  * "unknown scene 'x' (see 'signorini list')". */
 int cx_scene_resolve(const char *id_or_path, char *path, size_t len, cx_diag *d);
 
+/* Resolve and load: a scene id or a path to an .ini. */
+int cx_scene_open(const char *id_or_path, cx_scene *s, cx_diag *d);
+
 /* The ids of all scenes found (sorted, distinct); *ids is an array of
  * CX_SCENE_NAMELEN strings (cx_free). */
 int cx_scene_list(char (**ids)[CX_SCENE_NAMELEN], int *count, cx_diag *d);

@@ -6,7 +6,7 @@ import os
 import re
 import sys
 
-ORDER = ["base", "linalg", "mesh", "fem", "contact", "solve", "scene", "render"]
+ORDER = ["base", "linalg", "mesh", "fem", "contact", "solve", "scene", "out", "render", "bench"]
 PROGRAM = ["tui", "cli"]
 
 src = sys.argv[1]

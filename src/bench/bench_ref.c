@@ -6,7 +6,7 @@
  * File: one text line "CXREF 1 n m nt kkt iterations method", then the
  * doubles u (n), lN (m), lT (nt) in the machine's byte order. A file that
  * does not match the problem's sizes is recomputed. */
-#include "cli/bench.h"
+#include "bench/bench.h"
 
 #include <errno.h>
 #include <math.h>

@@ -7,7 +7,7 @@
  * DESIGN.md §5, and one solve per contact dof as the paper), the ssstar
  * solve from zero to its own stopping rule (Newton steps = the paper's
  * iterations), one post-processing expansion, the process's peak memory. */
-#include "cli/cli.h"
+#include "bench/bench.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -246,7 +246,7 @@ static void p001_print(const p001_row *r, int n)
            "the paper's values are lost, so its iteration counts compare in shape only.\n");
 }
 
-int cli_paper_001(int argc, char **argv)
+int bench_paper_001(int argc, char **argv)
 {
     int want[P001_LEVELS + 1], repeat = 3, solves = 1;
     p001_levels("1-7", want);
@@ -256,43 +256,43 @@ int cli_paper_001(int argc, char **argv)
         int r;
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(p001_usage, stdout);
-            return CLI_EXIT_OK;
+            return CX_EXIT_OK;
         } else if (strcmp(argv[i], "--no-solves") == 0) {
             solves = 0;
-        } else if ((r = cli_option(argc, argv, &i, "--levels", &v, &d)) != 0) {
+        } else if ((r = cx_arg_option(argc, argv, &i, "--levels", &v, &d)) != 0) {
             if (r < 0)
-                return cli_fail("bench paper 001", d.msg);
+                return bench_fail("bench paper 001", d.msg);
             if (p001_levels(v, want))
-                return cli_fail("bench paper 001",
+                return bench_fail("bench paper 001",
                                 "--levels: expected levels 1 to 8 as a list, e.g. 1-7 or 2,4,8");
-        } else if ((r = cli_option(argc, argv, &i, "--repeat", &v, &d)) != 0) {
+        } else if ((r = cx_arg_option(argc, argv, &i, "--repeat", &v, &d)) != 0) {
             char *end;
             long n = r > 0 ? strtol(v, &end, 10) : 0;
             if (r < 0 || *end || n < 1 || n > 15)
-                return cli_fail("bench paper 001", "--repeat: expected an integer from 1 to 15");
+                return bench_fail("bench paper 001", "--repeat: expected an integer from 1 to 15");
             repeat = (int)n;
         } else {
             char msg[160];
             snprintf(msg, sizeof msg, "unknown option '%s' (see 'signorini bench paper 001 --help')",
                      argv[i]);
-            return cli_fail("bench paper 001", msg);
+            return bench_fail("bench paper 001", msg);
         }
     }
     cx_scene sc;
-    if (cli_load_scene("prism", &sc, &d))
-        return cli_fail("bench paper 001", d.msg);
+    if (cx_scene_open("prism", &sc, &d))
+        return bench_fail("bench paper 001", d.msg);
     p001_row rows[P001_LEVELS];
     int n = 0;
     for (int L = 1; L <= P001_LEVELS; L++) {
         if (!want[L])
             continue;
         if (p001_level(&sc, L, repeat, solves, &rows[n], &d))
-            return cli_fail("bench paper 001", d.msg);
+            return bench_fail("bench paper 001", d.msg);
         fprintf(stderr, "level %d done (%.1f s)\n", L,
                 rows[n].assembly + rows[n].schur + (isnan(rows[n].solves) ? 0 : rows[n].solves) +
                     rows[n].solver);
         n++;
     }
     p001_print(rows, n);
-    return CLI_EXIT_OK;
+    return CX_EXIT_OK;
 }

@@ -10,7 +10,7 @@
  * factor of K during the run; kmax the outer iterations. Times are ratios
  * to the baseline (one factorisation and solve of K, median of three) of
  * the same level. */
-#include "cli/cli.h"
+#include "bench/bench.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -135,7 +135,7 @@ static void p000_cell(char *buf, size_t len, const p000_result *r, int with_k)
         snprintf(buf, len, "%ld%s", r->nk, r->converged ? "" : "!");
 }
 
-int cli_paper_000(int argc, char **argv)
+int bench_paper_000(int argc, char **argv)
 {
     int rows = 10, repeat = 1, first = 0;
     double slip = 0;
@@ -145,39 +145,39 @@ int cli_paper_000(int argc, char **argv)
         const char *v = NULL;
         long k;
         int r;
-        if ((r = cli_option(argc, argv, &i, "--first", &v, &d)) != 0) {
+        if ((r = cx_arg_option(argc, argv, &i, "--first", &v, &d)) != 0) {
             if (r < 0 || cx_parse_int(v, 1, 21, &k))
-                return cli_fail("bench paper 000", "--first: expected an integer in [1, 21]");
+                return bench_fail("bench paper 000", "--first: expected an integer in [1, 21]");
             first = (int)k - 1;
         } else if (strcmp(argv[i], "--all") == 0) {
             rows = 21;
-        } else if ((r = cli_option(argc, argv, &i, "--rows", &v, &d)) != 0) {
+        } else if ((r = cx_arg_option(argc, argv, &i, "--rows", &v, &d)) != 0) {
             if (r < 0 || cx_parse_int(v, 1, 21, &k))
-                return cli_fail("bench paper 000", "--rows: expected an integer in [1, 21]");
+                return bench_fail("bench paper 000", "--rows: expected an integer in [1, 21]");
             rows = (int)k;
-        } else if ((r = cli_option(argc, argv, &i, "--repeat", &v, &d)) != 0) {
+        } else if ((r = cx_arg_option(argc, argv, &i, "--repeat", &v, &d)) != 0) {
             if (r < 0 || cx_parse_int(v, 1, 63, &k))
-                return cli_fail("bench paper 000", "--repeat: expected an integer in [1, 63]");
+                return bench_fail("bench paper 000", "--repeat: expected an integer in [1, 63]");
             repeat = (int)k;
-        } else if ((r = cli_option(argc, argv, &i, "--slip", &v, &d)) != 0) {
+        } else if ((r = cx_arg_option(argc, argv, &i, "--slip", &v, &d)) != 0) {
             if (r < 0 || cx_parse_double(v, &slip) || !(slip > 0))
-                return cli_fail("bench paper 000", "--slip: expected a positive traction");
+                return bench_fail("bench paper 000", "--slip: expected a positive traction");
         } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             printf("usage: signorini bench paper 000 [--rows N | --all] [--first R] [--slip S] [--repeat R]\n"
                    "  Tables 1 and 2 of paper 000 on 'twoblocks': rows m = 150, 165, ... (default 10\n"
                    "  rows from the first, up to n = 109440; --all: 21 rows). --slip overrides the Tresca bound\n"
                    "  (a traction; the scene's 1.7e7 by default). --first R starts at row R (1-21).\n"
                    "  --repeat R: times are medians of R runs (the baseline of max(R, 3)).\n");
-            return CLI_EXIT_OK;
+            return CX_EXIT_OK;
         } else {
             char msg[160];
             snprintf(msg, sizeof msg, "unknown option '%.60s' (see --help)", argv[i]);
-            return cli_fail("bench paper 000", msg);
+            return bench_fail("bench paper 000", msg);
         }
     }
     cx_scene sc;
-    if (cli_load_scene("twoblocks", &sc, &d))
-        return cli_fail("bench paper 000", d.msg);
+    if (cx_scene_open("twoblocks", &sc, &d))
+        return bench_fail("bench paper 000", d.msg);
 
     printf("paper 000, Tables 1 and 2: scene twoblocks, eps_lambda = 1e-6; ours (paper)\n"
            "nK = solves with the factor of K in the run (setup excluded), kmax = outer iterations;\n"
@@ -192,7 +192,7 @@ int cli_paper_000(int argc, char **argv)
         double ta, tsetup = 0, tb;
         int n, m;
         if (p000_row(&sc, row, slip, repeat, res, &ta, &tsetup, &tb, &n, &m, &d))
-            return cli_fail("bench paper 000", d.msg);
+            return bench_fail("bench paper 000", d.msg);
         char nm[24], cell[5][32], both[5][64];
         snprintf(nm, sizeof nm, "%d/%d", n, m);
         for (int k = 0; k < 5; k++) {
@@ -208,5 +208,5 @@ int cli_paper_000(int argc, char **argv)
                res[1].time / tb, res[2].time / tb, res[3].time / tb, res[4].time / tb, tb);
         fflush(stdout);
     }
-    return CLI_EXIT_OK;
+    return CX_EXIT_OK;
 }

@@ -1,9 +1,9 @@
-/* The perturbations of 'bench stress' (cli/bench_perturb.c): functions of
+/* The perturbations of 'bench stress' (bench/bench_perturb.c): functions of
  * a scene copy, and bench_perturb_fn's of the built problem. */
-#ifndef CLI_BENCH_PERTURB_H
-#define CLI_BENCH_PERTURB_H
+#ifndef CX_BENCH_PERTURB_H
+#define CX_BENCH_PERTURB_H
 
-#include "cli/bench.h"
+#include "bench/bench.h"
 
 /* Lengths x L and stresses x P (SI -> mm-MPa: L = 1e3, P = 1e-6);
  * displacements scale by L, nodal forces by P L^(dim-1). */

@@ -3,7 +3,7 @@
  * each run records time, iterations, solves with K, the kkt error and the
  * errors against the reference solution. The baseline (one factorisation
  * and solve of K) is measured in the same run. */
-#include "cli/bench.h"
+#include "bench/bench.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -78,11 +78,11 @@ static int wp_parse(int argc, char **argv, wp_args *a, cx_diag *d)
         if (r)
             continue;
         const char *v;
-        if ((r = cli_option(argc, argv, &i, "--level", &v, d)) > 0) {
-            CX_TRY(cli_parse_level(v, &a->level, d));
-        } else if (r == 0 && (r = cli_option(argc, argv, &i, "--tols", &v, d)) > 0) {
+        if ((r = cx_arg_option(argc, argv, &i, "--level", &v, d)) > 0) {
+            CX_TRY(cx_arg_level(v, &a->level, d));
+        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--tols", &v, d)) > 0) {
             CX_TRY(wp_list("--tols", v, a->tols, &a->ntols, d));
-        } else if (r == 0 && (r = cli_option(argc, argv, &i, "--sweep", &v, d)) > 0) {
+        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--sweep", &v, d)) > 0) {
             const char *eq = strchr(v, '=');
             if (!eq || eq == v)
                 return cx_diag_set(d, CX_EINVAL, "--sweep '%s': expected KEY=v1,v2,...", v);
@@ -191,16 +191,16 @@ static void wp_time_to_accuracy(bench_table *t, double baseline)
 int bench_wp(int argc, char **argv)
 {
     if (bench_print_help(argc, argv, wp_usage))
-        return CLI_EXIT_OK;
+        return CX_EXIT_OK;
     cx_diag d;
     cx_diag_clear(&d);
     wp_args a;
     cx_scene sc;
-    if (wp_parse(argc, argv, &a, &d) || cli_load_scene(a.scene, &sc, &d))
-        return cli_fail("bench wp", d.msg);
+    if (wp_parse(argc, argv, &a, &d) || cx_scene_open(a.scene, &sc, &d))
+        return bench_fail("bench wp", d.msg);
     bench_problem_spec spec = {&sc, a.level, CX_FRICTION_NONE, 0, "", NULL, NULL};
     if (bench_common_law(&a.c, &sc, &spec.law, &spec.value, &d))
-        return cli_fail("bench wp", d.msg);
+        return bench_fail("bench wp", d.msg);
     int level = a.level > 0 ? a.level : sc.level;
 
     /* the problem, the methods, the baseline and the reference */
@@ -215,7 +215,7 @@ int bench_wp(int argc, char **argv)
         wp_baseline(p, a.c.repeat < 3 ? 3 : a.c.repeat, &baseline, &d) ||
         bench_scene_hash(&sc, &shash, &d)) {
         cx_problem_destroy(&p);
-        return cli_fail("bench wp", d.msg);
+        return bench_fail("bench wp", d.msg);
     }
     int ref_ok = bench_ref_get(a.c.cache_dir, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
 
@@ -324,9 +324,9 @@ int bench_wp(int argc, char **argv)
     wp_time_to_accuracy(&t, baseline);
     if (bench_interrupted())
         bench_meta(&t, "interrupted", "yes: %d of %d runs done", t.nrows, total);
-    int code = bench_output(&a.c, &t, &d) ? cli_fail("bench wp", d.msg) : CLI_EXIT_OK;
-    if (code == CLI_EXIT_OK && a.c.png && bench_wp_plot(&t, baseline, a.c.png, &d))
-        code = cli_fail("bench wp", d.msg);
+    int code = bench_output(&a.c, &t, &d) ? bench_fail("bench wp", d.msg) : CX_EXIT_OK;
+    if (code == CX_EXIT_OK && a.c.png && bench_wp_plot(&t, baseline, a.c.png, &d))
+        code = bench_fail("bench wp", d.msg);
     bench_table_clear(&t);
     bench_ref_clear(&ref);
     cx_problem_destroy(&p);

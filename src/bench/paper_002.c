@@ -10,7 +10,7 @@
  * meshes are uniform, the paper's graded, so we have fewer contact nodes);
  * halfball L = 4, 6, 10, 17, 20 (P1 tetrahedra; 225, 637, 2541, 11340,
  * 18081 nodes against 198, 739, 2357, 10761, 17887). */
-#include "cli/cli.h"
+#include "bench/bench.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -48,7 +48,7 @@ static int p2_open(p2_case *c, const char *scene, int level, int baseline, cx_di
     memset(c, 0, sizeof *c);
     cx_problem *p = NULL;
     double t0 = cx_clock_now();
-    CX_TRY(cli_load_scene(scene, &c->sc, d));
+    CX_TRY(cx_scene_open(scene, &c->sc, d));
     CX_TRY(cx_scene_build(&c->sc, level, &p, d));
     c->t_assemble = cx_clock_now() - t0;
     c->level = level;
@@ -406,13 +406,13 @@ static const char p2_usage[] =
     "  --quick         the three smallest levels of each table\n"
     "  --tables LIST   which tables, e.g. 1,2,5 or A,P (default: all)\n";
 
-int cli_paper_002(int argc, char **argv)
+int bench_paper_002(int argc, char **argv)
 {
     int nlev = 5, tables = 0;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(p2_usage, stdout);
-            return CLI_EXIT_OK;
+            return CX_EXIT_OK;
         } else if (strcmp(argv[i], "--quick") == 0) {
             nlev = 3;
         } else if (strcmp(argv[i], "--tables") == 0 && i + 1 < argc) {
@@ -424,12 +424,12 @@ int cli_paper_002(int argc, char **argv)
                 else if (*t == 'P' || *t == 'p')
                     tables |= 128;
                 else if (*t != ',')
-                    return cli_fail("bench paper 002", "--tables: expected a list of 1-6, A, P");
+                    return bench_fail("bench paper 002", "--tables: expected a list of 1-6, A, P");
             }
         } else {
             char msg[128];
             snprintf(msg, sizeof msg, "unknown option '%s' (see --help)", argv[i]);
-            return cli_fail("bench paper 002", msg);
+            return bench_fail("bench paper 002", msg);
         }
     }
     if (!tables)
@@ -449,6 +449,6 @@ int cli_paper_002(int argc, char **argv)
     if (!st && (tables & 128))
         st = p2_perf(nlev == 5, &d);
     if (st)
-        return cli_fail("bench paper 002", d.msg);
-    return CLI_EXIT_OK;
+        return bench_fail("bench paper 002", d.msg);
+    return CX_EXIT_OK;
 }

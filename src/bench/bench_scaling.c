@@ -2,7 +2,7 @@
  * assembly, the baseline (one factorisation + solve of K) and each method's
  * time as a ratio to it, iterations and peak memory against the factor's;
  * the slope of log time against log dofs per method. */
-#include "cli/bench.h"
+#include "bench/bench.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -80,9 +80,9 @@ static int scaling_parse(int argc, char **argv, scaling_args *a, cx_diag *d)
         const char *v;
         if (strcmp(argv[i], "--no-reference") == 0) {
             a->no_ref = 1;
-        } else if ((r = cli_option(argc, argv, &i, "--levels", &v, d)) > 0) {
+        } else if ((r = cx_arg_option(argc, argv, &i, "--levels", &v, d)) > 0) {
             CX_TRY(scaling_levels(v, a, d));
-        } else if (r == 0 && (r = cli_option(argc, argv, &i, "--tol", &v, d)) > 0) {
+        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--tol", &v, d)) > 0) {
             if (cx_parse_double(v, &a->tol) || !(a->tol > 0))
                 return cx_diag_set(d, CX_EINVAL, "--tol '%s': expected a positive number", v);
         } else if (r < 0) {
@@ -189,22 +189,22 @@ static int scaling_level_costs(const bench_problem_spec *spec, int repeat, doubl
 int bench_scaling(int argc, char **argv)
 {
     if (bench_print_help(argc, argv, scaling_usage))
-        return CLI_EXIT_OK;
+        return CX_EXIT_OK;
     cx_diag d;
     cx_diag_clear(&d);
     scaling_args a;
     cx_scene sc;
-    if (scaling_parse(argc, argv, &a, &d) || cli_load_scene(a.scene, &sc, &d))
-        return cli_fail("bench scaling", d.msg);
+    if (scaling_parse(argc, argv, &a, &d) || cx_scene_open(a.scene, &sc, &d))
+        return bench_fail("bench scaling", d.msg);
     bench_problem_spec spec = {&sc, 0, CX_FRICTION_NONE, 0, "", NULL, NULL};
     uint64_t shash;
     if (bench_common_law(&a.c, &sc, &spec.law, &spec.value, &d) || bench_scene_hash(&sc, &shash, &d))
-        return cli_fail("bench scaling", d.msg);
+        return bench_fail("bench scaling", d.msg);
     for (int k = 0; k < a.nlevels; k++)
         if (a.levels[k] > sc.level_max) {
             cx_diag_set(&d, CX_EINVAL, "--levels: level %d: scene '%s' allows levels 1 to %d", a.levels[k],
                         sc.id, sc.level_max);
-            return cli_fail("bench scaling", d.msg);
+            return bench_fail("bench scaling", d.msg);
         }
 
     bench_table t;
@@ -214,7 +214,7 @@ int bench_scaling(int argc, char **argv)
                cx_friction_name(spec.law), a.tol, a.c.repeat);
     bench_meta(&t, "scene hash", "%016llx (%s)", (unsigned long long)shash, sc.path);
     bench_progress_start(a.nlevels);
-    int code = CLI_EXIT_OK;
+    int code = CX_EXIT_OK;
     for (int l = 0; l < a.nlevels && !bench_interrupted(); l++) {
         spec.level = a.levels[l];
         char label[64];
@@ -227,7 +227,7 @@ int bench_scaling(int argc, char **argv)
         if (scaling_level_costs(&spec, a.c.repeat, &t_asm, &t_base, &fmb, &p, &d) ||
             bench_methods(a.c.methods, p, methods, 64, &nm, &d)) {
             cx_problem_destroy(&p);
-            code = cli_fail("bench scaling", d.msg);
+            code = bench_fail("bench scaling", d.msg);
             break;
         }
         bench_ref ref = {0};
@@ -305,7 +305,7 @@ int bench_scaling(int argc, char **argv)
         cx_problem_destroy(&p);
     }
     bench_progress_end();
-    if (code == CLI_EXIT_OK) {
+    if (code == CX_EXIT_OK) {
         char slopes[160] = "";
         size_t len = 0;
         for (int r = 0; r < t.nrows && len < sizeof slopes - 40; r++) {
@@ -323,9 +323,9 @@ int bench_scaling(int argc, char **argv)
         if (bench_interrupted())
             bench_meta(&t, "interrupted", "yes: %d rows done", t.nrows);
         if (bench_output(&a.c, &t, &d))
-            code = cli_fail("bench scaling", d.msg);
+            code = bench_fail("bench scaling", d.msg);
         else if (a.c.png && bench_scaling_plot(&t, a.c.png, &d))
-            code = cli_fail("bench scaling", d.msg);
+            code = bench_fail("bench scaling", d.msg);
     }
     bench_table_clear(&t);
     return bench_interrupted() ? 130 : code;

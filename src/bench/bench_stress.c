@@ -3,7 +3,7 @@
  * iterations, kkt, the errors against the reference solution of the
  * perturbed problem, NaN/Inf. A failure is a row, never a crash or a hang:
  * every run has a time limit and the iteration limit. */
-#include "cli/bench_perturb.h"
+#include "bench/bench_perturb.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -84,9 +84,9 @@ static int stress_parse(int argc, char **argv, stress_args *a, cx_diag *d)
         if (r)
             continue;
         const char *v;
-        if ((r = cli_option(argc, argv, &i, "--level", &v, d)) > 0) {
-            CX_TRY(cli_parse_level(v, &a->level, d));
-        } else if (r == 0 && (r = cli_option(argc, argv, &i, "--cases", &v, d)) > 0) {
+        if ((r = cx_arg_option(argc, argv, &i, "--level", &v, d)) > 0) {
+            CX_TRY(cx_arg_level(v, &a->level, d));
+        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--cases", &v, d)) > 0) {
             a->cases = v;
         } else if (r < 0) {
             return CX_EINVAL;
@@ -189,7 +189,7 @@ static void stress_nominal_keep(stress_nominal *nom, const cx_session *s)
     nom->lT = malloc(sizeof(double) * ((size_t)p->nt + 1));
     if (!nom->u || !nom->lN || !nom->lT) {
         fputs("signorini bench stress: out of memory\n", stderr);
-        exit(CLI_EXIT_ERROR);
+        exit(CX_EXIT_ERROR);
     }
     memcpy(nom->u, it->u, sizeof(double) * (size_t)p->n);
     memcpy(nom->lN, it->lN, sizeof(double) * (size_t)p->m);
@@ -322,11 +322,11 @@ static int stress_scene(const stress_args *a, const char *id, bench_table *t, in
     cx_diag d;
     cx_diag_clear(&d);
     cx_scene sc;
-    if (cli_load_scene(id, &sc, &d))
-        return cli_fail("bench stress", d.msg);
+    if (cx_scene_open(id, &sc, &d))
+        return bench_fail("bench stress", d.msg);
     bench_problem_spec nominal_spec = {&sc, a->level, CX_FRICTION_NONE, 0, "", NULL, NULL};
     if (bench_common_law(&a->c, &sc, &nominal_spec.law, &nominal_spec.value, &d))
-        return cli_fail("bench stress", d.msg);
+        return bench_fail("bench stress", d.msg);
     cx_problem *p0 = NULL;
     const cx_method *methods[STRESS_MAX_METHODS];
     int nm = 0;
@@ -335,7 +335,7 @@ static int stress_scene(const stress_args *a, const char *id, bench_table *t, in
         st = bench_methods(a->c.methods, p0, methods, STRESS_MAX_METHODS, &nm, &d);
     cx_problem_destroy(&p0);
     if (st != CX_OK && st != CX_EUNSUPPORTED)
-        return cli_fail("bench stress", d.msg);
+        return bench_fail("bench stress", d.msg);
     if (st == CX_EUNSUPPORTED) {
         /* a scene no method can solve is a row, and the others go on */
         stress_row_ctx x = {t, &sc, a->level > 0 ? a->level : sc.level, "nominal", nominal_spec.law};
@@ -432,18 +432,18 @@ int bench_stress(int argc, char **argv)
             for (int c = 0; c < STRESS_NCASES; c++)
                 printf("  %-18s %s\n", stress_cases[c].id, stress_cases[c].what);
             printf("\n%s", bench_common_help);
-            return CLI_EXIT_OK;
+            return CX_EXIT_OK;
         }
     cx_diag d;
     cx_diag_clear(&d);
     stress_args a;
     if (stress_parse(argc, argv, &a, &d))
-        return cli_fail("bench stress", d.msg);
+        return bench_fail("bench stress", d.msg);
     char (*ids)[CX_SCENE_NAMELEN] = NULL;
     if (a.nscenes == 0) {
         int count;
         if (cx_scene_list(&ids, &count, &d))
-            return cli_fail("bench stress", d.msg);
+            return bench_fail("bench stress", d.msg);
         for (int k = 0; k < count && k < 32; k++)
             a.scenes[a.nscenes++] = ids[k];
     }
@@ -455,12 +455,12 @@ int bench_stress(int argc, char **argv)
     int ncases = 0;
     for (int c = 0; c < STRESS_NCASES; c++)
         ncases += stress_selected(&a, stress_cases[c].id) || stress_cases[c].kind == S_NOMINAL;
-    int total = a.nscenes * ncases * cx_method_count(), done = 0, code = CLI_EXIT_OK;
+    int total = a.nscenes * ncases * cx_method_count(), done = 0, code = CX_EXIT_OK;
     bench_progress_start(total);
-    for (int k = 0; k < a.nscenes && !bench_interrupted() && code == CLI_EXIT_OK; k++) {
+    for (int k = 0; k < a.nscenes && !bench_interrupted() && code == CX_EXIT_OK; k++) {
         cx_scene sc;
         uint64_t h;
-        if (cli_load_scene(a.scenes[k], &sc, &d) == CX_OK && bench_scene_hash(&sc, &h, NULL) == CX_OK)
+        if (cx_scene_open(a.scenes[k], &sc, &d) == CX_OK && bench_scene_hash(&sc, &h, NULL) == CX_OK)
             bench_meta(&t, sc.id, "hash %016llx (%s)", (unsigned long long)h, sc.path);
         code = stress_scene(&a, a.scenes[k], &t, &done, total);
     }
@@ -479,8 +479,8 @@ int bench_stress(int argc, char **argv)
                "%d failed unit-scaling checks", t.nrows, yes, no, nonfinite, na, fails);
     if (bench_interrupted())
         bench_meta(&t, "interrupted", "yes: %d rows done", t.nrows);
-    if (code == CLI_EXIT_OK && bench_output(&a.c, &t, &d))
-        code = cli_fail("bench stress", d.msg);
+    if (code == CX_EXIT_OK && bench_output(&a.c, &t, &d))
+        code = bench_fail("bench stress", d.msg);
     bench_table_clear(&t);
     return bench_interrupted() ? 130 : code;
 }

@@ -1,7 +1,7 @@
 /* The perturbations of 'bench stress', applied in memory: to a copy of the
  * scene (units, material, loads) or to the built problem (gaps, duplicated
  * contact points, moved nodes, material contrast between bodies). */
-#include "cli/bench_perturb.h"
+#include "bench/bench_perturb.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 /* signorini bench: the benchmarks. Each kind is a row of the table below;
  * the papers' tables are rows of bench_papers[]. A benchmark prints its
  * tables on stdout; timings live here, never in the test suite. */
-#include "cli/bench.h"
+#include "bench/bench.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -25,16 +25,16 @@ typedef struct bench_paper {
 } bench_paper;
 
 /* One line per paper: the id, what it reproduces, its entry point
- * (cli/paper_NNN.c). */
+ * (bench/paper_NNN.c). */
 static const bench_paper bench_papers[] = {
-    {"000", "Tables 1-2: MPRGP and SNM1-4 (nK/kmax) on two blocks", cli_paper_000},
-    {"001", "Table 1: semismooth* Newton, 3D Tresca on the prism, reduction to the contact face", cli_paper_001},
-    {"002", "Koko: Uzawa block relaxation, Tables 1-6 (hertz, halfball), r = auto", cli_paper_002},
-    {"003", "masonry walls: Tables 1-7 (sizes; PSOR, LSSNN, PDAS, PDPC, Graves, Schur variants)", cli_paper_003},
+    {"000", "Tables 1-2: MPRGP and SNM1-4 (nK/kmax) on two blocks", bench_paper_000},
+    {"001", "Table 1: semismooth* Newton, 3D Tresca on the prism, reduction to the contact face", bench_paper_001},
+    {"002", "Koko: Uzawa block relaxation, Tables 1-6 (hertz, halfball), r = auto", bench_paper_002},
+    {"003", "masonry walls: Tables 1-7 (sizes; PSOR, LSSNN, PDAS, PDPC, Graves, Schur variants)", bench_paper_003},
     {NULL, NULL, NULL}
 };
 
-/* The benchmarks of cli/bench_*.c. */
+/* The benchmarks of bench/bench_*.c. */
 static const struct {
     const char *id;
     int (*run)(int argc, char **argv);
@@ -57,20 +57,20 @@ static void bench_print_usage(FILE *out)
 static int bench_paper_run(int argc, char **argv)
 {
     if (argc < 2)
-        return cli_fail("bench paper", "which paper? (see 'signorini bench --help')");
+        return bench_fail("bench paper", "which paper? (see 'signorini bench --help')");
     for (int k = 0; bench_papers[k].id; k++)
         if (strcmp(bench_papers[k].id, argv[1]) == 0)
             return bench_papers[k].run(argc - 1, argv + 1);
     char msg[128];
     snprintf(msg, sizeof msg, "unknown paper '%s' (see 'signorini bench --help')", argv[1]);
-    return cli_fail("bench paper", msg);
+    return bench_fail("bench paper", msg);
 }
 
-int cli_bench(int argc, char **argv)
+int bench_main(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
         bench_print_usage(stdout);
-        return argc < 2 ? CLI_EXIT_ERROR : CLI_EXIT_OK;
+        return argc < 2 ? CX_EXIT_ERROR : CX_EXIT_OK;
     }
     if (strcmp(argv[1], "paper") == 0)
         return bench_paper_run(argc - 1, argv + 1);
@@ -81,5 +81,5 @@ int cli_bench(int argc, char **argv)
         }
     char msg[128];
     snprintf(msg, sizeof msg, "unknown kind '%s' (see 'signorini bench --help')", argv[1]);
-    return cli_fail("bench", msg);
+    return bench_fail("bench", msg);
 }

@@ -1,8 +1,8 @@
-#include "cli/json.h"
+#include "out/json.h"
 
 #include <math.h>
 
-void cli_json_init(cli_json *j, FILE *out)
+void cx_json_init(cx_json *j, FILE *out)
 {
     j->out = out;
     j->depth = 0;
@@ -29,7 +29,7 @@ static void json_string(FILE *out, const char *s)
 }
 
 /* comma, newline and indentation before a member, then its key */
-static void json_member(cli_json *j, const char *key)
+static void json_member(cx_json *j, const char *key)
 {
     if (j->depth > 0) {
         fputs(j->count[j->depth]++ ? ",\n" : "\n", j->out);
@@ -42,14 +42,14 @@ static void json_member(cli_json *j, const char *key)
     }
 }
 
-static void json_open(cli_json *j, const char *key, char c)
+static void json_open(cx_json *j, const char *key, char c)
 {
     json_member(j, key);
     fputc(c, j->out);
     j->count[++j->depth] = 0;
 }
 
-static void json_close(cli_json *j, char c)
+static void json_close(cx_json *j, char c)
 {
     int had = j->count[j->depth] > 0;
     j->depth--;
@@ -63,12 +63,12 @@ static void json_close(cli_json *j, char c)
         fputc('\n', j->out);
 }
 
-void cli_json_object(cli_json *j, const char *key) { json_open(j, key, '{'); }
-void cli_json_array(cli_json *j, const char *key) { json_open(j, key, '['); }
-void cli_json_end_object(cli_json *j) { json_close(j, '}'); }
-void cli_json_end_array(cli_json *j) { json_close(j, ']'); }
+void cx_json_object(cx_json *j, const char *key) { json_open(j, key, '{'); }
+void cx_json_array(cx_json *j, const char *key) { json_open(j, key, '['); }
+void cx_json_end_object(cx_json *j) { json_close(j, '}'); }
+void cx_json_end_array(cx_json *j) { json_close(j, ']'); }
 
-void cli_json_num(cli_json *j, const char *key, double v)
+void cx_json_num(cx_json *j, const char *key, double v)
 {
     json_member(j, key);
     if (isfinite(v))
@@ -77,31 +77,31 @@ void cli_json_num(cli_json *j, const char *key, double v)
         fputs("null", j->out);
 }
 
-void cli_json_int(cli_json *j, const char *key, long v)
+void cx_json_int(cx_json *j, const char *key, long v)
 {
     json_member(j, key);
     fprintf(j->out, "%ld", v);
 }
 
-void cli_json_bool(cli_json *j, const char *key, int v)
+void cx_json_bool(cx_json *j, const char *key, int v)
 {
     json_member(j, key);
     fputs(v ? "true" : "false", j->out);
 }
 
-void cli_json_str(cli_json *j, const char *key, const char *v)
+void cx_json_str(cx_json *j, const char *key, const char *v)
 {
     json_member(j, key);
     json_string(j->out, v);
 }
 
-void cli_json_null(cli_json *j, const char *key)
+void cx_json_null(cx_json *j, const char *key)
 {
     json_member(j, key);
     fputs("null", j->out);
 }
 
-void cli_json_vec(cli_json *j, const char *key, const double *v, int n)
+void cx_json_vec(cx_json *j, const char *key, const double *v, int n)
 {
     json_member(j, key);
     fputc('[', j->out);

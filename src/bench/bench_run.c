@@ -1,7 +1,7 @@
 /* One benchmark case: build the problem, run a method under a time limit,
  * measure its errors against the reference. A failure is described in the
  * result, never returned as an error of the benchmark. */
-#include "cli/bench.h"
+#include "bench/bench.h"
 
 #include <malloc.h>
 #include <math.h>

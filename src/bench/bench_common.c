@@ -1,7 +1,7 @@
 /* What every benchmark shares on the command line: the common options,
  * the outputs, the progress bar, Ctrl-C, and the plot data. */
 #define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT) for the thread counts */
-#include "cli/bench.h"
+#include "bench/bench.h"
 #include "cx_config.h"
 
 #if CX_HAVE_RENDER
@@ -40,6 +40,12 @@ void bench_common_default(bench_common *c, int repeat)
     c->repeat = repeat;
 }
 
+int bench_fail(const char *cmd, const char *msg)
+{
+    fprintf(stderr, "signorini %s: %s\n", cmd, msg);
+    return CX_EXIT_ERROR;
+}
+
 int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d)
 {
     static const char *const names[] = {"--csv", "--png", "--cache", "--methods", "--friction",
@@ -51,7 +57,7 @@ int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag 
     }
     for (int k = 0; names[k]; k++) {
         const char *v;
-        int r = cli_option(argc, argv, i, names[k], &v, d);
+        int r = cx_arg_option(argc, argv, i, names[k], &v, d);
         if (r <= 0) {
             if (r < 0)
                 return -1;

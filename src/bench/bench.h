@@ -1,4 +1,7 @@
-/* The machinery the benchmarks share (cli/bench_*.c): building and running
+/* bench/: the benchmarks (signorini bench) and the papers' tables. A
+ * program layer above render/, not part of the library.
+ *
+ * The machinery the benchmarks share (bench/bench_*.c): building and running
  * one case with a time limit, the reference solution and its disk cache,
  * the errors against it, result tables written as text / CSV / JSON through
  * a temporary file and a rename, the progress bar and Ctrl-C.
@@ -6,10 +9,11 @@
  * A benchmark is a loop over cases; each case gives one row. A failure of a
  * case (a refused method, a singular system, a time limit) is a row with its
  * reason, never an abort of the benchmark. */
-#ifndef CLI_BENCH_H
-#define CLI_BENCH_H
+#ifndef CX_BENCH_H
+#define CX_BENCH_H
 
-#include "cli/cli.h"
+#include "base/args.h"
+#include "scene/scene.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -246,6 +250,17 @@ int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it);
 int bench_wp(int argc, char **argv);
 int bench_scaling(int argc, char **argv);
 int bench_stress(int argc, char **argv);
+
+/* signorini bench ARGS (argv[0] is "bench"): the exit status. */
+int bench_main(int argc, char **argv);
+/* The papers' drivers (bench/paper_NNN.c); argv[0] is the paper id. */
+int bench_paper_000(int argc, char **argv);
+int bench_paper_001(int argc, char **argv);
+int bench_paper_002(int argc, char **argv);
+int bench_paper_003(int argc, char **argv);
+
+/* Print "signorini CMD: message" on stderr and return CX_EXIT_ERROR. */
+int bench_fail(const char *cmd, const char *msg);
 
 /* Median of v[0..n-1] (reorders v). */
 double bench_median(double *v, int n);

@@ -3,8 +3,8 @@
  * a temporary name and renamed, so that an interrupted or failed write
  * never leaves half a file under the real name. */
 #define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT) to ask which BLAS is loaded */
-#include "cli/bench.h"
-#include "cli/json.h"
+#include "bench/bench.h"
+#include "out/json.h"
 #include "cx_config.h"
 
 #include <dlfcn.h>
@@ -38,7 +38,7 @@ int bench_table_row(bench_table *t)
         bench_cell *c = realloc(t->cells, sizeof *c * (size_t)cap * (size_t)t->ncols);
         if (!c) {
             fputs("signorini bench: out of memory\n", stderr);
-            exit(CLI_EXIT_ERROR);
+            exit(CX_EXIT_ERROR);
         }
         t->cells = c;
         t->cap = cap;
@@ -252,30 +252,30 @@ int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d)
     FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
     if (!f)
         return CX_EIO;
-    cli_json j;
-    cli_json_init(&j, f);
-    cli_json_object(&j, NULL);
-    cli_json_object(&j, "meta");
+    cx_json j;
+    cx_json_init(&j, f);
+    cx_json_object(&j, NULL);
+    cx_json_object(&j, "meta");
     for (int k = 0; k < t->nmeta; k++)
-        cli_json_str(&j, t->meta[k][0], t->meta[k][1]);
-    cli_json_end_object(&j);
-    cli_json_array(&j, "rows");
+        cx_json_str(&j, t->meta[k][0], t->meta[k][1]);
+    cx_json_end_object(&j);
+    cx_json_array(&j, "rows");
     for (int r = 0; r < t->nrows; r++) {
-        cli_json_object(&j, NULL);
+        cx_json_object(&j, NULL);
         for (int c = 0; c < t->ncols; c++) {
             const bench_cell *cell = t->cells + (size_t)r * t->ncols + c;
             if (cell->kind == 1)
-                cli_json_num(&j, t->cols[c], cell->v);
+                cx_json_num(&j, t->cols[c], cell->v);
             else if (cell->kind == 2)
-                cli_json_int(&j, t->cols[c], (long)cell->v);
+                cx_json_int(&j, t->cols[c], (long)cell->v);
             else if (cell->kind == 3)
-                cli_json_str(&j, t->cols[c], cell->s);
+                cx_json_str(&j, t->cols[c], cell->s);
             else
-                cli_json_null(&j, t->cols[c]);
+                cx_json_null(&j, t->cols[c]);
         }
-        cli_json_end_object(&j);
+        cx_json_end_object(&j);
     }
-    cli_json_end_array(&j);
-    cli_json_end_object(&j);
+    cx_json_end_array(&j);
+    cx_json_end_object(&j);
     return bench_file_commit(f, path, tmp, d);
 }

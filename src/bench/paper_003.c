@@ -4,7 +4,7 @@
  * as a ratio to the baseline of the same problem measured in the same run,
  * with iterations and the kkt error). Each solve gets a fresh session, so
  * its time includes building its operators (the LCP transform, factors). */
-#include "cli/cli.h"
+#include "bench/bench.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -198,16 +198,16 @@ static int p003_sizes(const cx_scene *sc, int g, int max_build)
         cx_diag d;
         if (cx_scene_build(sc, N, &p, &d)) {
             fprintf(stderr, "signorini bench: %s\n", d.msg);
-            return CLI_EXIT_ERROR;
+            return CX_EXIT_ERROR;
         }
         printf("  1/%-4d %8d %8ld %9d %9ld %8d %8ld\n", N, p->mesh->nbodies, p003_nb[g][l], p->n,
                p003_n[g][l], p->m, p003_nc[g][l]);
         cx_problem_destroy(&p);
     }
-    return CLI_EXIT_OK;
+    return CX_EXIT_OK;
 }
 
-int cli_paper_003(int argc, char **argv)
+int bench_paper_003(int argc, char **argv)
 {
     int max_level = 100, small = 25;
     double time_limit = 30, gap = 0;
@@ -218,39 +218,39 @@ int cli_paper_003(int argc, char **argv)
         int got;
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(p003_usage, stdout);
-            return CLI_EXIT_OK;
+            return CX_EXIT_OK;
         }
-        if ((got = cli_option(argc, argv, &i, "--max-level", &v, &d)) != 0) {
+        if ((got = cx_arg_option(argc, argv, &i, "--max-level", &v, &d)) != 0) {
             if (got < 0 || (max_level = atoi(v)) < 5 || max_level > 225)
-                return cli_fail("bench paper 003", "--max-level: expected a level from 5 to 225");
-        } else if ((got = cli_option(argc, argv, &i, "--small", &v, &d)) != 0) {
+                return bench_fail("bench paper 003", "--max-level: expected a level from 5 to 225");
+        } else if ((got = cx_arg_option(argc, argv, &i, "--small", &v, &d)) != 0) {
             if (got < 0 || (small = atoi(v)) < 5 || small > 225)
-                return cli_fail("bench paper 003", "--small: expected a level from 5 to 225");
-        } else if ((got = cli_option(argc, argv, &i, "--time-limit", &v, &d)) != 0) {
+                return bench_fail("bench paper 003", "--small: expected a level from 5 to 225");
+        } else if ((got = cx_arg_option(argc, argv, &i, "--time-limit", &v, &d)) != 0) {
             if (got < 0 || cx_parse_double(v, &time_limit) || !(time_limit > 0))
-                return cli_fail("bench paper 003", "--time-limit: expected seconds > 0");
-        } else if ((got = cli_option(argc, argv, &i, "--tables", &v, &d)) != 0) {
+                return bench_fail("bench paper 003", "--time-limit: expected seconds > 0");
+        } else if ((got = cx_arg_option(argc, argv, &i, "--tables", &v, &d)) != 0) {
             if (got < 0)
-                return cli_fail("bench paper 003", d.msg);
+                return bench_fail("bench paper 003", d.msg);
             tables = v;
-        } else if ((got = cli_option(argc, argv, &i, "--gap", &v, &d)) != 0) {
+        } else if ((got = cx_arg_option(argc, argv, &i, "--gap", &v, &d)) != 0) {
             if (got < 0 || cx_parse_double(v, &gap) || !(gap > 0 && gap < 1))
-                return cli_fail("bench paper 003", "--gap: expected a fraction of H in (0, 1)");
-        } else if ((got = cli_option(argc, argv, &i, "--geometry", &v, &d)) != 0) {
+                return bench_fail("bench paper 003", "--gap: expected a fraction of H in (0, 1)");
+        } else if ((got = cx_arg_option(argc, argv, &i, "--geometry", &v, &d)) != 0) {
             if (got < 0 || cx_parse_choice(v, "stackbond|runningbond|laminae") < 0)
-                return cli_fail("bench paper 003", "--geometry: expected stackbond|runningbond|laminae");
+                return bench_fail("bench paper 003", "--geometry: expected stackbond|runningbond|laminae");
             only = v;
         } else {
             char msg[128];
             snprintf(msg, sizeof msg, "unknown option '%s' (see --help)", argv[i]);
-            return cli_fail("bench paper 003", msg);
+            return bench_fail("bench paper 003", msg);
         }
     }
 
     cx_scene sc[3];
     for (int g = 0; g < 3; g++) {
-        if (cli_load_scene(p003_geo[g], &sc[g], &d))
-            return cli_fail("bench paper 003", d.msg);
+        if (cx_scene_open(p003_geo[g], &sc[g], &d))
+            return bench_fail("bench paper 003", d.msg);
         if (gap > 0)
             sc[g].gap_h = gap;
     }
@@ -261,7 +261,7 @@ int cli_paper_003(int argc, char **argv)
            "K with springs, same run; paper = Matlab 7 on a 2005 workstation, dense\n");
     for (int g = 0; g < 3; g++)
         if ((!only || strcmp(only, p003_geo[g]) == 0) && p003_sizes(&sc[g], g, max_level))
-            return CLI_EXIT_ERROR;
+            return CX_EXIT_ERROR;
 
     for (int t = 0; t < P003_NTABLES; t++) {
         const p003_table *tb = &p003_tables[t];
@@ -303,5 +303,5 @@ int cli_paper_003(int argc, char **argv)
     }
     printf("\nown: projection iterations at the end (Graves: principal pivots); peak MB: the "
            "process's peak resident memory so far\n");
-    return CLI_EXIT_OK;
+    return CX_EXIT_OK;
 }
