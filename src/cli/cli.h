@@ -6,7 +6,7 @@
 #define CLI_H
 
 #include "base/args.h"
-#include "scene/scene.h"
+#include "out/result.h"
 
 int cli_list(int argc, char **argv);
 int cli_solve(int argc, char **argv);
@@ -31,9 +31,12 @@ void cli_render_args_init(cli_render_args *r);
 int cli_render_option(int argc, char **argv, int *i, cli_render_args *r, cx_diag *d);
 /* Check the options against the problem's dimension before solving. */
 int cli_render_check(const cli_render_args *r, int dim, cx_diag *d);
-/* Write what was asked (VTU, PNG image or plot) for a solved session. */
-int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, int level,
+/* Write what was asked (VTU, PNG image or plot) for the solution res of
+ * session s (the convergence plots run the scene's other methods on s). */
+int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
                        int quiet, cx_diag *d);
+/* How many of --png and --vtu are '-' (standard output). */
+int cli_render_stdout_users(const cli_render_args *r);
 
 /* Print "signorini CMD: message" on stderr and return CX_EXIT_ERROR. */
 int cli_fail(const char *cmd, const char *msg);

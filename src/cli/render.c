@@ -1,6 +1,7 @@
 /* signorini render SCENE [solve options] --png FILE [...]: solve, then draw
  * (render/); also the --png/--vtu/--plot outputs of 'signorini solve'. */
 #include "cli/cli.h"
+#include "out/out.h"
 #include "cx_config.h"
 
 #include <math.h>
@@ -16,7 +17,8 @@ static const char render_usage[] =
     "\n"
     "Solve SCENE (options as for 'signorini solve') and draw the solution.\n"
     "\n"
-    "  --png FILE           the image (written to a temporary file, then renamed)\n"
+    "  --png FILE           the image (written to a temporary file, then renamed;\n"
+    "                       '-' for standard output)\n"
     "  --field F            von-mises (default), sxx, syy, sxy, szz, syz, sxz (3D),\n"
     "                       u, ux, uy, uz, pressure, status\n"
     "  --scale S            displacement magnification (default: auto, the largest\n"
@@ -24,7 +26,8 @@ static const char render_usage[] =
     "  --size WxH           image size in pixels (default 1200x900)\n"
     "  --view body|contact  3D: the whole body, or the contact faces alone\n"
     "  --edges              draw the mesh edges\n"
-    "  --vtu FILE           also write a VTK XML UnstructuredGrid (ParaView)\n"
+    "  --vtu FILE           also write a VTK XML UnstructuredGrid (ParaView; '-' for\n"
+    "                       standard output; works without the renderer)\n"
     "  --vtu-ascii          ASCII instead of base64 binary data in the VTU\n"
     "  --plot pressure|convergence|work  a line plot instead of the image: the\n"
     "                       contact pressure along the boundary (with Hertz's where\n"
@@ -96,12 +99,11 @@ int cli_render_option(int argc, char **argv, int *i, cli_render_args *r, cx_diag
 #if CX_HAVE_RENDER
 
 /* The contact pressure lN / weight along the boundary, with Hertz's. */
-static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, const cx_session *s,
-                                const cx_render_state *st, cx_diag *d)
+static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, const cx_result *res,
+                                cx_diag *d)
 {
-    const cx_problem *p = st->p;
-    const cx_contact_set *cs = &p->contact;
-    int m = cs->m, dim = p->dim;
+    const cx_contact_set *cs = &res->contact;
+    int m = cs->m, dim = res->dim;
     enum { NH = 400 };
     double *x = CX_NEW(double, 3 * (size_t)m + 2 * NH), *y = x + m, *yh = y + m;
     double *hx = yh + m, *hy = hx + NH;
@@ -109,12 +111,12 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
         return cx_diag_set(d, CX_ENOMEM, "plot: out of memory");
     for (int i = 0; i < m; i++) {
         x[i] = cs->x[dim * i];   /* the first coordinate */
-        y[i] = cs->weight[i] > 0 ? st->lN[i] / cs->weight[i] : 0;
+        y[i] = cs->weight[i] > 0 ? res->lN[i] / cs->weight[i] : 0;
         yh[i] = cx_scene_hertz_pressure(sc, x[i]);
     }
     char title[200];
-    snprintf(title, sizeof title, "%s level %d: contact pressure (%s, kkt %.1e)", sc->id, st->level,
-             st->method, st->kkt);
+    snprintf(title, sizeof title, "%s level %d: contact pressure (%s, kkt %.1e)", sc->id,
+             res->run.level, res->run.method, res->run.kkt);
     cx_plot pl;
     cx_plot_init(&pl, title, "x (position along the contact boundary)", "contact pressure [units of E]");
     cx_plot_add_series(&pl, "computed (nodal force / lumped length)", m, x, y, CX_PLOT_MARKERS);
@@ -129,8 +131,7 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
         cx_plot_add_vline(&pl, cx_scene_hertz_halfwidth(sc), "b (Hertz half-width)");
     }
     cx_plot_add_text(&pl, "scene", sc->id);
-    cx_plot_add_text(&pl, "method", st->method);
-    (void)s;
+    cx_plot_add_text(&pl, "method", res->run.method);
     int rc = cx_plot_write_png(&pl, r->png, r->w, r->h, d);
     cx_free(x);
     return rc;
@@ -230,25 +231,13 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
     return rc;
 }
 
-int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, int level,
-                       int quiet, cx_diag *d)
+static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
+                      cx_diag *d)
 {
-    if (!r->png && !r->vtu)
-        return CX_OK;
-    char params[256];
-    cx_render_state st;
-    cx_render_state_init(&st, sc, s, level, params, sizeof params);
-    if (r->vtu) {
-        CX_TRY(cx_vtu_write(&st, r->vtu, r->vtu_ascii, d));
-        if (!quiet)
-            fprintf(stderr, "wrote %s\n", r->vtu);
-    }
-    if (!r->png)
-        return CX_OK;
     if (r->plot == 1)
-        return render_plot_pressure(r, sc, s, &st, d);
+        return render_plot_pressure(r, sc, res, d);
     if (r->plot >= 2)
-        return render_plot_convergence(r, sc, s, level, r->plot == 3, d);
+        return render_plot_convergence(r, sc, s, res->run.level, r->plot == 3, d);
     cx_render_opts o;
     cx_render_opts_default(&o);
     o.width = r->w;
@@ -260,7 +249,7 @@ int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session 
         return cx_diag_set(d, CX_EINVAL, "--field '%s': unknown field (see 'signorini render --help')",
                            r->field_name);
     cx_render_timing t;
-    CX_TRY(cx_render_png(&st, &o, r->png, &t, d));
+    CX_TRY(cx_render_png(res, &o, r->png, &t, d));
     if (r->timing)
         fprintf(stderr, "render %s %dx%d: context %.3f s, fields+geometry %.3f s, draw %.3f s, "
                 "text %.3f s, png %.3f s\n", r->png, o.width, o.height, t.context, t.fields,
@@ -284,24 +273,39 @@ int cli_render_check(const cli_render_args *r, int dim, cx_diag *d)
 
 #else
 
-int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, int level,
-                       int quiet, cx_diag *d)
+static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
+                      cx_diag *d)
 {
-    (void)sc; (void)s; (void)level; (void)quiet;
-    if (r->png || r->vtu)
-        return cx_diag_set(d, CX_EUNSUPPORTED, "built without rendering (meson -Drender=disabled)");
-    return CX_OK;
+    (void)r; (void)sc; (void)s; (void)res;
+    return cx_diag_set(d, CX_EUNSUPPORTED, "--png: built without rendering (meson -Drender=disabled)");
 }
 
+/* VTU files need no GL: only images are refused in this build. */
 int cli_render_check(const cli_render_args *r, int dim, cx_diag *d)
 {
     (void)dim;
-    if (r->png || r->vtu)
-        return cx_diag_set(d, CX_EUNSUPPORTED, "built without rendering (meson -Drender=disabled)");
+    if (r->png)
+        return cx_diag_set(d, CX_EUNSUPPORTED, "--png: built without rendering (meson -Drender=disabled)");
     return CX_OK;
 }
 
 #endif
+
+int cli_render_stdout_users(const cli_render_args *r)
+{
+    return cx_outfile_is_stdout(r->png) + cx_outfile_is_stdout(r->vtu);
+}
+
+int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
+                       int quiet, cx_diag *d)
+{
+    if (r->vtu) {
+        CX_TRY(cx_vtu_write(res, r->vtu, r->vtu_ascii, d));
+        if (!quiet && !cx_outfile_is_stdout(r->vtu))
+            fprintf(stderr, "wrote %s\n", r->vtu);
+    }
+    return r->png ? render_png(r, sc, s, res, d) : CX_OK;
+}
 
 int cli_render(int argc, char **argv)
 {

@@ -1,11 +1,11 @@
 /* signorini solve SCENE [options]: build, solve, report (text or JSON). */
 #include "cli/cli.h"
-#include "out/json.h"
-#include "cx_config.h"
+#include "out/out.h"
 
-#include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 static const char solve_usage[] =
     "usage: signorini solve SCENE [options]\n"
@@ -28,6 +28,7 @@ static const char solve_usage[] =
     "  --png FILE           also draw the solution (see 'signorini render --help'\n"
     "                       for --field, --scale, --size, --view, --edges)\n"
     "  --vtu FILE           also write a VTK XML UnstructuredGrid for ParaView\n"
+    "                       ('-' for standard output: the summary goes to stderr)\n"
     "\n"
     "Exit status: 0 converged, 1 error, 3 not converged.\n";
 
@@ -112,23 +113,9 @@ static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
     return CX_OK;
 }
 
-/* Resultant force of the contact on the body: -(N' lN + T' lT) per component. */
-static void solve_contact_force(const cx_problem *p, const cx_iterate *it, double force[3])
-{
-    const cx_contact_set *c = &p->contact;
-    int dim = p->dim, dt = dim - 1;
-    force[0] = force[1] = force[2] = 0;
-    for (int i = 0; i < p->m; i++)
-        for (int k = 0; k < dim; k++) {
-            force[k] -= it->lN[i] * c->normal[dim * i + k];
-            if (p->friction != CX_FRICTION_NONE)
-                for (int r = 0; r < dt; r++)
-                    force[k] -= it->lT[dt * i + r] * c->tangent[dim * (dt * i + r) + k];
-        }
-}
-
 typedef struct {
     int quiet;
+    FILE *out;
 } solve_watch;
 
 static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it)
@@ -136,127 +123,46 @@ static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it
     (void)s;
     const solve_watch *w = ctx;
     if (!w->quiet)
-        printf("%6d  %10.3e  %10.3e  %7d %6d %6d %7d  %9.4f\n", it->iter, it->kkt, it->own,
+        fprintf(w->out, "%6d  %10.3e  %10.3e  %7d %6d %6d %7d  %9.4f\n", it->iter, it->kkt, it->own,
                it->ncontact + it->nstick + it->nslip, it->nstick, it->nslip, it->nchanged, it->time);
     return 0;
 }
 
-static void solve_write_json(const solve_args *a, const cx_scene *sc, const cx_session *s,
-                             double t_assemble, double t_total, double t_base, int has_p,
-                             double p_abs, double p_rel, const char *msg)
+static void solve_write_text(const cx_result *r, FILE *out)
 {
-    const cx_problem *p = cx_session_problem(s);
-    const cx_iterate *it = cx_session_iterate(s);
-    const cx_method *m = cx_session_method(s);
-    const cx_param_values *pv = cx_session_params(s);
-    double fc[3];
-    solve_contact_force(p, it, fc);
-    cx_json j;
-    cx_json_init(&j, stdout);
-    cx_json_object(&j, NULL);
-    cx_json_str(&j, "scene", sc->id);
-    cx_json_int(&j, "level", a->level > 0 ? a->level : sc->level);
-    cx_json_str(&j, "method", m->id);
-    cx_json_str(&j, "friction", cx_friction_name(p->friction));
-    if (p->friction == CX_FRICTION_TRESCA)
-        cx_json_num(&j, "slip_bound", p->slip_bound);
-    if (p->friction == CX_FRICTION_COULOMB)
-        cx_json_num(&j, "F", p->F);
-    cx_json_int(&j, "dim", p->dim);
-    cx_json_int(&j, "dofs", p->n);
-    cx_json_int(&j, "contact_points", p->m);
-    cx_json_int(&j, "iterations", it->iter);
-    cx_json_bool(&j, "converged", it->reason > 0);
-    cx_json_str(&j, "reason", cx_reason_id(it->reason));
-    if (msg && msg[0])
-        cx_json_str(&j, "message", msg);
-    cx_json_num(&j, "kkt_error", it->kkt);
-    cx_json_object(&j, "kkt_parts");
-    cx_json_num(&j, "equilibrium", it->kkt_parts.equilibrium);
-    cx_json_num(&j, "contact", it->kkt_parts.contact);
-    cx_json_num(&j, "friction", it->kkt_parts.friction);
-    cx_json_end_object(&j);
-    cx_json_num(&j, "own_criterion", it->own);
-    cx_json_num(&j, "tol", cx_session_options(s)->tol);
-    cx_json_object(&j, "time");
-    cx_json_num(&j, "assemble", t_assemble);
-    cx_json_num(&j, "setup", it->init_time);
-    cx_json_num(&j, "solve", it->time - it->init_time);
-    cx_json_num(&j, "total", t_total);
-    if (a->baseline)
-        cx_json_num(&j, "linear_solve", t_base);
-    cx_json_end_object(&j);
-    cx_json_object(&j, "counts");
-    cx_json_int(&j, "factorizations", it->counters.factorizations);
-    cx_json_int(&j, "solves", it->counters.solves);
-    cx_json_int(&j, "matvecs", it->counters.matvecs);
-    cx_json_int(&j, "dual_products", it->counters.dual_products);
-    cx_json_int(&j, "inner_iterations", it->inner_total);
-    cx_json_end_object(&j);
-    cx_json_int(&j, "active", it->ncontact + it->nstick + it->nslip);
-    cx_json_int(&j, "stick", it->nstick);
-    cx_json_int(&j, "slip", it->nslip);
-    cx_json_int(&j, "free", it->nfree);
-    cx_json_object(&j, "force");
-    cx_json_vec(&j, "applied", p->f_applied, p->dim);
-    cx_json_vec(&j, "contact", fc, p->dim);
-    cx_json_end_object(&j);
-    cx_json_object(&j, "params");
-    for (int k = 0; k < pv->n; k++) {
-        char buf[64];
-        const cx_param *q = &pv->table[k];
-        if (q->type == CX_PARAM_REAL && !isnan(pv->num[k]))
-            cx_json_num(&j, q->key, pv->num[k]);
-        else if (q->type == CX_PARAM_INT)
-            cx_json_int(&j, q->key, (long)pv->num[k]);
-        else if (q->type == CX_PARAM_BOOL)
-            cx_json_bool(&j, q->key, pv->num[k] != 0);
-        else {
-            cx_param_format(pv, k, buf, sizeof buf);
-            cx_json_str(&j, q->key, buf);
-        }
-    }
-    cx_json_end_object(&j);
-    if (has_p) {
-        cx_json_object(&j, "pressure_error_l2");
-        cx_json_num(&j, "abs", p_abs);
-        cx_json_num(&j, "rel", p_rel);
-        cx_json_end_object(&j);
-    }
-    cx_json_str(&j, "version", CX_VERSION);
-    cx_json_end_object(&j);
+    const cx_run_record *run = &r->run;
+    const char *msg = run->message;
+    fprintf(out, "%s after %d iterations: kkt error %.3e%s%s\n", cx_reason_str(run->reason),
+            run->iterations, run->kkt, msg[0] ? "\n  " : "", msg);
+    fprintf(out, "contact: %d of %d points (%d stick, %d slip)\n",
+            run->ncontact + run->nstick + run->nslip, r->m, run->nstick, run->nslip);
+    const char *axes = "xyz";
+    fprintf(out, "force:   applied");
+    for (int k = 0; k < r->dim; k++)
+        fprintf(out, " %c %.6g", axes[k], r->f_applied[k]);
+    fprintf(out, ";  contact");
+    for (int k = 0; k < r->dim; k++)
+        fprintf(out, " %c %.6g", axes[k], r->f_contact[k]);
+    fprintf(out, "\n");
+    if (run->has_pressure_error)
+        fprintf(out, "pressure vs Hertz: L2 error %.4g (%.2f %%), half-width b = %.4g\n",
+                run->pressure_error_abs, 100 * run->pressure_error_rel, run->hertz_halfwidth);
+    fprintf(out, "time:    assemble %.3f s, setup %.3f s, solve %.3f s, total %.3f s\n", run->time.assemble,
+            run->time.setup, run->time.solve, run->time.total);
+    if (run->has_baseline)
+        fprintf(out, "         baseline (factorise + solve K) %.3f s; (setup + solve) / baseline = %.2f\n",
+                run->time.baseline,
+                run->time.baseline > 0 ? (run->time.setup + run->time.solve) / run->time.baseline : 0);
+    fprintf(out, "work:    %ld factorisations, %ld solves, %ld products with K\n",
+            run->counters.factorizations, run->counters.solves, run->counters.matvecs);
 }
 
-static void solve_write_text(const cx_scene *sc, const cx_session *s, double t_assemble,
-                             double t_total, int baseline, double t_base, int has_p,
-                             double p_abs, double p_rel, const char *msg)
+/* Ctrl-C: remove a temporary output file being written, then stop. */
+static void solve_on_sigint(int sig)
 {
-    const cx_problem *p = cx_session_problem(s);
-    const cx_iterate *it = cx_session_iterate(s);
-    double fc[3];
-    solve_contact_force(p, it, fc);
-    printf("%s after %d iterations: kkt error %.3e%s%s\n", cx_reason_str(it->reason), it->iter,
-           it->kkt, msg && msg[0] ? "\n  " : "", msg ? msg : "");
-    printf("contact: %d of %d points (%d stick, %d slip)\n", it->ncontact + it->nstick + it->nslip,
-           p->m, it->nstick, it->nslip);
-    const char *axes = "xyz";
-    printf("force:   applied");
-    for (int k = 0; k < p->dim; k++)
-        printf(" %c %.6g", axes[k], p->f_applied[k]);
-    printf(";  contact");
-    for (int k = 0; k < p->dim; k++)
-        printf(" %c %.6g", axes[k], fc[k]);
-    printf("\n");
-    if (has_p)
-        printf("pressure vs Hertz: L2 error %.4g (%.2f %%), half-width b = %.4g\n", p_abs, 100 * p_rel,
-               cx_scene_hertz_halfwidth(sc));
-    printf("time:    assemble %.3f s, setup %.3f s, solve %.3f s, total %.3f s\n", t_assemble,
-           it->init_time, it->time - it->init_time, t_total);
-    if (baseline)
-        printf("         baseline (factorise + solve K) %.3f s; (setup + solve) / baseline = %.2f\n", t_base,
-               t_base > 0 ? (it->time) / t_base : 0);
-    printf("work:    %ld factorisations, %ld solves, %ld products with K\n", it->counters.factorizations,
-           it->counters.solves, it->counters.matvecs);
+    (void)sig;
+    cx_outfile_abandon_pending();
+    _exit(CX_EXIT_INTERRUPTED);
 }
 
 int cli_solve(int argc, char **argv)
@@ -276,6 +182,16 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     solve_args a;
     if (solve_parse(argc, argv, &a, &d))
         return cli_fail(cmd, d.msg);
+    /* the summary (or JSON) and a file on standard output cannot share it */
+    int to_stdout = cli_render_stdout_users(&a.render);
+    if (to_stdout + a.json > 1)
+        return cli_fail(cmd, "--json, --png - and --vtu -: only one can go to standard output");
+    FILE *summary = to_stdout ? stderr : stdout;
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = solve_on_sigint;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
 
     double t0 = cx_clock_now();
     cx_scene sc;
@@ -338,12 +254,12 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     }
     const cx_problem *cp = cx_session_problem(s);
     if (!a.json && !a.quiet) {
-        printf("%s level %d: %dD, %d dofs, %d contact points; %s, friction %s\n", sc.id,
-               a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id,
-               cx_friction_name(cp->friction));
-        printf("  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
+        fprintf(summary, "%s level %d: %dD, %d dofs, %d contact points; %s, friction %s\n", sc.id,
+                a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id,
+                cx_friction_name(cp->friction));
+        fprintf(summary, "  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
     }
-    solve_watch w = {a.json || a.quiet};
+    solve_watch w = {a.json || a.quiet, summary};
     if (cx_solver_solve(s, solve_print_step, &w, &d)) {
         cli_fail(cmd, d.msg);
         goto done;
@@ -354,18 +270,27 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         cli_fail(cmd, d.msg);
         goto done;
     }
-    const cx_iterate *it = cx_session_iterate(s);
-    double p_abs = 0, p_rel = 0;
-    int has_p = cx_scene_pressure_error(&sc, cp, it->lN, &p_abs, &p_rel) == CX_OK;
-    const char *msg = cx_session_reason_msg(s);
+    cx_result *res = NULL;
+    if (cx_result_from_session(&res, s, &sc, a.level, &d)) {
+        cli_fail(cmd, d.msg);
+        goto done;
+    }
+    res->run.time.assemble = t_assemble;
+    res->run.time.total = t_total;
+    res->run.has_baseline = a.baseline;
+    res->run.time.baseline = t_base;
     if (a.json)
-        solve_write_json(&a, &sc, s, t_assemble, t_total, t_base, has_p, p_abs, p_rel, msg);
+        cx_result_write_json(res, stdout);
     else
-        solve_write_text(&sc, s, t_assemble, t_total, a.baseline, t_base, has_p, p_abs, p_rel, msg);
-    code = it->reason > 0 ? CX_EXIT_OK : CX_EXIT_NOT_CONVERGED;
-    if (cli_render_outputs(&a.render, &sc, s, a.level > 0 ? a.level : sc.level, a.json, &d))
+        solve_write_text(res, summary);
+    code = res->run.converged ? CX_EXIT_OK : CX_EXIT_NOT_CONVERGED;
+    if (cli_render_outputs(&a.render, &sc, s, res, a.json, &d))
         code = cli_fail(cmd, d.msg);
+    cx_result_destroy(&res);
 done:
     cx_session_destroy(&s);
+    /* a summary or JSON lost on a full disk is an error, not a result */
+    if (code != CX_EXIT_ERROR && cx_outfile_close_stdout(&d))
+        code = cli_fail(cmd, d.msg);
     return code;
 }

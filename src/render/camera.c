@@ -80,7 +80,7 @@ void cx_render_camera(cx_render_scene *sc)
 {
     cx_render_layout l;
     cx_render_layout_get(sc->w, sc->h, &l);
-    const cx_obstacle *ob = sc->st->obstacle;
+    const cx_obstacle *ob = sc->obstacle;
     if (sc->dim == 2) {
         const double e[3] = {0, 0, 1}, up[3] = {0, 1, 0};
         cam_rotation(sc->R, e, up);
@@ -90,9 +90,9 @@ void cx_render_camera(cx_render_scene *sc)
         if (ob && ob->kind == CX_OBST_PLANE)
             for (int k = 0; k < 3; k++)
                 e[k] = -ob->normal[k];
-        else if (sc->p->contact.m > 0)
+        else if (sc->r->contact.m > 0)
             for (int k = 0; k < 3; k++)
-                e[k] = -sc->p->contact.normal[k];
+                e[k] = -sc->r->contact.normal[k];
         if (fabs(e[1]) > 0.9) {
             up[1] = 0;
             up[2] = 1;
@@ -104,7 +104,7 @@ void cx_render_camera(cx_render_scene *sc)
     }
     cam_box b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
     if (sc->dim == 2) {
-        const cx_mesh *m = sc->p->mesh;
+        const cx_mesh *m = sc->r->mesh;
         for (int i = 0; i < m->nnodes; i++) {
             cam_add(&b, sc->R, sc->xd + 3 * i);
             cam_add(&b, sc->R, sc->x0 + 3 * i);

@@ -77,50 +77,25 @@ static int field_voigt(int f, int dim)
     }
 }
 
-int cx_field_nodal(const cx_problem *p, const double *uall, const double *lN,
-                   const unsigned char *status, int f, double *val)
+int cx_field_nodal(cx_result *r, int f, double *val, cx_diag *d)
 {
-    const cx_mesh *m = p->mesh;
+    const cx_mesh *m = r->mesh;
+    const double *uall = r->u;
     int dim = m->dim, nn = m->nnodes;
     if (cx_field_is_stress(f)) {
-        int ns = cx_fem_nstress(dim);
-        double *sig = cx_malloc(sizeof(double) * (size_t)ns * nn);
-        int *owner = cx_malloc(sizeof(int) * (size_t)nn);
-        if (!sig || !owner) {
-            cx_free(sig);
-            cx_free(owner);
-            return CX_ENOMEM;
-        }
-        int rc = cx_fem_nodal_stress(m, p->mats, uall, sig);
-        if (rc != CX_OK) {
-            cx_free(sig);
-            cx_free(owner);
-            return rc;
-        }
-        /* the material of a node: that of the body of an element using it */
+        int ns = cx_fem_nstress(dim), c = field_voigt(f, dim);
+        const double *sig, *vm;
+        CX_TRY(cx_result_stress(r, &sig, &vm, d));
         for (int k = 0; k < nn; k++)
-            owner[k] = 0;
-        if (m->body)
-            for (int e = 0; e < m->nelems; e++)
-                for (int a = 0; a < m->npe; a++)
-                    owner[m->conn[m->npe * e + a]] = m->body[e];
-        int c = field_voigt(f, dim);
-        for (int k = 0; k < nn; k++)
-            val[k] = c >= 0 ? sig[ns * k + c] : cx_fem_von_mises(&p->mats[owner[k]], sig + ns * k);
-        cx_free(sig);
-        cx_free(owner);
+            val[k] = c >= 0 ? sig[(size_t)ns * k + c] : vm[k];
         return CX_OK;
     }
-    if (f == CX_FIELD_PRESSURE || f == CX_FIELD_STATUS) {
-        const cx_contact_set *cs = &p->contact;
-        for (int k = 0; k < nn; k++)
-            val[k] = f == CX_FIELD_STATUS ? -1 : 0;
-        for (int i = 0; i < cs->m; i++) {
-            if (f == CX_FIELD_STATUS)
-                val[cs->node[i]] = status ? status[i] : CX_PT_FREE;
-            else
-                val[cs->node[i]] = cs->weight[i] > 0 && lN ? lN[i] / cs->weight[i] : 0;
-        }
+    if (f == CX_FIELD_PRESSURE) {
+        cx_result_nodal_pressure(r, val);
+        return CX_OK;
+    }
+    if (f == CX_FIELD_STATUS) {
+        cx_result_nodal_status(r, val);
         return CX_OK;
     }
     int c = field_table[f].disp;

@@ -171,7 +171,7 @@ static void geom_hash_add(geom_hash *h, const int *nodes, int n, long tag)
 
 static int geom_2d(cx_render_scene *sc)
 {
-    const cx_mesh *m = sc->p->mesh;
+    const cx_mesh *m = sc->r->mesh;
     const int *c;
     for (int e = 0; e < m->nelems; e++) {
         c = m->conn + (size_t)m->npe * e;
@@ -252,8 +252,8 @@ static int geom_faces3d(const cx_mesh *m, int e, int out[6][4])
 /* The contact facets: boundary facets whose nodes are all contact nodes. */
 static int geom_contact_faces(cx_render_scene *sc, cx_render_array *a, int edges)
 {
-    const cx_mesh *m = sc->p->mesh;
-    const cx_contact_set *cs = &sc->p->contact;
+    const cx_mesh *m = sc->r->mesh;
+    const cx_contact_set *cs = &sc->r->contact;
     unsigned char *is_c = CX_NEW(unsigned char, m->nnodes);
     if (!is_c)
         return CX_ENOMEM;
@@ -277,7 +277,7 @@ static int geom_contact_faces(cx_render_scene *sc, cx_render_array *a, int edges
 
 static int geom_3d(cx_render_scene *sc)
 {
-    const cx_mesh *m = sc->p->mesh;
+    const cx_mesh *m = sc->r->mesh;
     if (sc->o->view == CX_VIEW_CONTACT)
         return geom_contact_faces(sc, &sc->tris, sc->o->edges);
     int nf = m->etype == CX_EL_HEX8 ? 6 : 4;
@@ -326,10 +326,10 @@ static int geom_quad(cx_render_array *a, const double *c, const double *e1, cons
 /* A plane patch under the body, or the sphere / cylinder surface. */
 static int geom_obstacle3d(cx_render_scene *sc)
 {
-    const cx_obstacle *ob = sc->st->obstacle;
+    const cx_obstacle *ob = sc->obstacle;
     if (!ob)
         return CX_OK;
-    const cx_mesh *m = sc->p->mesh;
+    const cx_mesh *m = sc->r->mesh;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int i = 0; i < m->nnodes; i++)
         for (int k = 0; k < 3; k++) {

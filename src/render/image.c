@@ -10,37 +10,6 @@
 #include "cx_config.h"
 #include "render/pngfile.h"
 
-void cx_render_state_init(cx_render_state *st, const cx_scene *sc, const cx_session *s, int level,
-                          char *params, size_t len)
-{
-    const cx_iterate *it = cx_session_iterate(s);
-    const cx_param_values *pv = cx_session_params(s);
-    memset(st, 0, sizeof *st);
-    st->p = cx_session_problem(s);
-    st->u = it->u;
-    st->lN = it->lN;
-    st->lT = it->lT;
-    st->status = it->status;
-    st->obstacle = &sc->obstacle;
-    st->scene = sc->id;
-    st->title = sc->title;
-    st->level = level;
-    st->method = cx_session_method(s) ? cx_session_method(s)->id : "";
-    st->kkt = it->kkt;
-    size_t n = 0;
-    if (len > 0)
-        params[0] = '\0';
-    for (int k = 0; pv && k < pv->n && n + 2 < len; k++) {
-        char v[64];
-        cx_param_format(pv, k, v, sizeof v);
-        int w = snprintf(params + n, len - n, "%s%s=%s", k ? " " : "", pv->table[k].key, v);
-        if (w < 0 || (size_t)w >= len - n)
-            break;
-        n += (size_t)w;
-    }
-    st->params = params;
-}
-
 void cx_render_opts_default(cx_render_opts *o)
 {
     memset(o, 0, sizeof *o);
@@ -78,15 +47,14 @@ static double img_umax(const cx_mesh *m, const double *uall)
     return umax;
 }
 
-double cx_render_auto_scale(const cx_problem *p, const double *uall)
+double cx_render_auto_scale(const cx_result *r)
 {
-    double umax = img_umax(p->mesh, uall);
-    return umax > 0 ? 0.07 * img_body_size(p->mesh) / umax : 1.0;
+    double umax = img_umax(r->mesh, r->u);
+    return umax > 0 ? 0.07 * img_body_size(r->mesh) / umax : 1.0;
 }
 
 static void img_clear(cx_render_scene *sc)
 {
-    cx_free(sc->uall);
     cx_free(sc->x0);
     cx_free(sc->xd);
     cx_free(sc->val);
@@ -101,8 +69,8 @@ static void img_clear(cx_render_scene *sc)
  * contact nodes for the pressure and the contact view. */
 static void img_range(cx_render_scene *sc)
 {
-    const cx_mesh *m = sc->p->mesh;
-    const cx_contact_set *cs = &sc->p->contact;
+    const cx_mesh *m = sc->r->mesh;
+    const cx_contact_set *cs = &sc->r->contact;
     int on_contact = sc->o->field == CX_FIELD_PRESSURE || sc->o->view == CX_VIEW_CONTACT;
     double lo = INFINITY, hi = -INFINITY;
     int n = on_contact ? cs->m : m->nnodes;
@@ -128,35 +96,33 @@ static void img_range(cx_render_scene *sc)
     }
 }
 
-static int img_prepare(cx_render_scene *sc, const cx_render_state *st, const cx_render_opts *o,
-                       double *t_fields, cx_diag *d)
+static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *o, double *t_fields,
+                       cx_diag *d)
 {
     double t0 = cx_clock_now();
     memset(sc, 0, sizeof *sc);
-    sc->st = st;
+    sc->r = r;
+    sc->obstacle = r->has_obstacle ? &r->obstacle : NULL;
     sc->o = o;
-    sc->p = st->p;
     sc->w = o->width;
     sc->h = o->height;
-    const cx_problem *p = sc->p;
-    const cx_mesh *m = p->mesh;
+    const cx_mesh *m = r->mesh;
     int dim = m->dim, nn = m->nnodes, f = sc->o->field;
     sc->dim = dim;
-    sc->uall = cx_malloc(sizeof(double) * (size_t)dim * nn);
+    sc->uall = r->u;
     sc->x0 = CX_NEW(double, 3 * (size_t)nn);
     sc->xd = CX_NEW(double, 3 * (size_t)nn);
     sc->val = cx_malloc(sizeof(double) * (size_t)nn);
-    if (!sc->uall || !sc->x0 || !sc->xd || !sc->val)
+    if (!sc->x0 || !sc->xd || !sc->val)
         return cx_diag_set(d, CX_ENOMEM, "render: out of memory");
-    cx_fem_expand(&p->map, sc->st->u, sc->uall);
-    if (cx_field_nodal(p, sc->uall, sc->st->lN, sc->st->status, f, sc->val) != CX_OK)
+    if (cx_field_nodal(r, f, sc->val, NULL) != CX_OK)
         return cx_diag_set(d, CX_ENUMERIC, "render: cannot compute the field %s", cx_field_name(f));
     for (int i = 0; i < nn && f != CX_FIELD_STATUS; i++)
         if (!isfinite(sc->val[i]))
             return cx_diag_set(d, CX_ENUMERIC, "render: the field %s is not finite at node %d",
                                cx_field_name(f), i);
     sc->umax = img_umax(m, sc->uall);
-    sc->scale = sc->o->scale > 0 ? sc->o->scale : cx_render_auto_scale(p, sc->uall);
+    sc->scale = sc->o->scale > 0 ? sc->o->scale : cx_render_auto_scale(r);
     for (int i = 0; i < nn; i++)
         for (int k = 0; k < dim; k++) {
             sc->x0[3 * i + k] = m->x[dim * i + k];
@@ -179,29 +145,29 @@ static int img_prepare(cx_render_scene *sc, const cx_render_state *st, const cx_
     return CX_OK;
 }
 
-static int img_check(const cx_render_state *st, const cx_render_opts *o, cx_diag *d)
+static int img_check(const cx_result *r, const cx_render_opts *o, cx_diag *d)
 {
     if (o->width < 64 || o->height < 64 || o->width > 16384 || o->height > 16384)
         return cx_diag_set(d, CX_EINVAL, "--size %dx%d: expected 64..16384 pixels each way",
                            o->width, o->height);
-    CX_TRY(cx_field_check(o->field, st->p->dim, d));
-    if (o->view == CX_VIEW_CONTACT && st->p->dim != 3)
+    CX_TRY(cx_field_check(o->field, r->dim, d));
+    if (o->view == CX_VIEW_CONTACT && r->dim != 3)
         return cx_diag_set(d, CX_EINVAL, "--view contact: only in 3D");
     if (o->msaa < 0 || o->msaa > 4)
         return cx_diag_set(d, CX_EINVAL, "msaa %d: expected 0..4 samples", o->msaa);
     return CX_OK;
 }
 
-int cx_render_project(const cx_render_state *st, const cx_render_opts *o, const double *x,
-                      double px[2], cx_diag *d)
+int cx_render_project(cx_result *r, const cx_render_opts *o, const double *x, double px[2],
+                      cx_diag *d)
 {
-    CX_TRY(img_check(st, o, d));
+    CX_TRY(img_check(r, o, d));
     cx_render_scene sc;
     double tf;
-    int rc = img_prepare(&sc, st, o, &tf, d);
+    int rc = img_prepare(&sc, r, o, &tf, d);
     if (rc == CX_OK) {
         double x3[3] = {0, 0, 0};
-        for (int k = 0; k < st->p->dim; k++)
+        for (int k = 0; k < r->dim; k++)
             x3[k] = x[k];
         cx_render_scene_project(&sc, x3, px);
     }
@@ -209,13 +175,13 @@ int cx_render_project(const cx_render_state *st, const cx_render_opts *o, const 
     return rc;
 }
 
-int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char *path,
-                  cx_render_timing *t, cx_diag *d)
+int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_render_timing *t,
+                  cx_diag *d)
 {
     cx_render_timing tm = {0};
-    CX_TRY(img_check(st, o, d));
+    CX_TRY(img_check(r, o, d));
     cx_render_scene sc;
-    int rc = img_prepare(&sc, st, o, &tm.fields, d);
+    int rc = img_prepare(&sc, r, o, &tm.fields, d);
     int stride = cairo_format_stride_for_width(CAIRO_FORMAT_ARGB32, sc.w);
     unsigned char *gl = NULL, *out = NULL;
     if (rc == CX_OK) {
@@ -248,22 +214,22 @@ int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char
     }
     if (rc == CX_OK) {
         double t0 = cx_clock_now();
-        const cx_problem *p = st->p;
+        const cx_run_record *run = &r->run;
         char level[32], F[32], slip[32], kkt[32], scale[32];
-        snprintf(level, sizeof level, "%d", st->level);
-        snprintf(F, sizeof F, "%.17g", p->F);
-        snprintf(slip, sizeof slip, "%.17g", p->slip_bound);
-        snprintf(kkt, sizeof kkt, "%.6e", st->kkt);
+        snprintf(level, sizeof level, "%d", run->level);
+        snprintf(F, sizeof F, "%.17g", run->F);
+        snprintf(slip, sizeof slip, "%.17g", run->slip_bound);
+        snprintf(kkt, sizeof kkt, "%.6e", run->kkt);
         snprintf(scale, sizeof scale, "%.6g", sc.scale);
         cx_png_text text[] = {
-            {"Title", st->title ? st->title : ""},
-            {"scene", st->scene ? st->scene : ""},
+            {"Title", run->title},
+            {"scene", run->scene},
             {"level", level},
-            {"method", st->method ? st->method : ""},
-            {"friction", cx_friction_name(p->friction)},
+            {"method", run->method},
+            {"friction", cx_friction_name(run->friction)},
             {"F", F},
             {"slip bound", slip},
-            {"parameters", st->params ? st->params : ""},
+            {"parameters", run->params_text},
             {"kkt error", kkt},
             {"field", cx_field_name(o->field)},
             {"displacement scale", scale},

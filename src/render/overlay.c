@@ -24,22 +24,21 @@ static void ov_rgb(cairo_t *cr, const unsigned char c[3])
 
 static void ov_title(const cx_render_scene *sc, cairo_t *cr, double s)
 {
-    const cx_render_state *st = sc->st;
-    const cx_problem *p = sc->p;
+    const cx_run_record *run = &sc->r->run;
     char line[512], fr[96];
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    snprintf(line, sizeof line, "%s — %s", st->title && st->title[0] ? st->title : st->scene,
+    snprintf(line, sizeof line, "%s — %s", run->title[0] ? run->title : run->scene,
              cx_field_label(sc->o->field));
     cx_text_fit(cr, line, 20 * s, 14 * s, 22 * s, 1, 0, 0, sc->w - 40 * s);
-    if (p->friction == CX_FRICTION_COULOMB)
-        snprintf(fr, sizeof fr, "Coulomb F = %g", p->F);
-    else if (p->friction == CX_FRICTION_TRESCA)
-        snprintf(fr, sizeof fr, "Tresca slip bound %g", p->slip_bound);
+    if (run->friction == CX_FRICTION_COULOMB)
+        snprintf(fr, sizeof fr, "Coulomb F = %g", run->F);
+    else if (run->friction == CX_FRICTION_TRESCA)
+        snprintf(fr, sizeof fr, "Tresca slip bound %g", run->slip_bound);
     else
         snprintf(fr, sizeof fr, "frictionless");
     snprintf(line, sizeof line, "scene %s, level %d, %d dofs, %d contact points · %s%s%s · %s · kkt error %.2e",
-             st->scene, st->level, p->n, p->m, st->method, st->params && st->params[0] ? " " : "",
-             st->params ? st->params : "", fr, st->kkt);
+             run->scene, run->level, sc->r->n, sc->r->m, run->method, run->params_text[0] ? " " : "",
+             run->params_text, fr, run->kkt);
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
     cx_text_fit(cr, line, 20 * s, 46 * s, 15 * s, 0, 0, 0, sc->w - 40 * s);
 }
@@ -88,7 +87,7 @@ static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
 /* 2D obstacle: a hatched strip beyond the plane, or the disc. */
 static void ov_obstacle2d(const cx_render_scene *sc, cairo_t *cr, double s)
 {
-    const cx_obstacle *ob = sc->st->obstacle;
+    const cx_obstacle *ob = sc->obstacle;
     if (!ob)
         return;
     cx_render_layout l;
@@ -170,10 +169,10 @@ static void ov_outline(const cx_render_scene *sc, cairo_t *cr, const double *X, 
  * readable when the points are too dense for markers. */
 static void ov_band2d(const cx_render_scene *sc, cairo_t *cr, double s)
 {
-    const cx_contact_set *cs = &sc->p->contact;
+    const cx_contact_set *cs = &sc->r->contact;
     int status = sc->o->field == CX_FIELD_STATUS;
     /* contact index + 1 of each node (0: not a contact point) */
-    int *ci = CX_NEW(int, sc->p->mesh->nnodes);
+    int *ci = CX_NEW(int, sc->r->mesh->nnodes);
     if (!ci)
         return;
     for (int i = 0; i < cs->m; i++)
@@ -191,8 +190,8 @@ static void ov_band2d(const cx_render_scene *sc, cairo_t *cr, double s)
         if (status) {
             /* the segment takes the status of its ends when they agree,
              * else that of the free end (the boundary of the zone) */
-            int a = sc->st->status ? sc->st->status[ci[e[0]] - 1] : CX_PT_FREE;
-            int b = sc->st->status ? sc->st->status[ci[e[2]] - 1] : CX_PT_FREE;
+            int a = sc->r->status[ci[e[0]] - 1];
+            int b = sc->r->status[ci[e[2]] - 1];
             cx_status_color(a == b ? a : CX_PT_FREE, c);
         } else {
             double v = 0.5 * (sc->val[e[0]] + sc->val[e[2]]);
@@ -213,7 +212,7 @@ static int ov_visible(const cx_render_scene *sc, int i)
 {
     if (sc->dim != 3 || sc->o->view != CX_VIEW_BODY)
         return 1;
-    const double *n = sc->p->contact.normal + 3 * i;
+    const double *n = sc->r->contact.normal + 3 * i;
     return n[0] * sc->R[6] + n[1] * sc->R[7] + n[2] * sc->R[8] > 0;
 }
 
@@ -221,12 +220,12 @@ static int ov_visible(const cx_render_scene *sc, int i)
  * (DESIGN.md §2: T u = c lT; the friction force on the body is -T' lT). */
 static int ov_slip_dir(const cx_render_scene *sc, int i, double u[2])
 {
-    const cx_contact_set *cs = &sc->p->contact;
+    const cx_contact_set *cs = &sc->r->contact;
     int dim = sc->dim, dt = dim - 1;
     double dir[3] = {0, 0, 0}, q0[3], q1[3], a[2], b[2];
     for (int k = 0; k < dim; k++)
         for (int j = 0; j < dt; j++)
-            dir[k] += sc->st->lT[dt * i + j] * cs->tangent[dim * (dt * i + j) + k];
+            dir[k] += sc->r->lT[dt * i + j] * cs->tangent[dim * (dt * i + j) + k];
     double len = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
     if (!(len > 0))
         return 0;
@@ -250,8 +249,8 @@ static int ov_slip_dir(const cx_render_scene *sc, int i, double u[2])
  * (at every k-th slipping point, so that arrows never overlap). */
 static int ov_status(const cx_render_scene *sc, cairo_t *cr, double s, double r)
 {
-    const cx_contact_set *cs = &sc->p->contact;
-    const cx_render_state *st = sc->st;
+    const cx_contact_set *cs = &sc->r->contact;
+    const unsigned char *status = sc->r->status;
     int shown = 0;
     for (int i = 0; i < cs->m; i++) {
         if (!ov_visible(sc, i))
@@ -260,7 +259,7 @@ static int ov_status(const cx_render_scene *sc, cairo_t *cr, double s, double r)
         double p[2];
         cx_render_scene_project(sc, sc->xd + 3 * cs->node[i], p);
         unsigned char c[3];
-        cx_status_color(st->status ? st->status[i] : CX_PT_FREE, c);
+        cx_status_color(status[i], c);
         cairo_new_sub_path(cr);
         cairo_arc(cr, p[0], p[1], r, 0, 2 * CX_PI);
         ov_rgb(cr, c);
@@ -269,7 +268,7 @@ static int ov_status(const cx_render_scene *sc, cairo_t *cr, double s, double r)
         cairo_set_line_width(cr, fmin(0.8 * s, 0.25 * r));
         cairo_stroke(cr);
     }
-    if (!st->status || !st->lT)
+    if (sc->r->run.friction == CX_FRICTION_NONE)
         return shown;
     double L = fmax(5.0 * r, 18 * s), h = fmax(1.6 * r, 5 * s);
     double last[2] = {-1e30, -1e30};
@@ -277,7 +276,7 @@ static int ov_status(const cx_render_scene *sc, cairo_t *cr, double s, double r)
     cx_status_color(CX_PT_SLIP_POS, c);
     for (int i = 0; i < cs->m; i++) {
         double p[2], u[2];
-        if ((st->status[i] != CX_PT_SLIP_POS && st->status[i] != CX_PT_SLIP_NEG) ||
+        if ((status[i] != CX_PT_SLIP_POS && status[i] != CX_PT_SLIP_NEG) ||
             !ov_visible(sc, i) || !ov_slip_dir(sc, i, u))
             continue;
         cx_render_scene_project(sc, sc->xd + 3 * cs->node[i], p);
@@ -317,10 +316,10 @@ static int ov_status(const cx_render_scene *sc, cairo_t *cr, double s, double r)
  * 3D: from the projected area they cover), between 1.2 and 4 (x s) pixels. */
 static double ov_marker_radius(const cx_render_scene *sc, double s)
 {
-    const cx_contact_set *cs = &sc->p->contact;
+    const cx_contact_set *cs = &sc->r->contact;
     double spacing = 0;
     if (sc->dim == 2) {
-        unsigned char *is_c = CX_NEW(unsigned char, sc->p->mesh->nnodes);
+        unsigned char *is_c = CX_NEW(unsigned char, sc->r->mesh->nnodes);
         int n = 0;
         if (is_c) {
             for (int i = 0; i < cs->m; i++)
@@ -374,7 +373,7 @@ static void ov_notes(const cx_render_scene *sc, cairo_t *cr, double s, int legen
     static const char *names[4] = {"free", "contact", "stick", "slip"};
     double x = sc->w - 20 * s;
     for (int i = 3; i >= 0; i--) {
-        if (sc->p->friction == CX_FRICTION_NONE ? i >= 2 : i == 1)
+        if (sc->r->run.friction == CX_FRICTION_NONE ? i >= 2 : i == 1)
             continue;
         unsigned char c[3];
         cx_status_color(codes[i], c);
@@ -414,7 +413,7 @@ void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr)
         double r = ov_marker_radius(sc, s);
         shown = ov_status(sc, cr, s, f == CX_FIELD_STATUS ? fmin(1.4 * r, 4 * s) : r);
     }
-    int hidden = sc->dim == 3 && sc->o->view == CX_VIEW_BODY && sc->p->m > 0 &&
+    int hidden = sc->dim == 3 && sc->o->view == CX_VIEW_BODY && sc->r->m > 0 &&
                  (f == CX_FIELD_PRESSURE || (f == CX_FIELD_STATUS && shown == 0));
     ov_title(sc, cr, s);
     if (f != CX_FIELD_STATUS)

@@ -1,6 +1,6 @@
 /* PNG writing with libpng (see pngfile.h). */
 #include "render/pngfile.h"
-#include "render/outfile.h"
+#include "out/outfile.h"
 
 #include <png.h>
 #include <setjmp.h>

@@ -1,6 +1,7 @@
-/* render/: images of a solved contact problem (PNG through offscreen Mesa,
- * with text, colour bar and markers drawn by cairo), VTU files for
- * ParaView, and line plots (render/plot.h).
+/* render/: images of a solution snapshot (cx_result, out/result.h): PNG
+ * through offscreen Mesa, with text, colour bar and markers drawn by
+ * cairo; and line plots (render/plot.h). Files are written through
+ * out/outfile.h. VTU files need no GL: out/out.h.
  *
  * An image shows one field on the deformed body: 2D meshes flat with the
  * displacement magnified (auto scale: the largest displacement is drawn as
@@ -12,16 +13,15 @@
  *
  * The OpenGL context (OSMesa, render/glctx.c) is created inside
  * cx_render_png() and destroyed before it returns; nothing is created when
- * only VTU files or plots are written. Shaders are read at run time from
+ * only plots are written. Shaders are read at run time from
  * $SIGNORINI_SHADERS, then the source tree's shaders/, then the installed
- * share/signorini/shaders. The same state rendered twice gives the same
+ * share/signorini/shaders. The same result rendered twice gives the same
  * bytes. */
 #ifndef CX_RENDER_H
 #define CX_RENDER_H
 
 #include "base/base.h"
-#include "solve/solve.h"
-#include "scene/scene.h"
+#include "out/out.h"
 #include "render/plot.h"
 
 /* ---- fields -------------------------------------------------------------- */
@@ -52,13 +52,11 @@ int cx_field_is_signed(int f);            /* diverging colormap */
  * "--field szz: only in 3D". */
 int cx_field_check(int f, int dim, cx_diag *d);
 
-/* Nodal values of field f (mesh->nnodes values; the pressure is 0 away from
- * the contact points; status gives the cx_point_status code at contact
- * nodes, -1 elsewhere). uall: the full displacement (dim * nnodes, see
- * cx_fem_expand). Stresses are computed here with cx_fem_nodal_stress and
- * only for stress fields. CX_ENOMEM. */
-int cx_field_nodal(const cx_problem *p, const double *uall, const double *lN,
-                   const unsigned char *status, int f, double *val);
+/* Nodal values of field f of r (mesh->nnodes values; the pressure is 0
+ * away from the contact points; status gives the cx_point_status code at
+ * contact nodes, -1 elsewhere). Stresses come from cx_result_stress
+ * (computed once, for stress fields only). CX_ENOMEM, CX_ENUMERIC. */
+int cx_field_nodal(cx_result *r, int f, double *val, cx_diag *d);
 
 /* ---- colormaps ---------------------------------------------------------- */
 
@@ -71,29 +69,6 @@ void cx_status_color(int status, unsigned char rgb[3]);
 /* ---- images ------------------------------------------------------------- */
 
 typedef enum cx_view { CX_VIEW_BODY, CX_VIEW_CONTACT } cx_view;
-
-/* What to draw: the problem and a solution (borrowed), and the words for
- * the title and the PNG text chunks. */
-typedef struct cx_render_state {
-    const cx_problem *p;
-    const double *u;              /* n free dofs */
-    const double *lN, *lT;        /* m, nt */
-    const unsigned char *status;  /* m, cx_point_status (NULL: all free) */
-    const cx_obstacle *obstacle;  /* the rigid obstacle drawn (NULL: none) */
-    const char *scene;            /* scene id */
-    const char *title;            /* scene title ("" = none) */
-    int level;
-    const char *method;           /* method id */
-    const char *params;           /* "rho=1e-3 ..." ("" = none) */
-    double kkt;                   /* the solution's kkt error */
-} cx_render_state;
-
-/* Fill st from a session's current iterate (u, lN, lT, status, kkt,
- * method and its parameters written into params[len] as "key=value ...")
- * and its scene (id, title, obstacle). Everything stays borrowed: st is
- * valid until the session steps again or sc goes away. */
-void cx_render_state_init(cx_render_state *st, const cx_scene *sc, const cx_session *s, int level,
-                          char *params, size_t len);
 
 typedef struct cx_render_opts {
     int width, height;            /* pixels (default 1200 x 900) */
@@ -118,7 +93,7 @@ typedef struct cx_render_timing {
 
 /* The automatic displacement scale: largest displacement drawn as 7 % of
  * the body's bounding-box diagonal (1 when u is zero). */
-double cx_render_auto_scale(const cx_problem *p, const double *uall);
+double cx_render_auto_scale(const cx_result *r);
 
 /* Where the overlays go in a w x h image (pixels, top-left origin), so that
  * tests can sample them: the drawing area and the colour bar (value lo at
@@ -132,24 +107,16 @@ void cx_render_layout_get(int w, int h, cx_render_layout *l);
 /* The pixel (top-left origin) where the world point x (dim coordinates,
  * in the drawn frame: deformed points are x + scale u) appears in the image
  * that cx_render_png would draw with these options. No GL is involved. */
-int cx_render_project(const cx_render_state *st, const cx_render_opts *o, const double *x,
-                      double px[2], cx_diag *d);
+int cx_render_project(cx_result *r, const cx_render_opts *o, const double *x, double px[2],
+                      cx_diag *d);
 
-/* Render and write a PNG (temporary file + rename) with tEXt chunks scene,
- * level, method, friction, F, parameters, kkt error, field, scale and
- * Software. t may be NULL. CX_EINVAL (options, field not in this
+/* Draw r (the image shows its obstacle if it has one, the title and run
+ * record from r->run) and write a PNG through out/outfile.h, with tEXt
+ * chunks scene, level, method, friction, F, parameters, kkt error, field,
+ * scale and Software. t may be NULL. CX_EINVAL (options, field not in this
  * dimension), CX_EIO (path: one line, no file left), CX_EEXTERNAL (no GL
  * context, shader missing or not compiling: the message says which). */
-int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char *path,
-                  cx_render_timing *t, cx_diag *d);
-
-/* ---- VTU -------------------------------------------------------------------- */
-
-/* Write the mesh (undeformed coordinates) with point data "displacement"
- * (3 components, z = 0 in 2D), "stress" (Voigt: 3 in 2D, 6 in 3D),
- * "von_mises", "contact_pressure", "contact_status" (-1 away from the
- * contact points) and cell data "body", as a VTK XML UnstructuredGrid
- * (ascii = 1: ASCII; 0: base64 binary). Temporary file + rename. */
-int cx_vtu_write(const cx_render_state *st, const char *path, int ascii, cx_diag *d);
+int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_render_timing *t,
+                  cx_diag *d);
 
 #endif

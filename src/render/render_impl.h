@@ -20,11 +20,11 @@ void cx_render_array_clear(cx_render_array *a);
 
 /* Everything one image needs, in world coordinates (z = 0 in 2D). */
 typedef struct cx_render_scene {
-    const cx_render_state *st;
+    cx_result *r;        /* what is drawn (borrowed) */
+    const cx_obstacle *obstacle;   /* r's obstacle, or NULL */
     const cx_render_opts *o;
-    const cx_problem *p;
     int dim;
-    double *uall;        /* dim * nnodes */
+    const double *uall;  /* dim * nnodes: r->u */
     double *x0, *xd;     /* 3 * nnodes: undeformed, deformed (scaled) */
     double *val;         /* nnodes: the field, or NULL (status: codes) */
     double scale;        /* displacement magnification */

@@ -436,15 +436,16 @@ int tui_render_png(const tui_state *st, char *file, size_t len, cx_diag *d)
 #if CX_HAVE_RENDER
     if (!st->session || !cx_session_method(st->session))
         return cx_diag_set(d, CX_EINVAL, "nothing to render yet");
-    char params[256];
-    cx_render_state rs;
-    cx_render_state_init(&rs, &st->scene, st->session, st->level, params, sizeof params);
+    cx_result *res = NULL;
+    CX_TRY(cx_result_from_session(&res, st->session, &st->scene, st->level, d));
     cx_render_opts o;
     cx_render_opts_default(&o);
     o.scale = st->disp_scale;
     snprintf(file, len, "%s/signorini-%s-L%d-%s-it%d.png", st->export_dir, st->scene.id, st->level,
-             rs.method, cx_session_iterate(st->session)->iter);
-    return cx_render_png(&rs, &o, file, NULL, d);
+             res->run.method, res->run.iterations);
+    int rc = cx_render_png(res, &o, file, NULL, d);
+    cx_result_destroy(&res);
+    return rc;
 #else
     (void)st;
     return cx_diag_set(d, CX_EUNSUPPORTED, "rendering not available in this build");

@@ -22,8 +22,7 @@ typedef struct solved {
     cx_session *s;
     int level;
     double *uall;
-    char params[128];
-    cx_render_state st;
+    cx_result *st;
 } solved;
 
 static void solve_scene(solved *o, const char *id, int level)
@@ -45,17 +44,19 @@ static void solve_scene(solved *o, const char *id, int level)
     o->level = level;
     o->uall = cx_malloc(sizeof(double) * cp->map.nall);
     cx_fem_expand(&cp->map, it->u, o->uall);
-    cx_render_state_init(&o->st, &o->sc, o->s, level, o->params, sizeof o->params);
-    CX_CHECK(o->st.p == cp && o->st.u == it->u && o->st.kkt == it->kkt);
+    CX_CHECK_OK(cx_result_from_session(&o->st, o->s, &o->sc, level, &d));
+    CX_CHECK(o->st->n == cp->n && o->st->run.kkt == it->kkt && o->st->run.level == level);
+    CX_CHECK(memcmp(o->st->u, o->uall, sizeof(double) * cp->map.nall) == 0);
 }
 
 static void solved_free(solved *o)
 {
     cx_free(o->uall);
+    cx_result_destroy(&o->st);
     cx_session_destroy(&o->s);
 }
 
-static int render_read(const cx_render_state *st, const cx_render_opts *o, test_png *img,
+static int render_read(cx_result *st, const cx_render_opts *o, test_png *img,
                        cx_render_timing *t)
 {
     cx_diag d;
@@ -95,11 +96,11 @@ static void check_bar(const test_png *img, int field)
 static const unsigned char *node_px(const test_png *img, const solved *o, const cx_render_opts *opt,
                                     int node, double scale)
 {
-    const cx_problem *p = o->st.p;
+    const cx_problem *p = cx_session_problem(o->s);
     double x[3], px[2];
     for (int k = 0; k < p->dim; k++)
         x[k] = p->mesh->x[p->dim * node + k] + scale * o->uall[p->dim * node + k];
-    cx_render_project(&o->st, opt, x, px, NULL);
+    cx_render_project(o->st, opt, x, px, NULL);
     return test_png_px(img, (int)px[0], (int)px[1]);
 }
 
@@ -128,8 +129,8 @@ static void test_hertz(void)
 {
     solved o;
     solve_scene(&o, "hertz", 8);
-    const cx_problem *p = o.st.p;
-    double scale = cx_render_auto_scale(p, o.uall);
+    const cx_problem *p = cx_session_problem(o.s);
+    double scale = cx_render_auto_scale(o.st);
     double inner[2] = {2.4, 4.8};
     int node = nearest_node(p->mesh, inner);
     double *val = cx_malloc(sizeof(double) * p->mesh->nnodes);
@@ -143,12 +144,12 @@ static void test_hertz(void)
         opt.field = f;
         if (cx_field_check(f, 2, NULL) != CX_OK) {
             cx_diag d;
-            CX_CHECK(cx_render_png(&o.st, &opt, OUT, NULL, &d) == CX_EINVAL);
+            CX_CHECK(cx_render_png(o.st, &opt, OUT, NULL, &d) == CX_EINVAL);
             CX_CHECK(strstr(d.msg, "only in 3D") != NULL);
             continue;
         }
         cx_render_timing t;
-        if (render_read(&o.st, &opt, &img, &t) != 0) {
+        if (render_read(o.st, &opt, &img, &t) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -159,10 +160,10 @@ static void test_hertz(void)
         CX_CHECK(t.draw_calls >= 1 && t.draw_calls <= 3);
         /* background above the arc, outside the disc; obstacle below y = 0 */
         double out[2] = {7.2, 1.6}, px[2];
-        cx_render_project(&o.st, &opt, out, px, NULL);
+        cx_render_project(o.st, &opt, out, px, NULL);
         CX_CHECK(is_white(test_png_px(&img, (int)px[0], (int)px[1])));
         double below[2] = {3.0, -0.2};
-        cx_render_project(&o.st, &opt, below, px, NULL);
+        cx_render_project(o.st, &opt, below, px, NULL);
         const unsigned char *c = test_png_px(&img, (int)px[0], (int)px[1]);
         /* the fill (219, 214, 204), its hatching (158, 148, 133) or a mix */
         CX_CHECK(c[0] >= 150 && c[0] <= 225 && c[0] > c[2] + 8 && c[1] > c[2]);
@@ -182,7 +183,7 @@ static void test_hertz(void)
         }
         if (f != CX_FIELD_STATUS && f != CX_FIELD_PRESSURE) {
             /* inside the body: the colormap at the node's value */
-            CX_CHECK_OK(cx_field_nodal(p, o.uall, o.st.lN, o.st.status, f, val));
+            CX_CHECK_OK(cx_field_nodal(o.st, f, val, NULL));
             double lo = INFINITY, hi = -INFINITY;
             for (int i = 0; i < p->mesh->nnodes; i++) {
                 lo = fmin(lo, val[i]);
@@ -207,7 +208,7 @@ static void test_hertz(void)
 
     /* text chunks */
     opt.field = CX_FIELD_VON_MISES;
-    CX_CHECK_OK(render_read(&o.st, &opt, &img, NULL));
+    CX_CHECK_OK(render_read(o.st, &opt, &img, NULL));
     const char *t;
     CX_CHECK((t = test_png_text(&img, "scene")) && strcmp(t, "hertz") == 0);
     CX_CHECK((t = test_png_text(&img, "level")) && strcmp(t, "8") == 0);
@@ -216,27 +217,27 @@ static void test_hertz(void)
     CX_CHECK((t = test_png_text(&img, "F")) && fabs(atof(t) - 0.3) < 1e-12);
     CX_CHECK((t = test_png_text(&img, "parameters")) && strncmp(t, "rho=", 4) == 0 &&
              fabs(atof(t + 4) - 1e-3) < 1e-15);
-    CX_CHECK((t = test_png_text(&img, "kkt error")) && fabs(atof(t) - o.st.kkt) <= 1e-6 * o.st.kkt);
+    CX_CHECK((t = test_png_text(&img, "kkt error")) && fabs(atof(t) - o.st->run.kkt) <= 1e-6 * o.st->run.kkt);
     CX_CHECK((t = test_png_text(&img, "Software")) && strncmp(t, "signorini ", 10) == 0);
     CX_CHECK((t = test_png_text(&img, "field")) && strcmp(t, "von-mises") == 0);
     test_png_free(&img);
 
     /* the same state twice: the same bytes */
     cx_diag d;
-    CX_CHECK_OK(cx_render_png(&o.st, &opt, "test_image_again.png", NULL, &d));
+    CX_CHECK_OK(cx_render_png(o.st, &opt, "test_image_again.png", NULL, &d));
     CX_CHECK(test_files_equal(OUT, "test_image_again.png"));
     remove("test_image_again.png");
 
     /* a bad path: one line naming it, no file */
-    CX_CHECK(cx_render_png(&o.st, &opt, "no-such-dir/x.png", NULL, &d) == CX_EIO);
+    CX_CHECK(cx_render_png(o.st, &opt, "no-such-dir/x.png", NULL, &d) == CX_EIO);
     CX_CHECK(strstr(d.msg, "no-such-dir/x.png") && !strchr(d.msg, '\n'));
     CX_CHECK(access("no-such-dir", F_OK) != 0);
     /* bad options */
     opt.width = 10;
-    CX_CHECK(cx_render_png(&o.st, &opt, OUT, NULL, &d) == CX_EINVAL);
+    CX_CHECK(cx_render_png(o.st, &opt, OUT, NULL, &d) == CX_EINVAL);
     opt.width = W;
     opt.view = CX_VIEW_CONTACT;
-    CX_CHECK(cx_render_png(&o.st, &opt, OUT, NULL, &d) == CX_EINVAL);
+    CX_CHECK(cx_render_png(o.st, &opt, OUT, NULL, &d) == CX_EINVAL);
     cx_free(val);
     solved_free(&o);
 }
@@ -245,8 +246,8 @@ static void test_block3d(void)
 {
     solved o;
     solve_scene(&o, "block3d", 2);
-    const cx_problem *p = o.st.p;
-    double scale = cx_render_auto_scale(p, o.uall);
+    const cx_problem *p = cx_session_problem(o.s);
+    double scale = cx_render_auto_scale(o.st);
     test_png img;
     cx_render_opts opt;
     cx_render_opts_default(&opt);
@@ -257,7 +258,7 @@ static void test_block3d(void)
     int node = nearest_node(p->mesh, top);
     for (int f = 0; f < CX_FIELD_COUNT; f++) {
         opt.field = f;
-        if (render_read(&o.st, &opt, &img, NULL) != 0) {
+        if (render_read(o.st, &opt, &img, NULL) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -269,7 +270,7 @@ static void test_block3d(void)
         CX_CHECK(!is_white(c));
         /* the plane patch beside the body: the obstacle's brown */
         double side[3] = {1.6, -0.3, 0.0}, px[2];
-        cx_render_project(&o.st, &opt, side, px, NULL);
+        cx_render_project(o.st, &opt, side, px, NULL);
         c = test_png_px(&img, (int)px[0], (int)px[1]);
         CX_CHECK(!is_white(c) && c[0] > c[2] + 10);
         test_png_free(&img);
@@ -277,9 +278,9 @@ static void test_block3d(void)
     /* the contact faces on their own: the uniform pressure 10 fills them */
     opt.view = CX_VIEW_CONTACT;
     opt.field = CX_FIELD_PRESSURE;
-    CX_CHECK_OK(render_read(&o.st, &opt, &img, NULL));
+    CX_CHECK_OK(render_read(o.st, &opt, &img, NULL));
     double mid[3] = {0.5, 0.5, 0.0}, px[2];
-    cx_render_project(&o.st, &opt, mid, px, NULL);
+    cx_render_project(o.st, &opt, mid, px, NULL);
     unsigned char want[3];
     cx_colormap(0, 1.0, want);   /* range [0, max]: the uniform value is the top */
     CX_CHECK(colour_dist(test_png_px(&img, (int)px[0], (int)px[1]), want) < 40);
@@ -352,8 +353,14 @@ static void test_multibody(void)
     double *u = CX_NEW(double, p->n), *lN = CX_NEW(double, p->m);
     for (int k = 0; k < p->mesh->nnodes; k++)
         u[2 * k] = 0.01 * (p->mesh->body ? p->mesh->body[k / NPB * EPB] + 1 : 1) * p->mesh->x[2 * k];
-    cx_render_state st = {.p = p, .u = u, .lN = lN, .obstacle = &ob, .scene = "six blocks",
-                          .title = "six blocks", .level = 1, .method = "none", .params = ""};
+    cx_result *st = NULL;
+    CX_CHECK_OK(cx_result_create(&st, p, u, lN, NULL, NULL, &d));
+    st->has_obstacle = 1;
+    st->obstacle = ob;
+    snprintf(st->run.scene, sizeof st->run.scene, "six blocks");
+    snprintf(st->run.title, sizeof st->run.title, "six blocks");
+    snprintf(st->run.method, sizeof st->run.method, "none");
+    st->run.level = 1;
     cx_render_opts opt;
     cx_render_opts_default(&opt);
     opt.width = W;
@@ -363,7 +370,7 @@ static void test_multibody(void)
     opt.edges = 1;
     test_png img;
     cx_render_timing t;
-    CX_CHECK_OK(render_read(&st, &opt, &img, &t));
+    CX_CHECK_OK(render_read(st, &opt, &img, &t));
     CX_CHECK(t.draw_calls == 2);   /* all six bodies, then all their edges */
     double umax = 0;
     for (int k = 0; k < p->n; k++)
@@ -373,7 +380,7 @@ static void test_multibody(void)
          * sample a quarter cell off it) */
         int c = b * NPB + 4;
         double x[2] = {p->mesh->x[2 * c] + 0.125 + u[2 * c], p->mesh->x[2 * c + 1] + 0.125}, px[2];
-        cx_render_project(&st, &opt, x, px, NULL);
+        cx_render_project(st, &opt, x, px, NULL);
         unsigned char want[3];
         double v = 0.01 * (b + 1) * (p->mesh->x[2 * c] + 0.125);
         cx_colormap(1, (v + umax) / (2 * umax), want);
@@ -388,7 +395,7 @@ static void test_multibody(void)
         if (cx_field_check(fld, 2, NULL) != CX_OK)
             continue;
         opt.field = fld;
-        if (render_read(&st, &opt, &img, &t) != 0) {
+        if (render_read(st, &opt, &img, &t) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -399,7 +406,7 @@ static void test_multibody(void)
         for (int b = 0; b < NB && fld == CX_FIELD_VON_MISES; b++) {
             int c = b * NPB + 4;
             double x[2] = {p->mesh->x[2 * c] + 0.125 + u[2 * c], p->mesh->x[2 * c + 1] + 0.125}, px[2];
-            cx_render_project(&st, &opt, x, px, NULL);
+            cx_render_project(st, &opt, x, px, NULL);
             unsigned char want[3];
             cx_colormap(0, (b + 1) * (b + 1) / 36.0, want);
             CX_CHECK(colour_dist(test_png_px(&img, (int)px[0], (int)px[1]), want) < 30);
@@ -408,6 +415,7 @@ static void test_multibody(void)
     }
     cx_free(u);
     cx_free(lN);
+    cx_result_destroy(&st);
     cx_problem_destroy(&p);
 }
 

@@ -1,8 +1,7 @@
 /* VTK XML UnstructuredGrid (.vtu) output for ParaView: ASCII, or binary
  * data as base64 with a UInt64 byte-count header per array (uncompressed).
- * Written to a temporary file and renamed. */
-#include "render/render.h"
-#include "render/outfile.h"
+ * Written from a cx_result through out/outfile.h (no GL needed). */
+#include "out/out.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -82,33 +81,27 @@ static int vtu_celltype(cx_elem_type t)
     return 0;
 }
 
-static int vtu_body(vtu_out *o, const cx_render_state *st)
+static int vtu_body(vtu_out *o, cx_result *r, cx_diag *d)
 {
-    const cx_problem *p = st->p;
-    const cx_mesh *m = p->mesh;
+    const cx_mesh *m = r->mesh;
     int dim = m->dim, nn = m->nnodes, ne = m->nelems, ns = cx_fem_nstress(dim);
     size_t nc = (size_t)m->npe * ne;
-    double *uall = cx_malloc(sizeof(double) * (size_t)dim * nn);
-    double *x3 = CX_NEW(double, 3 * (size_t)nn), *u3 = CX_NEW(double, 3 * (size_t)nn);
-    double *sig = cx_malloc(sizeof(double) * (size_t)ns * nn), *vm = cx_malloc(sizeof(double) * (size_t)nn);
-    double *pr = cx_malloc(sizeof(double) * (size_t)nn), *stv = cx_malloc(sizeof(double) * (size_t)nn);
-    int32_t *status = cx_malloc(sizeof(int32_t) * (size_t)nn), *body = cx_malloc(sizeof(int32_t) * (size_t)ne + 1);
+    const double *sig = NULL, *vm = NULL;
+    CX_TRY(cx_result_stress(r, &sig, &vm, d));
+    double *x3 = CX_NEW(double, 3 * (size_t)nn + 1), *u3 = CX_NEW(double, 3 * (size_t)nn + 1);
+    double *pr = cx_malloc(sizeof(double) * (size_t)nn + 1), *stv = cx_malloc(sizeof(double) * (size_t)nn + 1);
+    int32_t *status = cx_malloc(sizeof(int32_t) * (size_t)nn + 1), *body = cx_malloc(sizeof(int32_t) * (size_t)ne + 1);
     int64_t *conn = cx_malloc(sizeof(int64_t) * nc + 1), *off = cx_malloc(sizeof(int64_t) * (size_t)ne + 1);
     uint8_t *types = cx_malloc((size_t)ne + 1);
     int rc = CX_ENOMEM;
-    if (!uall || !x3 || !u3 || !sig || !vm || !pr || !stv || !status || !body || !conn || !off || !types)
+    if (!x3 || !u3 || !pr || !stv || !status || !body || !conn || !off || !types)
         goto done;
-    cx_fem_expand(&p->map, st->u, uall);
-    if ((rc = cx_fem_nodal_stress(m, p->mats, uall, sig)) != CX_OK)
-        goto done;
-    if ((rc = cx_field_nodal(p, uall, st->lN, st->status, CX_FIELD_VON_MISES, vm)) != CX_OK ||
-        (rc = cx_field_nodal(p, uall, st->lN, st->status, CX_FIELD_PRESSURE, pr)) != CX_OK ||
-        (rc = cx_field_nodal(p, uall, st->lN, st->status, CX_FIELD_STATUS, stv)) != CX_OK)
-        goto done;
+    cx_result_nodal_pressure(r, pr);
+    cx_result_nodal_status(r, stv);
     for (int i = 0; i < nn; i++) {
         for (int k = 0; k < dim; k++) {
             x3[3 * i + k] = m->x[dim * i + k];
-            u3[3 * i + k] = uall[dim * i + k];
+            u3[3 * i + k] = r->u[dim * i + k];
         }
         status[i] = (int32_t)stv[i];
     }
@@ -125,7 +118,7 @@ static int vtu_body(vtu_out *o, const cx_render_state *st)
     fprintf(f, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"%s\" header_type=\"UInt64\">\n",
             *(const unsigned char *)&one ? "LittleEndian" : "BigEndian");
     fprintf(f, "  <!-- signorini: scene %s, level %d, method %s, kkt error %.6e -->\n",
-            st->scene ? st->scene : "", st->level, st->method ? st->method : "", st->kkt);
+            r->run.scene, r->run.level, r->run.method, r->run.kkt);
     fprintf(f, "  <UnstructuredGrid>\n");
     fprintf(f, "    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n", nn, ne);
     fprintf(f, "      <PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
@@ -155,11 +148,8 @@ static int vtu_body(vtu_out *o, const cx_render_state *st)
     fprintf(f, "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
     rc = CX_OK;
 done:
-    cx_free(uall);
     cx_free(x3);
     cx_free(u3);
-    cx_free(sig);
-    cx_free(vm);
     cx_free(pr);
     cx_free(stv);
     cx_free(status);
@@ -167,17 +157,21 @@ done:
     cx_free(conn);
     cx_free(off);
     cx_free(types);
-    return rc;
+    return rc == CX_OK ? CX_OK : cx_diag_set(d, rc, "%s", cx_status_str(rc));
 }
 
-int cx_vtu_write(const cx_render_state *st, const char *path, int ascii, cx_diag *d)
+int cx_vtu_write(cx_result *r, const char *path, int ascii, cx_diag *d)
 {
+    /* the stresses first: an error there leaves no file at all */
+    CX_TRY(cx_result_stress(r, NULL, NULL, d));
     cx_outfile out;
     CX_TRY(cx_outfile_open(&out, path, d));
     vtu_out o = {out.f, ascii};
-    int rc = vtu_body(&o, st);
+    int rc = vtu_body(&o, r, d);
     int rc2 = cx_outfile_close(&out, rc == CX_OK, d);
-    if (rc != CX_OK)
-        return cx_diag_set(d, rc, "%s: %s", path, cx_status_str(rc));
+    if (rc != CX_OK) {
+        cx_diag_prefix(d, "%s", path);
+        return rc;
+    }
     return rc2;
 }

@@ -1,0 +1,36 @@
+/* out/: the solution snapshot (out/result.h) and every output format that
+ * needs no GL — VTU for ParaView, the JSON of 'solve' and 'list', CSV
+ * (out/csv.h), the JSON writer (out/json.h) — and the one safe way to
+ * write a file (out/outfile.h: temporary + rename, links kept, devices
+ * written in place, "-" for standard output). render/ draws from the same
+ * cx_result. Nothing here prints; errors are one line in a cx_diag. */
+#ifndef CX_OUT_H
+#define CX_OUT_H
+
+#include <stdio.h>
+
+#include "out/csv.h"
+#include "out/json.h"
+#include "out/outfile.h"
+#include "out/result.h"
+
+/* Write the mesh (undeformed coordinates) with point data "displacement"
+ * (3 components, z = 0 in 2D), "stress" (Voigt: 3 in 2D, 6 in 3D),
+ * "von_mises", "contact_pressure", "contact_status" (-1 away from the
+ * contact points) and cell data "body", as a VTK XML UnstructuredGrid
+ * (ascii = 1: ASCII; 0: base64 binary) through out/outfile.h. CX_EIO,
+ * CX_ENOMEM, CX_ENUMERIC (stresses), each with "PATH: reason". */
+int cx_vtu_write(cx_result *r, const char *path, int ascii, cx_diag *d);
+
+/* The JSON object of 'signorini solve --json' (DESIGN.md §6) for r.
+ * CX_EIO if a write to out failed. */
+int cx_result_write_json(const cx_result *r, FILE *out);
+
+/* The JSON of 'signorini list --json': the scenes ids[nids] (each opened
+ * for its details; one that cannot be read gets "error") and every
+ * registered method with its parameters. CX_EIO if a write failed. */
+int cx_list_write_json(char (*ids)[CX_SCENE_NAMELEN], int nids, FILE *out);
+/* "frictionless tresca 2d ..." for a method's supports flags. */
+void cx_list_supports(unsigned flags, char *buf, size_t len);
+
+#endif

@@ -1,0 +1,250 @@
+/* The solution snapshot (see result.h). */
+#include "out/result.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static void *result_dup(const void *src, size_t bytes, int *bad)
+{
+    if (!src || bytes == 0)
+        return NULL;
+    void *p = cx_malloc(bytes);
+    if (p)
+        memcpy(p, src, bytes);
+    else
+        *bad = 1;
+    return p;
+}
+
+static cx_mesh *result_mesh_copy(const cx_mesh *src)
+{
+    cx_mesh *m = CX_NEW(cx_mesh, 1);
+    if (!m)
+        return NULL;
+    int bad = 0;
+    *m = *src;
+    m->x = result_dup(src->x, sizeof(double) * (size_t)src->dim * src->nnodes, &bad);
+    m->conn = result_dup(src->conn, sizeof(int) * (size_t)src->npe * src->nelems, &bad);
+    m->body = result_dup(src->body, sizeof(int) * (size_t)src->nelems, &bad);
+    m->bounds = result_dup(src->bounds, sizeof(cx_boundary) * (size_t)src->nbounds, &bad);
+    for (int k = 0; m->bounds && k < m->nbounds; k++)
+        m->bounds[k].facets = bad ? NULL
+                                  : result_dup(src->bounds[k].facets,
+                                               sizeof(int) * (size_t)src->bounds[k].npf * src->bounds[k].nfacets, &bad);
+    if (bad)
+        cx_mesh_destroy(&m);
+    return m;
+}
+
+/* The points' geometry without the N and T rows (which only a solver needs). */
+static int result_contact_copy(cx_contact_set *c, const cx_contact_set *src)
+{
+    int bad = 0, m = src->m, dim = src->dim;
+    memset(c, 0, sizeof *c);
+    c->dim = dim;
+    c->m = m;
+    c->nall = src->nall;
+    c->node = result_dup(src->node, sizeof(int) * (size_t)m, &bad);
+    c->x = result_dup(src->x, sizeof(double) * (size_t)dim * m, &bad);
+    c->weight = result_dup(src->weight, sizeof(double) * (size_t)m, &bad);
+    c->normal = result_dup(src->normal, sizeof(double) * (size_t)dim * m, &bad);
+    c->tangent = result_dup(src->tangent, sizeof(double) * (size_t)dim * (dim - 1) * m, &bad);
+    c->gap = result_dup(src->gap, sizeof(double) * (size_t)m, &bad);
+    return bad ? CX_ENOMEM : CX_OK;
+}
+
+void cx_result_destroy(cx_result **r)
+{
+    if (!r || !*r)
+        return;
+    cx_result *x = *r;
+    cx_mesh_destroy(&x->mesh);
+    cx_free(x->mats);
+    cx_contact_clear(&x->contact);
+    cx_free(x->u);
+    cx_free(x->lN);
+    cx_free(x->lT);
+    cx_free(x->status);
+    cx_free(x->stress_cache);
+    cx_free(x->vm_cache);
+    cx_free(x);
+    *r = NULL;
+}
+
+int cx_result_create(cx_result **r, const cx_problem *p, const double *u, const double *lN,
+                     const double *lT, const unsigned char *status, cx_diag *d)
+{
+    *r = NULL;
+    cx_result *x = CX_NEW(cx_result, 1);
+    if (!x)
+        return cx_diag_set(d, CX_ENOMEM, "result: out of memory");
+    const cx_mesh *pm = p->mesh;
+    x->dim = p->dim;
+    x->n = p->n;
+    x->m = p->m;
+    x->nt = p->nt;
+    x->mesh = result_mesh_copy(pm);
+    x->mats = CX_NEW(cx_material, pm->nbodies > 0 ? pm->nbodies : 1);
+    x->u = CX_NEW(double, (size_t)p->dim * pm->nnodes);
+    x->lN = CX_NEW(double, (size_t)p->m + 1);
+    x->lT = CX_NEW(double, (size_t)p->nt + 1);
+    x->status = CX_NEW(unsigned char, (size_t)p->m + 1);
+    if (!x->mesh || !x->mats || !x->u || !x->lN || !x->lT || !x->status ||
+        result_contact_copy(&x->contact, &p->contact) != CX_OK) {
+        cx_result_destroy(&x);
+        return cx_diag_set(d, CX_ENOMEM, "result: out of memory");
+    }
+    memcpy(x->mats, p->mats, sizeof(cx_material) * (size_t)pm->nbodies);
+    cx_fem_expand(&p->map, u, x->u);
+    if (p->m > 0) {
+        memcpy(x->lN, lN, sizeof(double) * (size_t)p->m);
+        if (status)
+            memcpy(x->status, status, (size_t)p->m);
+    }
+    if (lT && p->nt > 0)
+        memcpy(x->lT, lT, sizeof(double) * (size_t)p->nt);
+    memcpy(x->f_applied, p->f_applied, sizeof x->f_applied);
+    /* the contact's resultant on the body: -(N'lN + T'lT), per component */
+    const cx_contact_set *c = &p->contact;
+    int dim = p->dim, dt = dim - 1;
+    for (int i = 0; i < p->m; i++)
+        for (int k = 0; k < dim; k++) {
+            x->f_contact[k] -= x->lN[i] * c->normal[dim * i + k];
+            if (p->friction != CX_FRICTION_NONE)
+                for (int q = 0; q < dt; q++)
+                    x->f_contact[k] -= x->lT[dt * i + q] * c->tangent[dim * (dt * i + q) + k];
+        }
+    x->run.friction = p->friction;
+    x->run.F = p->F;
+    x->run.slip_bound = p->slip_bound;
+    x->run.own = NAN;
+    for (int i = 0; i < p->m; i++) {
+        int s = x->status[i];
+        x->run.nfree += s == CX_PT_FREE;
+        x->run.ncontact += s == CX_PT_CONTACT;
+        x->run.nstick += s == CX_PT_STICK;
+        x->run.nslip += s == CX_PT_SLIP_POS || s == CX_PT_SLIP_NEG;
+    }
+    *r = x;
+    return CX_OK;
+}
+
+int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *sc, int level,
+                           cx_diag *d)
+{
+    *r = NULL;
+    const cx_problem *p = cx_session_problem(s);
+    const cx_iterate *it = cx_session_iterate(s);
+    const cx_method *m = cx_session_method(s);
+    if (m && it->u_partial)
+        return cx_diag_set(d, CX_EINVAL, "result: the iterate is partial (complete it first)");
+    cx_result *x = NULL;
+    CX_TRY(cx_result_create(&x, p, it->u, it->lN, it->lT, m ? it->status : NULL, d));
+    cx_run_record *run = &x->run;
+    if (sc) {
+        snprintf(run->scene, sizeof run->scene, "%s", sc->id);
+        snprintf(run->title, sizeof run->title, "%s", sc->title);
+        x->has_obstacle = 1;
+        x->obstacle = sc->obstacle;
+        double pa, pr;
+        if (cx_scene_pressure_error(sc, p, x->lN, &pa, &pr) == CX_OK) {
+            run->has_pressure_error = 1;
+            run->pressure_error_abs = pa;
+            run->pressure_error_rel = pr;
+            run->hertz_halfwidth = cx_scene_hertz_halfwidth(sc);
+        }
+    }
+    run->level = level > 0 ? level : sc ? sc->level : 0;
+    run->tol = cx_session_options(s)->tol;
+    if (!m) {
+        *r = x;
+        return CX_OK;
+    }
+    snprintf(run->method, sizeof run->method, "%s", m->id);
+    const cx_param_values *pv = cx_session_params(s);
+    if (pv) {
+        run->params = *pv;
+        size_t n = 0, len = sizeof run->params_text;
+        for (int k = 0; k < pv->n && n + 2 < len; k++) {
+            char v[64];
+            cx_param_format(pv, k, v, sizeof v);
+            int w = snprintf(run->params_text + n, len - n, "%s%s=%s", k ? " " : "", pv->table[k].key, v);
+            if (w < 0 || (size_t)w >= len - n) {
+                run->params_text[n] = '\0';
+                break;
+            }
+            n += (size_t)w;
+        }
+    }
+    run->iterations = it->iter;
+    run->reason = it->reason;
+    run->converged = it->reason > 0;
+    snprintf(run->message, sizeof run->message, "%s", cx_session_reason_msg(s));
+    run->kkt = it->kkt;
+    run->kkt_parts = it->kkt_parts;
+    run->own = it->own;
+    run->nfree = it->nfree;
+    run->ncontact = it->ncontact;
+    run->nstick = it->nstick;
+    run->nslip = it->nslip;
+    run->counters = it->counters;
+    run->inner_total = it->inner_total;
+    run->time.setup = it->init_time;
+    run->time.solve = it->time - it->init_time;
+    run->time.total = it->time;
+    *r = x;
+    return CX_OK;
+}
+
+int cx_result_stress(cx_result *r, const double **sigma, const double **von_mises, cx_diag *d)
+{
+    const cx_mesh *m = r->mesh;
+    int nn = m->nnodes, ns = cx_fem_nstress(m->dim);
+    if (!r->stress_cache) {
+        double *sig = cx_malloc(sizeof(double) * (size_t)ns * nn + 1);
+        double *vm = cx_malloc(sizeof(double) * (size_t)nn + 1);
+        int *owner = CX_NEW(int, (size_t)nn + 1);
+        int rc = sig && vm && owner ? cx_fem_nodal_stress(m, r->mats, r->u, sig) : CX_ENOMEM;
+        if (rc == CX_OK) {
+            /* the material of a node: that of the body of an element using it */
+            if (m->body)
+                for (int e = 0; e < m->nelems; e++)
+                    for (int a = 0; a < m->npe; a++)
+                        owner[m->conn[m->npe * e + a]] = m->body[e];
+            for (int k = 0; k < nn; k++)
+                vm[k] = cx_fem_von_mises(&r->mats[owner[k]], sig + (size_t)ns * k);
+            r->stress_cache = sig;
+            r->vm_cache = vm;
+        } else {
+            cx_free(sig);
+            cx_free(vm);
+        }
+        cx_free(owner);
+        if (rc != CX_OK)
+            return cx_diag_set(d, rc, "stresses: %s", cx_status_str(rc));
+    }
+    if (sigma)
+        *sigma = r->stress_cache;
+    if (von_mises)
+        *von_mises = r->vm_cache;
+    return CX_OK;
+}
+
+void cx_result_nodal_pressure(const cx_result *r, double *val)
+{
+    const cx_contact_set *cs = &r->contact;
+    for (int k = 0; k < r->mesh->nnodes; k++)
+        val[k] = 0;
+    for (int i = 0; i < cs->m; i++)
+        val[cs->node[i]] = cs->weight[i] > 0 ? r->lN[i] / cs->weight[i] : 0;
+}
+
+void cx_result_nodal_status(const cx_result *r, double *val)
+{
+    const cx_contact_set *cs = &r->contact;
+    for (int k = 0; k < r->mesh->nnodes; k++)
+        val[k] = -1;
+    for (int i = 0; i < cs->m; i++)
+        val[cs->node[i]] = r->status[i];
+}

@@ -1,0 +1,86 @@
+/* The JSON object of 'signorini solve --json' (DESIGN.md §6). */
+#include "out/out.h"
+#include "cx_config.h"
+
+#include <math.h>
+
+int cx_result_write_json(const cx_result *r, FILE *out)
+{
+    const cx_run_record *run = &r->run;
+    cx_json j;
+    cx_json_init(&j, out);
+    cx_json_object(&j, NULL);
+    cx_json_str(&j, "scene", run->scene);
+    cx_json_int(&j, "level", run->level);
+    cx_json_str(&j, "method", run->method);
+    cx_json_str(&j, "friction", cx_friction_name(run->friction));
+    if (run->friction == CX_FRICTION_TRESCA)
+        cx_json_num(&j, "slip_bound", run->slip_bound);
+    if (run->friction == CX_FRICTION_COULOMB)
+        cx_json_num(&j, "F", run->F);
+    cx_json_int(&j, "dim", r->dim);
+    cx_json_int(&j, "dofs", r->n);
+    cx_json_int(&j, "contact_points", r->m);
+    cx_json_int(&j, "iterations", run->iterations);
+    cx_json_bool(&j, "converged", run->converged);
+    cx_json_str(&j, "reason", cx_reason_id(run->reason));
+    if (run->message[0])
+        cx_json_str(&j, "message", run->message);
+    cx_json_num(&j, "kkt_error", run->kkt);
+    cx_json_object(&j, "kkt_parts");
+    cx_json_num(&j, "equilibrium", run->kkt_parts.equilibrium);
+    cx_json_num(&j, "contact", run->kkt_parts.contact);
+    cx_json_num(&j, "friction", run->kkt_parts.friction);
+    cx_json_end_object(&j);
+    cx_json_num(&j, "own_criterion", run->own);
+    cx_json_num(&j, "tol", run->tol);
+    cx_json_object(&j, "time");
+    cx_json_num(&j, "assemble", run->time.assemble);
+    cx_json_num(&j, "setup", run->time.setup);
+    cx_json_num(&j, "solve", run->time.solve);
+    cx_json_num(&j, "total", run->time.total);
+    if (run->has_baseline)
+        cx_json_num(&j, "linear_solve", run->time.baseline);
+    cx_json_end_object(&j);
+    cx_json_object(&j, "counts");
+    cx_json_int(&j, "factorizations", run->counters.factorizations);
+    cx_json_int(&j, "solves", run->counters.solves);
+    cx_json_int(&j, "matvecs", run->counters.matvecs);
+    cx_json_int(&j, "dual_products", run->counters.dual_products);
+    cx_json_int(&j, "inner_iterations", run->inner_total);
+    cx_json_end_object(&j);
+    cx_json_int(&j, "active", run->ncontact + run->nstick + run->nslip);
+    cx_json_int(&j, "stick", run->nstick);
+    cx_json_int(&j, "slip", run->nslip);
+    cx_json_int(&j, "free", run->nfree);
+    cx_json_object(&j, "force");
+    cx_json_vec(&j, "applied", r->f_applied, r->dim);
+    cx_json_vec(&j, "contact", r->f_contact, r->dim);
+    cx_json_end_object(&j);
+    cx_json_object(&j, "params");
+    const cx_param_values *pv = &run->params;
+    for (int k = 0; k < pv->n; k++) {
+        char buf[64];
+        const cx_param *q = &pv->table[k];
+        if (q->type == CX_PARAM_REAL && !isnan(pv->num[k]))
+            cx_json_num(&j, q->key, pv->num[k]);
+        else if (q->type == CX_PARAM_INT)
+            cx_json_int(&j, q->key, (long)pv->num[k]);
+        else if (q->type == CX_PARAM_BOOL)
+            cx_json_bool(&j, q->key, pv->num[k] != 0);
+        else {
+            cx_param_format(pv, k, buf, sizeof buf);
+            cx_json_str(&j, q->key, buf);
+        }
+    }
+    cx_json_end_object(&j);
+    if (run->has_pressure_error) {
+        cx_json_object(&j, "pressure_error_l2");
+        cx_json_num(&j, "abs", run->pressure_error_abs);
+        cx_json_num(&j, "rel", run->pressure_error_rel);
+        cx_json_end_object(&j);
+    }
+    cx_json_str(&j, "version", CX_VERSION);
+    cx_json_end_object(&j);
+    return ferror(out) ? CX_EIO : CX_OK;
+}
