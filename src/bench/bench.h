@@ -160,11 +160,6 @@ int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d);
  * the table has). */
 void bench_set_result(bench_table *t, int r, const bench_result *res);
 
-/* A file written whole or not at all: open a temporary name beside path
- * (stdout for "-"), then rename it over path (removed on any error). */
-FILE *bench_file_open(const char *path, char *tmp, size_t len, cx_diag *d);
-int bench_file_commit(FILE *f, const char *path, const char *tmp, cx_diag *d);
-
 /* ---- options every benchmark takes ------------------------------------ */
 
 typedef struct bench_common {
@@ -231,14 +226,17 @@ extern const char bench_png_missing[];
 /* ---- progress and Ctrl-C ------------------------------------------------ */
 
 /* From now on Ctrl-C (SIGINT) sets a flag that the runs and the loops of
- * the benchmark poll, instead of ending the process. */
+ * the benchmark poll, instead of ending the process; a second Ctrl-C ends
+ * it at once (130), removing a temporary file being written. */
 void bench_catch_sigint(void);
 /* Start a bar of total cases (drawn on stderr only when it is a
  * terminal). */
 void bench_progress_start(int total);
 /* Case k (0-based) starts: label names it. */
 void bench_progress_case(int k, const char *label);
-/* Erase the bar; restore the default SIGINT handler. */
+/* Erase the bar; from now on (only output is left to write) Ctrl-C ends
+ * the program at once with status 130, removing a temporary file being
+ * written (cx_outfile_abandon_pending). */
 void bench_progress_end(void);
 /* 1 once Ctrl-C was pressed. */
 int bench_interrupted(void);

@@ -2,6 +2,7 @@
  * the outputs, the progress bar, Ctrl-C, and the plot data. */
 #define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT) for the thread counts */
 #include "bench/bench.h"
+#include "out/outfile.h"
 #include "cx_config.h"
 
 #if CX_HAVE_RENDER
@@ -245,10 +246,33 @@ static volatile sig_atomic_t progress_stop;
 static int progress_total, progress_tty;
 static double progress_t0;
 
+/* Ctrl-C during the runs: the runs stop and the table keeps those that
+ * finished; a second Ctrl-C ends the program at once. */
 static void progress_on_sigint(int sig)
 {
     (void)sig;
+    if (progress_stop) {
+        cx_outfile_abandon_pending();
+        _exit(CX_EXIT_INTERRUPTED);
+    }
     progress_stop = 1;
+}
+
+/* Ctrl-C while the output is written: end now, leaving no temporary. */
+static void progress_on_sigint_exit(int sig)
+{
+    (void)sig;
+    cx_outfile_abandon_pending();
+    _exit(CX_EXIT_INTERRUPTED);
+}
+
+static void progress_handle_sigint(void (*handler)(int))
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = handler;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
 }
 
 int bench_interrupted(void) { return progress_stop != 0; }
@@ -263,11 +287,7 @@ int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it)
 
 void bench_catch_sigint(void)
 {
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = progress_on_sigint;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
+    progress_handle_sigint(progress_on_sigint);
 }
 
 void bench_progress_start(int total)
@@ -299,7 +319,7 @@ void bench_progress_end(void)
 {
     if (progress_tty && progress_total > 0)
         fputs("\r\033[K", stderr);
-    signal(SIGINT, SIG_DFL);
+    progress_handle_sigint(progress_on_sigint_exit);
     if (progress_stop)
         fputs("signorini bench: interrupted: the table keeps the runs that finished\n", stderr);
 }

@@ -7,6 +7,7 @@
  * doubles u (n), lN (m), lT (nt) in the machine's byte order. A file that
  * does not match the problem's sizes is recomputed. */
 #include "bench/bench.h"
+#include "out/outfile.h"
 
 #include <errno.h>
 #include <math.h>
@@ -168,15 +169,14 @@ static int ref_read(const char *path, const cx_problem *p, bench_ref *r)
 
 static int ref_write(const char *path, const bench_ref *r, cx_diag *d)
 {
-    char tmp[760];
-    FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
-    if (!f)
-        return CX_EIO;
+    cx_outfile o;
+    CX_TRY(cx_outfile_open(&o, path, d));
+    FILE *f = o.f;
     fprintf(f, "CXREF 1 %d %d %d %.17g %d %s\n", r->n, r->m, r->nt, r->kkt, r->iterations, r->method);
     fwrite(r->u, sizeof(double), (size_t)r->n, f);
     fwrite(r->lN, sizeof(double), (size_t)r->m, f);
     fwrite(r->lT, sizeof(double), (size_t)r->nt, f);
-    return bench_file_commit(f, path, tmp, d);
+    return cx_outfile_close(&o, 1, d);
 }
 
 /* Solve p with the candidates in turn until one reaches REF_TOL; keep the

@@ -1,10 +1,10 @@
 /* Result tables of the benchmarks: typed cells, a header of "key: value"
- * lines, and three writers (aligned text, CSV, JSON). Files are written to
- * a temporary name and renamed, so that an interrupted or failed write
- * never leaves half a file under the real name. */
+ * lines, and three writers (aligned text; CSV and JSON through out/'s
+ * writers and its safe-output helper, so that a failed or interrupted
+ * write never leaves half a file under the real name). */
 #define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT) to ask which BLAS is loaded */
 #include "bench/bench.h"
-#include "out/json.h"
+#include "out/out.h"
 #include "cx_config.h"
 
 #include <dlfcn.h>
@@ -181,79 +181,34 @@ void bench_table_print(const bench_table *t, FILE *out)
     }
 }
 
-FILE *bench_file_open(const char *path, char *tmp, size_t len, cx_diag *d)
-{
-    if (strcmp(path, "-") == 0)
-        return stdout;
-    snprintf(tmp, len, "%s.tmp.%ld", path, (long)getpid());
-    FILE *f = fopen(tmp, "w");
-    if (!f)
-        cx_diag_set(d, CX_EIO, "%s: cannot write", path);
-    return f;
-}
-
-int bench_file_commit(FILE *f, const char *path, const char *tmp, cx_diag *d)
-{
-    if (f == stdout)
-        return fflush(stdout) == 0 ? CX_OK : cx_diag_set(d, CX_EIO, "cannot write to stdout");
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
-    if (bad || rename(tmp, path) != 0) {
-        remove(tmp);
-        return cx_diag_set(d, CX_EIO, "%s: cannot write", path);
-    }
-    return CX_OK;
-}
-
-static void csv_field(FILE *f, const char *s)
-{
-    if (!strpbrk(s, ",\"\n")) {
-        fputs(s, f);
-        return;
-    }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 int bench_table_write_csv(const bench_table *t, const char *path, cx_diag *d)
 {
-    char tmp[600], buf[BENCH_CELL_LEN + 32];
-    FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
-    if (!f)
-        return CX_EIO;
+    char buf[BENCH_CELL_LEN + 32];
+    cx_outfile f;
+    CX_TRY(cx_outfile_open(&f, path, d));
+    cx_csv c;
+    cx_csv_init(&c, f.f);
     for (int k = 0; k < t->nmeta; k++)
-        fprintf(f, "# %s: %s\n", t->meta[k][0], t->meta[k][1]);
-    for (int c = 0; c < t->ncols; c++) {
-        if (c)
-            fputc(',', f);
-        csv_field(f, t->cols[c]);
-    }
-    fputc('\n', f);
+        cx_csv_comment(&c, t->meta[k][0], t->meta[k][1]);
+    for (int k = 0; k < t->ncols; k++)
+        cx_csv_str(&c, t->cols[k]);
+    cx_csv_end_row(&c);
     for (int r = 0; r < t->nrows; r++) {
-        for (int c = 0; c < t->ncols; c++) {
-            if (c)
-                fputc(',', f);
-            cell_text(t->cells + (size_t)r * t->ncols + c, buf, sizeof buf, 1);
-            csv_field(f, buf);
+        for (int k = 0; k < t->ncols; k++) {
+            cell_text(t->cells + (size_t)r * t->ncols + k, buf, sizeof buf, 1);
+            cx_csv_str(&c, buf);
         }
-        fputc('\n', f);
+        cx_csv_end_row(&c);
     }
-    return bench_file_commit(f, path, tmp, d);
+    return cx_outfile_close(&f, 1, d);
 }
 
 int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d)
 {
-    char tmp[600];
-    FILE *f = bench_file_open(path, tmp, sizeof tmp, d);
-    if (!f)
-        return CX_EIO;
+    cx_outfile f;
+    CX_TRY(cx_outfile_open(&f, path, d));
     cx_json j;
-    cx_json_init(&j, f);
+    cx_json_init(&j, f.f);
     cx_json_object(&j, NULL);
     cx_json_object(&j, "meta");
     for (int k = 0; k < t->nmeta; k++)
@@ -277,5 +232,5 @@ int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d)
     }
     cx_json_end_array(&j);
     cx_json_end_object(&j);
-    return bench_file_commit(f, path, tmp, d);
+    return cx_outfile_close(&f, 1, d);
 }

@@ -1,125 +1,103 @@
 /* Export of the runs on the current scene: one CSV row per step, and one
- * JSON document with every run and its steps. Each file is written to a
- * temporary name beside it and renamed, so nothing is half-written. */
+ * JSON document with every run and its steps, through out/'s CSV and JSON
+ * writers and its safe-output helper (nothing is left half-written). */
 #include "tui/tui_impl.h"
+#include "out/out.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
-
-static void json_str(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 0x20)
-            fprintf(f, "\\u%04x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
-}
-
-/* A number, or null for NaN/Inf (never printed as a result). */
-static void json_num(FILE *f, double x)
-{
-    if (isfinite(x))
-        fprintf(f, "%.17g", x);
-    else
-        fputs("null", f);
-}
-
-static void csv_num(FILE *f, double x)
-{
-    if (isfinite(x))
-        fprintf(f, "%.17g", x);
-}
 
 static void export_csv(const tui_state *st, FILE *f)
 {
-    fputs("run,method,params,friction,coef,iter,kkt,own,free,contact,stick,slip,changed,inner,"
-          "solves,time_s,step_time_s,outcome\n", f);
+    static const char *const cols[] = {"run", "method", "params", "friction", "coef", "iter", "kkt",
+                                       "own", "free", "contact", "stick", "slip", "changed", "inner",
+                                       "solves", "time_s", "step_time_s", "outcome", NULL};
+    cx_csv c;
+    cx_csv_init(&c, f);
+    for (int k = 0; cols[k]; k++)
+        cx_csv_str(&c, cols[k]);
+    cx_csv_end_row(&c);
     for (int r = 0; r < st->nruns; r++) {
         const tui_run *run = &st->runs[r];
         for (int k = 0; k < run->nsteps; k++) {
             const tui_step *s = &run->steps[k];
-            fprintf(f, "%d,%s,\"%s\",%s,", r + 1, run->method, run->params, cx_friction_name(run->law));
-            csv_num(f, run->law == CX_FRICTION_NONE ? NAN : run->coef);
-            fprintf(f, ",%d,", s->iter);
-            csv_num(f, s->kkt);
-            fputc(',', f);
-            csv_num(f, s->own);
-            fprintf(f, ",%d,%d,%d,%d,%d,%ld,%ld,", s->nfree, s->ncontact, s->nstick, s->nslip, s->nchanged,
-                    s->inner, s->solves);
-            csv_num(f, s->time);
-            fputc(',', f);
-            csv_num(f, s->step_time);
-            fprintf(f, ",%s\n", k == run->nsteps - 1 ? cx_reason_id(run->reason) : "iterating");
+            cx_csv_int(&c, r + 1);
+            cx_csv_str(&c, run->method);
+            cx_csv_str(&c, run->params);
+            cx_csv_str(&c, cx_friction_name(run->law));
+            cx_csv_num(&c, run->law == CX_FRICTION_NONE ? NAN : run->coef);
+            cx_csv_int(&c, s->iter);
+            cx_csv_num(&c, s->kkt);
+            cx_csv_num(&c, s->own);
+            cx_csv_int(&c, s->nfree);
+            cx_csv_int(&c, s->ncontact);
+            cx_csv_int(&c, s->nstick);
+            cx_csv_int(&c, s->nslip);
+            cx_csv_int(&c, s->nchanged);
+            cx_csv_int(&c, s->inner);
+            cx_csv_int(&c, s->solves);
+            cx_csv_num(&c, s->time);
+            cx_csv_num(&c, s->step_time);
+            cx_csv_str(&c, k == run->nsteps - 1 ? cx_reason_id(run->reason) : "iterating");
+            cx_csv_end_row(&c);
         }
     }
 }
 
 static void export_json(const tui_state *st, FILE *f)
 {
-    fputs("{\"scene\": ", f);
-    json_str(f, st->scene.id);
-    fprintf(f, ", \"level\": %d, \"dim\": %d, \"dofs\": %d, \"contact_points\": %d, \"runs\": [", st->level,
-            st->info.dim, st->info.n, st->info.m);
+    cx_json j;
+    cx_json_init(&j, f);
+    cx_json_object(&j, NULL);
+    cx_json_str(&j, "scene", st->scene.id);
+    cx_json_int(&j, "level", st->level);
+    cx_json_int(&j, "dim", st->info.dim);
+    cx_json_int(&j, "dofs", st->info.n);
+    cx_json_int(&j, "contact_points", st->info.m);
+    cx_json_array(&j, "runs");
     for (int r = 0; r < st->nruns; r++) {
         const tui_run *run = &st->runs[r];
-        fputs(r ? ",\n  {\"method\": " : "\n  {\"method\": ", f);
-        json_str(f, run->method);
-        fputs(", \"params\": ", f);
-        json_str(f, run->params);
-        fputs(", \"friction\": ", f);
-        json_str(f, cx_friction_name(run->law));
-        fputs(", \"coef\": ", f);
-        json_num(f, run->law == CX_FRICTION_NONE ? NAN : run->coef);
-        fputs(", \"tol\": ", f);
-        json_num(f, run->tol);
-        fputs(", \"reason\": ", f);
-        json_str(f, cx_reason_id(run->reason));
-        fputs(", \"reason_msg\": ", f);
-        json_str(f, run->reason_msg);
-        fputs(", \"steps\": [", f);
+        cx_json_object(&j, NULL);
+        cx_json_str(&j, "method", run->method);
+        cx_json_str(&j, "params", run->params);
+        cx_json_str(&j, "friction", cx_friction_name(run->law));
+        cx_json_num(&j, "coef", run->law == CX_FRICTION_NONE ? NAN : run->coef);
+        cx_json_num(&j, "tol", run->tol);
+        cx_json_str(&j, "reason", cx_reason_id(run->reason));
+        cx_json_str(&j, "reason_msg", run->reason_msg);
+        cx_json_array(&j, "steps");
         for (int k = 0; k < run->nsteps; k++) {
             const tui_step *s = &run->steps[k];
-            fprintf(f, "%s\n    {\"iter\": %d, \"kkt\": ", k ? "," : "", s->iter);
-            json_num(f, s->kkt);
-            fputs(", \"own\": ", f);
-            json_num(f, s->own);
-            fprintf(f, ", \"free\": %d, \"contact\": %d, \"stick\": %d, \"slip\": %d, \"changed\": %d, "
-                       "\"inner\": %ld, \"solves\": %ld, \"time\": ",
-                    s->nfree, s->ncontact, s->nstick, s->nslip, s->nchanged, s->inner, s->solves);
-            json_num(f, s->time);
-            fputs(", \"step_time\": ", f);
-            json_num(f, s->step_time);
-            fputs("}", f);
+            cx_json_object(&j, NULL);
+            cx_json_int(&j, "iter", s->iter);
+            cx_json_num(&j, "kkt", s->kkt);
+            cx_json_num(&j, "own", s->own);
+            cx_json_int(&j, "free", s->nfree);
+            cx_json_int(&j, "contact", s->ncontact);
+            cx_json_int(&j, "stick", s->nstick);
+            cx_json_int(&j, "slip", s->nslip);
+            cx_json_int(&j, "changed", s->nchanged);
+            cx_json_int(&j, "inner", s->inner);
+            cx_json_int(&j, "solves", s->solves);
+            cx_json_num(&j, "time", s->time);
+            cx_json_num(&j, "step_time", s->step_time);
+            cx_json_end_object(&j);
         }
-        fputs("]}", f);
+        cx_json_end_array(&j);
+        cx_json_end_object(&j);
     }
-    fputs("\n]}\n", f);
+    cx_json_end_array(&j);
+    cx_json_end_object(&j);
 }
 
 static int export_file(const tui_state *st, const char *path, void (*write)(const tui_state *, FILE *),
                        cx_diag *d)
 {
-    char tmp[600];
-    snprintf(tmp, sizeof tmp, "%s.tmp%ld", path, (long)getpid());
-    FILE *f = fopen(tmp, "w");
-    if (!f)
-        return cx_diag_set(d, CX_EIO, "cannot write '%s'", tmp);
-    write(st, f);
-    int bad = ferror(f);
-    bad |= fclose(f) != 0;
-    if (bad || rename(tmp, path) != 0) {
-        remove(tmp);
-        return cx_diag_set(d, CX_EIO, "cannot write '%s'", path);
-    }
-    return CX_OK;
+    cx_outfile o;
+    CX_TRY(cx_outfile_open(&o, path, d));
+    write(st, o.f);
+    return cx_outfile_close(&o, 1, d);
 }
 
 int tui_export(const tui_state *st, const char *dir, char *csv, char *json, size_t len, cx_diag *d)
