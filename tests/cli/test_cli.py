@@ -1,13 +1,20 @@
 #!/usr/bin/env python3
 """The command line end to end: the JSON of 'solve' field by field, 'list',
-exit codes, and one-line errors for bad options and bad scenes."""
+exit codes, one-line errors for bad options and bad scenes, and the output
+files: a write error on standard output is an error, '-' is standard
+output, links and devices are kept, Ctrl-C leaves no temporary."""
 import json
 import os
+import signal
+import stat
+import subprocess
 import sys
 import tempfile
+import time
+import xml.etree.ElementTree as ET
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, finish, run, one_line_error  # noqa: E402
+from clicheck import check, exe, finish, run, one_line_error  # noqa: E402
 
 
 # ---- solve --json on hertz ----
@@ -85,6 +92,137 @@ with tempfile.TemporaryDirectory() as tmp:
         f.write("[scene]\nid = bad\ndim = 2\n[mesh]\ngenerator = hertz\nradius = 8\n"
                 "[material]\nE = -5\nnu = 0.3\n[contact]\nboundary = arc\nobstacle = plane\nnormal = 0 1\n")
     one_line_error(*run("solve", bad)[::2], bad + ":8:", "'E'")
+
+# ---- output: write errors, '-' for standard output, links and devices kept ----
+# standard output on a full device: exit 1 with one line, for the summary,
+# the JSON and the list (the output is lost: that is an error, not a result)
+for args in (["solve", "hertz", "--level", "8"], ["solve", "hertz", "--level", "8", "--json"],
+             ["list", "--json"], ["list"]):
+    with open("/dev/full", "w") as full:
+        r = subprocess.run([exe, *args], stdout=full, stderr=subprocess.PIPE, text=True, timeout=300)
+    one_line_error(r.returncode, r.stderr, "standard output", "No space left on device")
+
+
+def is_vtu(data):
+    return data.lstrip().startswith(b"<?xml") and b'<VTKFile type="UnstructuredGrid"' in data
+
+
+exe = os.path.abspath(exe)   # the runs below change directory
+with tempfile.TemporaryDirectory() as tmp:
+    # --vtu -: the VTU on standard output, the summary on stderr
+    r = subprocess.run([exe, "solve", "hertz", "--level", "8", "--vtu", "-"], capture_output=True,
+                       timeout=300, cwd=tmp)
+    check(r.returncode == 0 and is_vtu(r.stdout) and r.stdout.rstrip().endswith(b"</VTKFile>"),
+          f"--vtu - writes the VTU on stdout ({r.returncode}, {r.stderr!r})")
+    check(b"converged" in r.stderr and b"converged" not in r.stdout, "the summary goes to stderr")
+    check(os.listdir(tmp) == [], f"no file for '-': {os.listdir(tmp)}")
+    one_line_error(*run("solve", "hertz", "--level", "8", "--json", "--vtu", "-")[::2], "standard output")
+    # --csv -: the CSV on standard output
+    code, out, err = run("bench", "wp", "hertz", "--level", "4", "--methods", "ssn-tresca",
+                         "--csv", "-", "--cache", tmp)
+    lines = out.splitlines()
+    check(code == 0 and any(l.startswith("# program: signorini") for l in lines), f"--csv - ({code}, {err})")
+    check(any(l.startswith("method,") or ",method," in l for l in lines), "the CSV header row on stdout")
+    check(not any(".tmp" in f for f in os.listdir(tmp)), "no temporary for '-'")
+
+    # a link stays a link; its target is written
+    os.mkdir(os.path.join(tmp, "real"))
+    target = os.path.join(tmp, "real", "t.vtu")
+    with open(target, "w") as f:
+        f.write("old")
+    os.chmod(target, 0o640)
+    link = os.path.join(tmp, "link.vtu")
+    os.symlink("real/t.vtu", link)
+    code, out, err = run("solve", "hertz", "--level", "8", "--quiet", "--vtu", link)
+    check(code == 0 and os.path.islink(link) and os.readlink(link) == "real/t.vtu", f"link kept ({err})")
+    with open(target, "rb") as f:
+        check(is_vtu(f.read()), "the link's target holds the VTU")
+    check(os.stat(target).st_mode & 0o777 == 0o640, "the target keeps its permissions")
+    csv_link = os.path.join(tmp, "link.csv")
+    os.symlink(os.path.join(tmp, "real", "t.csv"), csv_link)
+    code, out, err = run("bench", "wp", "hertz", "--level", "4", "--methods", "ssn-tresca",
+                         "--csv", csv_link, "--cache", tmp)
+    check(code == 0 and os.path.islink(csv_link) and os.path.isfile(os.path.join(tmp, "real", "t.csv")),
+          f"--csv through a link ({code}, {err})")
+
+    # a device is written in place and stays a device: a node of our own
+    # first (as root), then /dev/null itself
+    nodes = []
+    try:
+        os.mknod(os.path.join(tmp, "null"), 0o666 | stat.S_IFCHR, os.makedev(1, 3))
+        nodes.append(os.path.join(tmp, "null"))
+    except PermissionError:
+        pass
+    nodes.append("/dev/null")
+    for node in nodes:
+        if not stat.S_ISCHR(os.lstat(node).st_mode):
+            break   # the first node was replaced: do not risk /dev/null
+        for opt in (["--vtu", node], ["--vtu", node, "--vtu-ascii"]):
+            code, out, err = run("solve", "hertz", "--level", "8", "--quiet", *opt)
+            check(code == 0 and stat.S_ISCHR(os.lstat(node).st_mode), f"{opt}: still a character device ({err})")
+        code, out, err = run("bench", "wp", "hertz", "--level", "4", "--methods", "ssn-tresca",
+                             "--csv", node, "--cache", tmp)
+        check(code == 0 and stat.S_ISCHR(os.lstat(node).st_mode), f"--csv {node}: still a device ({err})")
+    check(not [f for f in os.listdir(tmp) if ".tmp" in f], "no temporary left")
+
+    # the VTU read back with VTK (Debian's python3-vtk9, under /usr/bin/python3)
+    # has the solve's points and displacement: the same numbers as the
+    # ASCII file written by the same solve, u_x = 0 on the symmetry axis,
+    # and as many contact points in contact as the JSON says
+    vtk_read = (
+        "import json, sys, vtk\n"
+        "r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(sys.argv[1]); r.Update()\n"
+        "g = r.GetOutput(); pd = g.GetPointData(); n = g.GetNumberOfPoints()\n"
+        "u = pd.GetArray('displacement'); s = pd.GetArray('contact_status')\n"
+        "print(json.dumps({'error': r.GetErrorCode(), 'points': n, 'cells': g.GetNumberOfCells(),\n"
+        "                  'x': [g.GetPoint(i) for i in range(n)], 'u': [u.GetTuple3(i) for i in range(n)],\n"
+        "                  'status': [s.GetTuple1(i) for i in range(n)]}))\n")
+    bin_vtu, asc_vtu = os.path.join(tmp, "h.vtu"), os.path.join(tmp, "h_ascii.vtu")
+    code, out, err = run("solve", "hertz", "--level", "16", "--json", "--vtu", bin_vtu)
+    j = json.loads(out) if code == 0 else {}
+    code2, _, err2 = run("solve", "hertz", "--level", "16", "--quiet", "--vtu", asc_vtu, "--vtu-ascii")
+    check(code == 0 and code2 == 0, f"solve --vtu ({err}, {err2})")
+    r = subprocess.run(["/usr/bin/python3", "-c", vtk_read, bin_vtu], capture_output=True, text=True,
+                       timeout=300)
+    check(r.returncode == 0, f"VTK reads the VTU (python3-vtk9 installed?): {r.stderr[-300:]}")
+    if r.returncode == 0 and j:
+        v = json.loads(r.stdout)
+        check(v["error"] == 0 and v["points"] == 17 * 17, f"VTK: 289 points, got {v['points']}")
+        check(j["dofs"] == 2 * v["points"] - 17, "the solve's dofs: 2 per point but u_x on the 17 axis nodes")
+        da = ET.parse(asc_vtu).getroot().find(".//PointData/DataArray[@Name='displacement']")
+        ua = [float(t) for t in da.text.split()]
+        uv = [c for t in v["u"] for c in t]
+        check(len(ua) == len(uv) and ua == uv, "VTK's displacement = the ASCII file's, exactly")
+        axis = [i for i, x in enumerate(v["x"]) if x[0] == 0.0]
+        check(len(axis) == 17 and all(v["u"][i][0] == 0.0 for i in axis), "u_x = 0 on the axis")
+        check(max(abs(t[1]) for t in v["u"]) > 0, "the body moved")
+        check(sum(1 for s in v["status"] if s > 0) == j["active"], "points in contact as in the JSON")
+
+    # Ctrl-C while the VTU is written: status 130, no temporary left. The
+    # process is stopped as soon as its temporary appears (so the signal
+    # surely lands inside the write), then interrupted and continued; a run
+    # that finishes before its temporary is seen is tried again.
+    seen = False
+    for attempt in range(4):
+        work = os.path.join(tmp, f"sigint{attempt}")
+        os.mkdir(work)
+        p = subprocess.Popen([exe, "solve", "hertz", "--level", "256", "--quiet", "--vtu", "big.vtu",
+                              "--vtu-ascii"], cwd=work, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        while p.poll() is None:
+            if any(".tmp" in f for f in os.listdir(work)):
+                p.send_signal(signal.SIGSTOP)
+                seen = any(".tmp" in f for f in os.listdir(work))
+                p.send_signal(signal.SIGINT)
+                p.send_signal(signal.SIGCONT)
+                break
+            time.sleep(0.002)
+        p.communicate(timeout=300)
+        if seen:
+            check(p.returncode == 130, f"interrupted: exit 130, got {p.returncode}")
+            left = os.listdir(work)
+            check(left == [], f"no temporary or partial file after Ctrl-C: {left}")
+            break
+    check(seen, "the VTU's temporary was seen while it was written")
 
 # ---- help and list ----
 for cmd in (["--help"], ["solve", "--help"], ["list", "--help"]):
