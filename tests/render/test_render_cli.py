@@ -6,13 +6,14 @@ written, and bad paths / options give one line and leave no file."""
 import base64
 import os
 import struct
+import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
 import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, finish, run, one_line_error  # noqa: E402
+from clicheck import check, exe, finish, run, one_line_error  # noqa: E402
 
 
 def png_info(path):
@@ -112,6 +113,21 @@ with tempfile.TemporaryDirectory() as tmp:
         check(code == 0 and os.path.exists(p), f"--plot {kind} ({err})")
         w, h, text = png_info(p)
         check(text.get("scene") == "hertz", f"{kind} plot text")
+
+    # '-': the PNG (image or plot) on standard output, the summary on stderr;
+    # a link stays a link and its target gets the PNG
+    for extra in ([], ["--plot", "pressure"]):
+        r = subprocess.run([exe, "render", "hertz", "--level", "8", "--png", "-", "--size", "200x150", *extra],
+                           capture_output=True, timeout=300)
+        check(r.returncode == 0 and r.stdout[:8] == b"\x89PNG\r\n\x1a\n", f"--png - {extra}: a PNG on stdout")
+        check(b"converged" in r.stderr, "the summary on stderr")
+    os.symlink("h.png", os.path.join(tmp, "link.png"))
+    code, out, err = run("render", "hertz", "--level", "8", "--quiet", "--png", os.path.join(tmp, "link.png"),
+                         "--size", "200x150")
+    check(code == 0 and os.path.islink(os.path.join(tmp, "link.png")), f"--png through a link ({err})")
+    w, h, text = png_info(png)
+    check((w, h) == (200, 150), "the link's target holds the new PNG")
+    os.remove(os.path.join(tmp, "link.png"))
 
     # errors: one line, no file
     before = set(os.listdir(tmp))
