@@ -173,12 +173,18 @@ void bench_common_options(const bench_common *c, cx_options *o)
 
 int bench_output(const bench_common *c, const bench_table *t, cx_diag *d)
 {
+    /* standard output holds one thing: with a CSV or PNG there ('-'), the
+     * text table goes to stderr */
+    int to_stdout = cx_outfile_is_stdout(c->csv) + cx_outfile_is_stdout(c->png);
+    if (to_stdout + c->json > 1)
+        return cx_diag_set(d, CX_EINVAL, "--json, --csv - and --png -: only one can go to standard output");
     if (c->csv)
         CX_TRY(bench_table_write_csv(t, c->csv, d));
     if (c->json)
         return bench_table_write_json(t, "-", d);
-    bench_table_print(t, stdout);
-    return fflush(stdout) == 0 ? CX_OK : cx_diag_set(d, CX_EIO, "cannot write to stdout");
+    FILE *out = to_stdout ? stderr : stdout;
+    bench_table_print(t, out);
+    return fflush(out) == 0 && !ferror(out) ? CX_OK : cx_diag_set(d, CX_EIO, "standard output: cannot write");
 }
 
 /* ---- plots ------------------------------------------------------------- */
