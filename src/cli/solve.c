@@ -4,6 +4,7 @@
 #include "cx_config.h"
 
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -12,7 +13,8 @@ static const char solve_usage[] =
     "\n"
     "SCENE is a scene id (see 'signorini list') or a path to an .ini file.\n"
     "\n"
-    "  --method ID          solver (default: the scene's first method)\n"
+    "  --method ID|auto     solver (default auto: the fastest measured for the scene\n"
+    "                       and law, or a rule from the problem; see the README)\n"
     "  --friction LAW       none | tresca | coulomb (default: the scene's)\n"
     "  --F VALUE            Coulomb coefficient (default: the scene's)\n"
     "  --slip VALUE         Tresca slip bound, a traction (default: the scene's)\n"
@@ -20,7 +22,9 @@ static const char solve_usage[] =
     "  --tol T              stop when the kkt error is below T (default 1e-10)\n"
     "  --max-iter N         iteration limit (default 500)\n"
     "  --stop kkt|own       stop on the kkt error only, or also on the method's\n"
-    "                       own criterion (default own)\n"
+    "                       own criterion (default own; a run it stops above the\n"
+    "                       tolerance has not converged)\n"
+    "  --time-limit S       stop the run after S seconds (checked inside long steps)\n"
     "  --set KEY=VALUE      a method parameter (repeatable; see 'signorini list')\n"
     "  --json               print one JSON object on stdout instead of the summary\n"
     "  --baseline           also time one factorisation + solve of K alone\n"
@@ -29,7 +33,10 @@ static const char solve_usage[] =
     "                       for --field, --scale, --size, --view, --edges)\n"
     "  --vtu FILE           also write a VTK XML UnstructuredGrid for ParaView\n"
     "\n"
-    "Exit status: 0 converged, 1 error, 3 not converged.\n";
+    "Exit status: 0 converged (kkt error <= tol), 1 error, 2 usage, 3 not converged\n"
+    "(stopped by its own criterion above tol, stalled, iteration or time limit,\n"
+    "breakdown, overflow or NaN), 130 interrupted (Ctrl-C: the partial result is\n"
+    "printed as cancelled).\n";
 
 typedef struct {
     const char *scene;
@@ -44,9 +51,11 @@ typedef struct {
     cli_render_args render;   /* --png, --vtu and the drawing options (cli/render.c) */
 } solve_args;
 
-enum { OPT_METHOD, OPT_FRICTION, OPT_F, OPT_SLIP, OPT_LEVEL, OPT_TOL, OPT_MAXIT, OPT_STOP, OPT_SET };
+enum { OPT_METHOD, OPT_FRICTION, OPT_F, OPT_SLIP, OPT_LEVEL, OPT_TOL, OPT_MAXIT, OPT_STOP, OPT_SET,
+       OPT_TIME };
 static const char *const solve_value_opts[] = {"--method", "--friction", "--F", "--slip", "--level",
-                                               "--tol", "--max-iter", "--stop", "--set", NULL};
+                                               "--tol", "--max-iter", "--stop", "--set", "--time-limit",
+                                               NULL};
 
 static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
 {
@@ -94,6 +103,11 @@ static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
                 return cx_diag_set(d, CX_EINVAL, "--stop '%s': expected kkt or own", v);
             a->opt.own_stop = n == 1;
             break;
+        case OPT_TIME:
+            if (cx_parse_double(v, &a->opt.time_limit) || !(a->opt.time_limit > 0) ||
+                !isfinite(a->opt.time_limit))
+                return cx_diag_set(d, CX_EINVAL, "--time-limit '%s': expected a positive number of seconds", v);
+            break;
         case OPT_SET:
             if (a->nsets == CX_PARAM_MAX)
                 return cx_diag_set(d, CX_EINVAL, "--set: too many parameters");
@@ -127,6 +141,17 @@ static void solve_contact_force(const cx_problem *p, const cx_iterate *it, doubl
         }
 }
 
+/* A number of the text output with printf's fmt, or "-" if it is not
+ * finite: no NaN or Inf is ever printed as a result. */
+static const char *solve_num(char *buf, size_t len, const char *fmt, double v)
+{
+    if (isfinite(v))
+        snprintf(buf, len, fmt, v);
+    else
+        snprintf(buf, len, "-");
+    return buf;
+}
+
 typedef struct {
     int quiet;
 } solve_watch;
@@ -135,10 +160,42 @@ static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it
 {
     (void)s;
     const solve_watch *w = ctx;
+    char kkt[32], own[32];
     if (!w->quiet)
-        printf("%6d  %10.3e  %10.3e  %7d %6d %6d %7d  %9.4f\n", it->iter, it->kkt, it->own,
-               it->ncontact + it->nstick + it->nslip, it->nstick, it->nslip, it->nchanged, it->time);
+        printf("%6d  %10s  %10s  %7d %6d %6d %7d  %9.4f\n", it->iter, solve_num(kkt, sizeof kkt, "%.3e", it->kkt),
+               solve_num(own, sizeof own, "%.3e", it->own), it->ncontact + it->nstick + it->nslip, it->nstick,
+               it->nslip, it->nchanged, it->time);
     return 0;
+}
+
+/* Ctrl-C: the handler sets the running session's cancel flag (an atomic
+ * store, safe in a handler); the run ends at the next check, within a
+ * fraction of a second, and its partial result is printed. */
+static cx_session *volatile solve_running;
+
+static void solve_on_sigint(int sig)
+{
+    (void)sig;
+    cx_session *s = solve_running;
+    if (s)
+        cx_session_cancel(s);
+}
+
+/* The method's parameters: its defaults, then auto_sets ("key=value ...",
+ * --method auto's choice), then --set. */
+static int solve_method_params(const cx_method *m, const char *auto_sets, const solve_args *a,
+                               cx_param_values *pv, cx_diag *d)
+{
+    cx_param_default(pv, m->params);
+    char owner[64];
+    snprintf(owner, sizeof owner, "method '%s'", m->id);
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", auto_sets);
+    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok; tok = strtok_r(NULL, " ", &save))
+        CX_TRY(cx_param_set_pair(pv, tok, owner, d));
+    for (int k = 0; k < a->nsets; k++)
+        CX_TRY(cx_param_set_pair(pv, a->sets[k], owner, d));
+    return CX_OK;
 }
 
 static void solve_write_json(const solve_args *a, const cx_scene *sc, const cx_session *s,
@@ -166,8 +223,10 @@ static void solve_write_json(const solve_args *a, const cx_scene *sc, const cx_s
     cx_json_int(&j, "dofs", p->n);
     cx_json_int(&j, "contact_points", p->m);
     cx_json_int(&j, "iterations", it->iter);
-    cx_json_bool(&j, "converged", it->reason > 0);
+    char outcome[CX_DIAG_LEN + 160];
+    cx_json_bool(&j, "converged", it->reason == CX_CONVERGED_KKT);
     cx_json_str(&j, "reason", cx_reason_id(it->reason));
+    cx_json_str(&j, "reason_text", cx_session_outcome(s, outcome, sizeof outcome));
     if (msg && msg[0])
         cx_json_str(&j, "message", msg);
     cx_json_num(&j, "kkt_error", it->kkt);
@@ -229,27 +288,29 @@ static void solve_write_json(const solve_args *a, const cx_scene *sc, const cx_s
 
 static void solve_write_text(const cx_scene *sc, const cx_session *s, double t_assemble,
                              double t_total, int baseline, double t_base, int has_p,
-                             double p_abs, double p_rel, const char *msg)
+                             double p_abs, double p_rel)
 {
     const cx_problem *p = cx_session_problem(s);
     const cx_iterate *it = cx_session_iterate(s);
     double fc[3];
+    char b1[32], b2[32], b3[32];
     solve_contact_force(p, it, fc);
-    printf("%s after %d iterations: kkt error %.3e%s%s\n", cx_reason_str(it->reason), it->iter,
-           it->kkt, msg && msg[0] ? "\n  " : "", msg ? msg : "");
+    char outcome[CX_DIAG_LEN + 160];
+    printf("%s\n", cx_session_outcome(s, outcome, sizeof outcome));
     printf("contact: %d of %d points (%d stick, %d slip)\n", it->ncontact + it->nstick + it->nslip,
            p->m, it->nstick, it->nslip);
     const char *axes = "xyz";
     printf("force:   applied");
     for (int k = 0; k < p->dim; k++)
-        printf(" %c %.6g", axes[k], p->f_applied[k]);
+        printf(" %c %s", axes[k], solve_num(b1, sizeof b1, "%.6g", p->f_applied[k]));
     printf(";  contact");
     for (int k = 0; k < p->dim; k++)
-        printf(" %c %.6g", axes[k], fc[k]);
+        printf(" %c %s", axes[k], solve_num(b1, sizeof b1, "%.6g", fc[k]));
     printf("\n");
     if (has_p)
-        printf("pressure vs Hertz: L2 error %.4g (%.2f %%), half-width b = %.4g\n", p_abs, 100 * p_rel,
-               cx_scene_hertz_halfwidth(sc));
+        printf("pressure vs Hertz: L2 error %s (%s %%), half-width b = %s\n",
+               solve_num(b1, sizeof b1, "%.4g", p_abs), solve_num(b2, sizeof b2, "%.2f", 100 * p_rel),
+               solve_num(b3, sizeof b3, "%.4g", cx_scene_hertz_halfwidth(sc)));
     printf("time:    assemble %.3f s, setup %.3f s, solve %.3f s, total %.3f s\n", t_assemble,
            it->init_time, it->time - it->init_time, t_total);
     if (baseline)
@@ -282,23 +343,21 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     if (cx_scene_open(a.scene, &sc, &d))
         return cli_fail(cmd, d.msg);
 
-    /* method, friction and parameters are checked before anything is built */
-    const char *mid = a.method ? a.method : (sc.nmethods > 0 ? sc.methods[0] : "ssn-tresca");
-    const cx_method *m = cx_method_find(mid);
-    if (!m) {
-        cx_diag_set(&d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", mid);
-        return cli_fail(cmd, d.msg);
-    }
-    cx_param_values pv;
-    cx_param_default(&pv, m->params);
-    char owner[64];
-    snprintf(owner, sizeof owner, "method '%s'", m->id);
-    for (int k = 0; k < a.nsets; k++)
-        if (cx_param_set_pair(&pv, a.sets[k], owner, &d))
-            return cli_fail(cmd, d.msg);
+    /* friction and a named method with its parameters are checked before
+     * anything is built; --method auto needs the problem */
     int law = sc.friction;
     if (a.friction && (law = cx_friction_from_name(a.friction)) < 0) {
         cx_diag_set(&d, CX_EINVAL, "--friction '%s': expected none, tresca or coulomb", a.friction);
+        return cli_fail(cmd, d.msg);
+    }
+    if (!(sc.laws & (1u << law))) {
+        char laws[32] = "";
+        for (int k = 0; k < 3; k++)
+            if (sc.laws & (1u << k))
+                snprintf(laws + strlen(laws), sizeof laws - strlen(laws), "%s%s", laws[0] ? ", " : "",
+                         cx_friction_name((cx_friction)k));
+        cx_diag_set(&d, CX_EINVAL, "--friction %s: scene '%s' allows only %s (its 'laws')",
+                    cx_friction_name((cx_friction)law), sc.id, laws);
         return cli_fail(cmd, d.msg);
     }
     double F = sc.F, slip = sc.slip_bound;
@@ -309,6 +368,17 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     if (a.slip && (cx_parse_double(a.slip, &slip) || slip < 0)) {
         cx_diag_set(&d, CX_EINVAL, "--slip '%s': expected a non-negative number", a.slip);
         return cli_fail(cmd, d.msg);
+    }
+    int is_auto = !a.method || strcmp(a.method, "auto") == 0;
+    const cx_method *m = NULL;
+    cx_param_values pv;
+    if (!is_auto) {
+        if (!(m = cx_method_find(a.method))) {
+            cx_diag_set(&d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", a.method);
+            return cli_fail(cmd, d.msg);
+        }
+        if (solve_method_params(m, "", &a, &pv, &d))
+            return cli_fail(cmd, d.msg);
     }
 
     cx_problem *p = NULL;
@@ -325,6 +395,14 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         cx_problem_destroy(&p);
         return cli_fail(cmd, d.msg);
     }
+    if (is_auto) {
+        const char *auto_sets;
+        m = cx_method_find(cx_scene_auto_method(&sc, a.level, p, (cx_friction)law, &auto_sets));
+        if (!m || solve_method_params(m, auto_sets, &a, &pv, &d)) {
+            cx_problem_destroy(&p);
+            return cli_fail(cmd, m ? d.msg : "--method auto: no method");
+        }
+    }
 
     cx_session *s = NULL;
     if (cx_session_create(&s, &p, &d)) {
@@ -338,13 +416,22 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     }
     const cx_problem *cp = cx_session_problem(s);
     if (!a.json && !a.quiet) {
-        printf("%s level %d: %dD, %d dofs, %d contact points; %s, friction %s\n", sc.id,
-               a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id,
+        printf("%s level %d: %dD, %d dofs, %d contact points; %s%s, friction %s\n", sc.id,
+               a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id, is_auto ? " (auto)" : "",
                cx_friction_name(cp->friction));
         printf("  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
     }
     solve_watch w = {a.json || a.quiet};
-    if (cx_solver_solve(s, solve_print_step, &w, &d)) {
+    struct sigaction sa, old_sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = solve_on_sigint;
+    sigemptyset(&sa.sa_mask);
+    solve_running = s;
+    sigaction(SIGINT, &sa, &old_sa);
+    int solved = cx_solver_solve(s, solve_print_step, &w, &d);
+    sigaction(SIGINT, &old_sa, NULL);
+    solve_running = NULL;
+    if (solved) {
         cli_fail(cmd, d.msg);
         goto done;
     }
@@ -361,8 +448,10 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     if (a.json)
         solve_write_json(&a, &sc, s, t_assemble, t_total, t_base, has_p, p_abs, p_rel, msg);
     else
-        solve_write_text(&sc, s, t_assemble, t_total, a.baseline, t_base, has_p, p_abs, p_rel, msg);
-    code = it->reason > 0 ? CX_EXIT_OK : CX_EXIT_NOT_CONVERGED;
+        solve_write_text(&sc, s, t_assemble, t_total, a.baseline, t_base, has_p, p_abs, p_rel);
+    code = it->reason == CX_CONVERGED_KKT ? CX_EXIT_OK
+           : it->reason == CX_CANCELLED   ? CX_EXIT_INTERRUPTED
+                                          : CX_EXIT_NOT_CONVERGED;
     if (cli_render_outputs(&a.render, &sc, s, a.level > 0 ? a.level : sc.level, a.json, &d))
         code = cli_fail(cmd, d.msg);
 done:
