@@ -415,19 +415,20 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         goto done;
     }
     const cx_problem *cp = cx_session_problem(s);
-    if (!a.json && !a.quiet) {
-        printf("%s level %d: %dD, %d dofs, %d contact points; %s%s, friction %s\n", sc.id,
-               a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id, is_auto ? " (auto)" : "",
-               cx_friction_name(cp->friction));
-        printf("  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
-    }
-    solve_watch w = {a.json || a.quiet};
     struct sigaction sa, old_sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = solve_on_sigint;
     sigemptyset(&sa.sa_mask);
     solve_running = s;
     sigaction(SIGINT, &sa, &old_sa);
+    if (!a.json && !a.quiet) {
+        printf("%s level %d: %dD, %d dofs, %d contact points; %s%s, friction %s\n", sc.id,
+               a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id, is_auto ? " (auto)" : "",
+               cx_friction_name(cp->friction));
+        printf("  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
+        fflush(stdout);   /* the run may be long: show where it is */
+    }
+    solve_watch w = {a.json || a.quiet};
     int solved = cx_solver_solve(s, solve_print_step, &w, &d);
     sigaction(SIGINT, &old_sa, NULL);
     solve_running = NULL;

@@ -138,6 +138,11 @@ void cx_session_cancel(cx_session *s)
     atomic_store(&s->cancel, 1);
 }
 
+int cx_session_stop(void *session)
+{
+    return cx_session_interrupted(session);
+}
+
 void cx_session_set_clock(cx_session *s, cx_clock_fn now, void *ctx)
 {
     s->clock = now;
@@ -203,6 +208,11 @@ int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build
                        ? CX_OK
                        : cx_diag_set(d, s->entries[i].status, "%s", s->entries[i].msg);
         }
+    /* a factorisation cannot be interrupted: the cancel flag and the time
+     * limit are checked before it (after it, by the generic step); not a
+     * failure of the matrix, so nothing is remembered */
+    if (cx_session_interrupted(s))
+        return cx_diag_set(d, CX_ENUMERIC, "interrupted before building '%s'", key);
     if (s->nentries == s->centries) {
         int cap = s->centries ? 2 * s->centries : 4;
         cx_cache_entry *e = cx_realloc(s->entries, sizeof *e * (size_t)cap);

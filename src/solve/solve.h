@@ -257,6 +257,9 @@ void cx_session_cancel(cx_session *s);
  * limit has passed. For methods, inside their long loops; cheap (an atomic
  * load, and a clock read only when a time limit is set). */
 int cx_session_interrupted(cx_session *s);
+/* The same as a linalg stop test (cx_stop_fn, e.g. for cx_pcg_stop):
+ * session is the cx_session. */
+int cx_session_stop(void *session);
 /* The clock of the time limit (seconds; default cx_clock_now): a test
  * may inject its own to count checks instead of timing them. NULL
  * restores the default. */

@@ -66,16 +66,17 @@ char *cx_reason_format(int reason, int iter, double kkt, double tol, const char 
         break;
     case CX_DIVERGED:
     case CX_DIVERGED_BREAKDOWN:
-        snprintf(buf, len, "%s at iteration %d: %s (%s)", w, iter,
-                 has_msg ? msg : "the method cannot continue", at);
+        snprintf(buf, len, "%s at iteration %d: %s%s%s%s", w, iter,
+                 has_msg ? msg : "the method cannot continue", isfinite(kkt) ? " (" : "",
+                 isfinite(kkt) ? at : "", isfinite(kkt) ? ")" : "");
         break;
     case CX_DIVERGED_NAN:
         snprintf(buf, len, "%s: %s", w, has_msg ? msg : "a NaN or Inf in the iterate");
         break;
     case CX_CANCELLED:
     case CX_DIVERGED_TIME:
-        snprintf(buf, len, "%s after %d iterations: %s%s%s", w, iter, at, has_msg ? "; " : "",
-                 has_msg ? msg : "");
+        snprintf(buf, len, "%s%s after %d iterations: %s%s%s", w, reason == CX_DIVERGED_TIME ? " reached" : "",
+                 iter, at, has_msg ? "; " : "", has_msg ? msg : "");
         break;
     default:
         snprintf(buf, len, "%s after %d iterations: %s", w, iter, at);
