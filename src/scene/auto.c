@@ -37,7 +37,7 @@ static const auto_choice auto_table[] = {
     {"halfball", CX_FRICTION_NONE, "graves", ""},
     {"halfball", CX_FRICTION_TRESCA, "ssn-tresca", ""},
     {"halfball", CX_FRICTION_COULOMB, "cf-fp", AUTO_CFFP_TIGHT},
-    {"hertz", CX_FRICTION_NONE, "graves", ""},
+    {"hertz", CX_FRICTION_NONE, "ssn-tresca", ""},   /* a tie with graves */
     {"hertz", CX_FRICTION_TRESCA, "ssn-tresca", ""},
     {"hertz", CX_FRICTION_COULOMB, "cf-fp", AUTO_CFFP_TIGHT},
     {"laminae", CX_FRICTION_NONE, "graves", ""},
