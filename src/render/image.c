@@ -27,6 +27,10 @@ void cx_render_state_init(cx_render_state *st, const cx_scene *sc, const cx_sess
     st->level = level;
     st->method = cx_session_method(s) ? cx_session_method(s)->id : "";
     st->kkt = it->kkt;
+    st->reason = it->reason;
+    st->iter = it->iter;
+    st->tol = cx_session_options(s)->tol;
+    st->reason_msg = cx_session_reason_msg(s);
     size_t n = 0;
     if (len > 0)
         params[0] = '\0';
@@ -254,6 +258,9 @@ int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char
         snprintf(F, sizeof F, "%.17g", p->F);
         snprintf(slip, sizeof slip, "%.17g", p->slip_bound);
         snprintf(kkt, sizeof kkt, "%.6e", st->kkt);
+        char outcome[CX_DIAG_LEN + 160] = "";   /* the outcome in solve/'s words */
+        if (st->reason_msg)
+            cx_reason_format(st->reason, st->iter, st->kkt, st->tol, st->reason_msg, outcome, sizeof outcome);
         snprintf(scale, sizeof scale, "%.6g", sc.scale);
         cx_png_text text[] = {
             {"Title", st->title ? st->title : ""},
@@ -265,6 +272,7 @@ int cx_render_png(const cx_render_state *st, const cx_render_opts *o, const char
             {"slip bound", slip},
             {"parameters", st->params ? st->params : ""},
             {"kkt error", kkt},
+            {"outcome", outcome},
             {"field", cx_field_name(o->field)},
             {"displacement scale", scale},
             {"Software", "signorini " CX_VERSION},

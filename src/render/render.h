@@ -86,6 +86,9 @@ typedef struct cx_render_state {
     const char *method;           /* method id */
     const char *params;           /* "rho=1e-3 ..." ("" = none) */
     double kkt;                   /* the solution's kkt error */
+    int reason, iter;             /* its outcome (cx_reason), iterations, ... */
+    double tol;                   /* ... tolerance and ... */
+    const char *reason_msg;       /* ... message: the "outcome" text chunk (NULL: none) */
 } cx_render_state;
 
 /* Fill st from a session's current iterate (u, lN, lT, status, kkt,
