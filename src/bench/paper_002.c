@@ -439,7 +439,7 @@ int bench_paper_002(int argc, char **argv)
     int st = CX_OK;
     printf("Paper 002 (Koko, Uzawa block relaxation): our runs beside the paper's tables.\n"
            "Times in seconds on this machine (the paper's: MATLAB 7, 2.67 GHz); /baseline is our time\n"
-           "over one factorisation + solve of K in the same run. * = not converged.\n\n");
+           "over one factorisation + solve of K in the same run. * = its stopping criterion not met.\n\n");
     if (tables & 15)
         st = p2_hertz(nlev, tables, &d);
     if (!st && (tables & 48))

@@ -214,6 +214,7 @@ static void solve_write_json(const solve_args *a, const cx_scene *sc, const cx_s
     cx_json_str(&j, "scene", sc->id);
     cx_json_int(&j, "level", a->level > 0 ? a->level : sc->level);
     cx_json_str(&j, "method", m->id);
+    cx_json_bool(&j, "method_auto", !a->method || strcmp(a->method, "auto") == 0);
     cx_json_str(&j, "friction", cx_friction_name(p->friction));
     if (p->friction == CX_FRICTION_TRESCA)
         cx_json_num(&j, "slip_bound", p->slip_bound);

@@ -119,7 +119,11 @@ with tempfile.TemporaryDirectory() as tmp:
             check(j.get("reason") in IDS, f"reason id {j.get('reason')}")
     check(allowed >= 23, f"scene x law cases run: {allowed}")
     code, j, err = solve_json("halfball")
-    check(code == 0 and j["method"] != "ubr-c", f"halfball converges by default ({j['method']})")
+    check(code == 0 and j["method"] != "ubr-c" and j["method_auto"] is True,
+          f"halfball converges by default ({j['method']})")
+    code, j, err = solve_json("halfball", "--method", "ubr-c")
+    check(code == 3 and j["method_auto"] is False and j["reason"] in ("stalled", "stopped_own"),
+          f"halfball on ubr-c (the old default) is not converged: {j['reason_text']}")
     code, j, err = solve_json("twoblocks", "--friction", "coulomb")
     check(code == 0 and j["method"] == "ssn-coulomb", f"twoblocks Coulomb picks a Coulomb method: {j['method']}")
     one_line_error(*run("solve", "stackbond", "--friction", "tresca")[::2], "stackbond", "allows only none")
