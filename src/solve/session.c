@@ -33,6 +33,7 @@ int cx_session_create_(cx_session **sp, cx_problem **pp, cx_session *parent, cx_
     cx_problem *p = *pp;
     s->p = p;
     s->parent = parent;
+    atomic_init(&s->cancel, 0);
     *pp = NULL;
     cx_options_default(&s->opt);
     s->it.u = CX_NEW(double, p->n);

@@ -327,9 +327,11 @@ static int solver_step(cx_session *s, cx_diag *d)
                   : solver_timed_out(s, it->time) ? CX_DIVERGED_TIME
                   : s->parent && cx_session_interrupted(s->parent) ? CX_CANCELLED
                   : CX_ITERATING;
-        /* a method that cannot go on is an outcome, with its reason */
-        it->reason = cut != CX_ITERATING ? cut : CX_DIVERGED_BREAKDOWN;
-        snprintf(s->reason_msg, sizeof s->reason_msg, "%s", cx_diag_msg(&local, st));
+        /* a method that cannot go on is an outcome, with its reason (a
+         * declared end keeps the method's words) */
+        it->reason = cut != CX_ITERATING ? cut : declared ? declared : CX_DIVERGED_BREAKDOWN;
+        if (!declared)
+            snprintf(s->reason_msg, sizeof s->reason_msg, "%s", cx_diag_msg(&local, st));
         return CX_OK;
     }
     if (declared) {
