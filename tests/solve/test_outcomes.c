@@ -148,6 +148,23 @@ static void test_far_obstacle(void)
     double kkt = cx_session_iterate(s)->kkt;
     CX_CHECK_OK(fixture_run(s, "ssn-tresca", "", 1, 2 * kkt, 500, &d));
     CX_CHECK(cx_session_iterate(s)->reason == CX_CONVERGED_KKT);
+    /* new options re-judge a finished run: under a tighter tolerance it
+     * is 'stopped' if its own criterion held, else it goes on; with no
+     * own stop it goes on; a looser tolerance converges it */
+    cx_options o = *cx_session_options(s);
+    o.tol = kkt / 2;
+    cx_session_set_options(s, &o);
+    CX_CHECK(cx_session_iterate(s)->reason ==
+             (cx_session_iterate(s)->own_done ? CX_STOPPED_OWN : CX_ITERATING));
+    o.own_stop = 0;
+    cx_session_set_options(s, &o);
+    CX_CHECK(cx_session_iterate(s)->reason == CX_ITERATING);
+    o.tol = 2 * kkt;
+    o.own_stop = 1;
+    cx_session_set_options(s, &o);
+    CX_CHECK(cx_session_iterate(s)->reason == CX_ITERATING);
+    CX_CHECK_OK(cx_solver_step(s, &d));
+    CX_CHECK(cx_session_iterate(s)->reason == CX_CONVERGED_KKT);
     cx_session_destroy(&s);
 }
 
