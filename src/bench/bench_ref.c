@@ -211,7 +211,7 @@ static int ref_compute(const bench_problem_spec *spec, const cx_problem *p, doub
         if (st == CX_OK)
             st = cx_solver_solve(s, bench_observer, NULL, &local);
         const cx_iterate *it = s ? cx_session_iterate(s) : NULL;
-        if (st == CX_OK && it->reason == CX_CONVERGED_OWN && it->kkt > REF_TOL) {
+        if (st == CX_OK && it->reason == CX_STOPPED_OWN) {
             /* a loose own criterion (cf-fp's 1e-4): go on to the kkt tolerance */
             cx_options more = opt;
             more.own_stop = 0;
@@ -235,9 +235,11 @@ static int ref_compute(const bench_problem_spec *spec, const cx_problem *p, doub
         } else if (!why[0]) {
             if (st != CX_OK)
                 snprintf(why, sizeof why, "%s: %s", cand[k]->id, cx_diag_msg(&local, st));
-            else
-                snprintf(why, sizeof why, "%s: %s (kkt %.2e)", cand[k]->id, cx_reason_str(it->reason),
-                         it->kkt);
+            else {
+                char outcome[CX_DIAG_LEN];
+                snprintf(why, sizeof why, "%s: %s", cand[k]->id,
+                         cx_session_outcome(s, outcome, sizeof outcome));
+            }
         }
         cx_session_destroy(&s);
     }

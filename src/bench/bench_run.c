@@ -111,7 +111,12 @@ void bench_run(cx_session *s, const cx_method *m, const cx_param_values *pv,
     r->work = it->counters;
     r->nonfinite = it->reason == CX_DIVERGED_NAN || !cx_vec_finite(p->n, it->u) ||
                    !cx_vec_finite(p->m, it->lN) || !cx_vec_finite(p->nt, it->lT);
-    snprintf(r->msg, sizeof r->msg, "%s", cx_session_reason_msg(s));
+    /* the outcome's sentence (solve/'s one table of words) for every run
+     * that did not converge */
+    if (it->reason != CX_CONVERGED_KKT)
+        cx_session_outcome(s, r->msg, sizeof r->msg);
+    else
+        r->msg[0] = '\0';
     if (!r->nonfinite && it->iter > 0)
         bench_errors(p, ref, it->u, it->lN, it->lT, &r->err_u, &r->err_l);
 }
@@ -120,7 +125,7 @@ void bench_set_result(bench_table *t, int r, const bench_result *res)
 {
     if (res->failed) {
         bench_set_str(t, r, "converged", "n/a");
-        bench_set_str(t, r, "reason", "refused");
+        bench_set_str(t, r, "reason", "%s", cx_reason_id(CX_REFUSED));
         bench_set_str(t, r, "message", "%s", res->msg);
         return;
     }

@@ -157,12 +157,9 @@ static void p003_solve(const cx_scene *sc, int level, const p003_table *tb, doub
     r->iter = it->iter;
     r->kkt = it->kkt;
     r->own = it->own;
-    r->ok = it->reason > 0 && it->kkt <= 1e-8;
-    if (!r->ok) {
-        const char *msg = cx_session_reason_msg(s);
-        snprintf(r->why, sizeof r->why, "%s%s%s (kkt %.1e)", cx_reason_str(it->reason),
-                 msg[0] ? ": " : "", msg, it->kkt);
-    }
+    r->ok = cx_reason_criterion_met(it->reason) && it->kkt <= 1e-8;
+    if (!r->ok)
+        cx_session_outcome(s, r->why, sizeof r->why);
     cx_session_destroy(&s);
 }
 

@@ -2,6 +2,7 @@
 #include "cli/cli.h"
 #include "out/out.h"
 
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -12,7 +13,8 @@ static const char solve_usage[] =
     "\n"
     "SCENE is a scene id (see 'signorini list') or a path to an .ini file.\n"
     "\n"
-    "  --method ID          solver (default: the scene's first method)\n"
+    "  --method ID|auto     solver (default auto: the fastest measured for the scene\n"
+    "                       and law, or a rule from the problem; see the README)\n"
     "  --friction LAW       none | tresca | coulomb (default: the scene's)\n"
     "  --F VALUE            Coulomb coefficient (default: the scene's)\n"
     "  --slip VALUE         Tresca slip bound, a traction (default: the scene's)\n"
@@ -20,7 +22,9 @@ static const char solve_usage[] =
     "  --tol T              stop when the kkt error is below T (default 1e-10)\n"
     "  --max-iter N         iteration limit (default 500)\n"
     "  --stop kkt|own       stop on the kkt error only, or also on the method's\n"
-    "                       own criterion (default own)\n"
+    "                       own criterion (default own; a run it stops above the\n"
+    "                       tolerance has not converged)\n"
+    "  --time-limit S       stop the run after S seconds (checked inside long steps)\n"
     "  --set KEY=VALUE      a method parameter (repeatable; see 'signorini list')\n"
     "  --json               print one JSON object on stdout instead of the summary\n"
     "  --baseline           also time one factorisation + solve of K alone\n"
@@ -30,7 +34,10 @@ static const char solve_usage[] =
     "  --vtu FILE           also write a VTK XML UnstructuredGrid for ParaView\n"
     "                       ('-' for standard output: the summary goes to stderr)\n"
     "\n"
-    "Exit status: 0 converged, 1 error, 3 not converged.\n";
+    "Exit status: 0 converged (kkt error <= tol), 1 error, 2 usage, 3 not converged\n"
+    "(stopped by its own criterion above tol, stalled, iteration or time limit,\n"
+    "breakdown, overflow or NaN), 130 interrupted (Ctrl-C: the partial result is\n"
+    "printed as cancelled).\n";
 
 typedef struct {
     const char *scene;
@@ -45,9 +52,11 @@ typedef struct {
     cli_render_args render;   /* --png, --vtu and the drawing options (cli/render.c) */
 } solve_args;
 
-enum { OPT_METHOD, OPT_FRICTION, OPT_F, OPT_SLIP, OPT_LEVEL, OPT_TOL, OPT_MAXIT, OPT_STOP, OPT_SET };
+enum { OPT_METHOD, OPT_FRICTION, OPT_F, OPT_SLIP, OPT_LEVEL, OPT_TOL, OPT_MAXIT, OPT_STOP, OPT_SET,
+       OPT_TIME };
 static const char *const solve_value_opts[] = {"--method", "--friction", "--F", "--slip", "--level",
-                                               "--tol", "--max-iter", "--stop", "--set", NULL};
+                                               "--tol", "--max-iter", "--stop", "--set", "--time-limit",
+                                               NULL};
 
 static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
 {
@@ -95,6 +104,11 @@ static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
                 return cx_diag_set(d, CX_EINVAL, "--stop '%s': expected kkt or own", v);
             a->opt.own_stop = n == 1;
             break;
+        case OPT_TIME:
+            if (cx_parse_double(v, &a->opt.time_limit) || !(a->opt.time_limit > 0) ||
+                !isfinite(a->opt.time_limit))
+                return cx_diag_set(d, CX_EINVAL, "--time-limit '%s': expected a positive number of seconds", v);
+            break;
         case OPT_SET:
             if (a->nsets == CX_PARAM_MAX)
                 return cx_diag_set(d, CX_EINVAL, "--set: too many parameters");
@@ -113,6 +127,17 @@ static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
     return CX_OK;
 }
 
+/* A number of the text output with printf's fmt, or "-" if it is not
+ * finite: no NaN or Inf is ever printed as a result. */
+static const char *solve_num(char *buf, size_t len, const char *fmt, double v)
+{
+    if (isfinite(v))
+        snprintf(buf, len, fmt, v);
+    else
+        snprintf(buf, len, "-");
+    return buf;
+}
+
 typedef struct {
     int quiet;
     FILE *out;
@@ -122,31 +147,36 @@ static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it
 {
     (void)s;
     const solve_watch *w = ctx;
+    char kkt[32], own[32];
     if (!w->quiet)
-        fprintf(w->out, "%6d  %10.3e  %10.3e  %7d %6d %6d %7d  %9.4f\n", it->iter, it->kkt, it->own,
-               it->ncontact + it->nstick + it->nslip, it->nstick, it->nslip, it->nchanged, it->time);
+        fprintf(w->out, "%6d  %10s  %10s  %7d %6d %6d %7d  %9.4f\n", it->iter,
+                solve_num(kkt, sizeof kkt, "%.3e", it->kkt), solve_num(own, sizeof own, "%.3e", it->own),
+                it->ncontact + it->nstick + it->nslip, it->nstick, it->nslip, it->nchanged, it->time);
     return 0;
 }
 
 static void solve_write_text(const cx_result *r, FILE *out)
 {
     const cx_run_record *run = &r->run;
-    const char *msg = run->message;
-    fprintf(out, "%s after %d iterations: kkt error %.3e%s%s\n", cx_reason_str(run->reason),
-            run->iterations, run->kkt, msg[0] ? "\n  " : "", msg);
+    char outcome[CX_DIAG_LEN + 160], b1[32], b2[32], b3[32];
+    cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
+                     sizeof outcome);
+    fprintf(out, "%s\n", outcome);
     fprintf(out, "contact: %d of %d points (%d stick, %d slip)\n",
             run->ncontact + run->nstick + run->nslip, r->m, run->nstick, run->nslip);
     const char *axes = "xyz";
     fprintf(out, "force:   applied");
     for (int k = 0; k < r->dim; k++)
-        fprintf(out, " %c %.6g", axes[k], r->f_applied[k]);
+        fprintf(out, " %c %s", axes[k], solve_num(b1, sizeof b1, "%.6g", r->f_applied[k]));
     fprintf(out, ";  contact");
     for (int k = 0; k < r->dim; k++)
-        fprintf(out, " %c %.6g", axes[k], r->f_contact[k]);
+        fprintf(out, " %c %s", axes[k], solve_num(b1, sizeof b1, "%.6g", r->f_contact[k]));
     fprintf(out, "\n");
     if (run->has_pressure_error)
-        fprintf(out, "pressure vs Hertz: L2 error %.4g (%.2f %%), half-width b = %.4g\n",
-                run->pressure_error_abs, 100 * run->pressure_error_rel, run->hertz_halfwidth);
+        fprintf(out, "pressure vs Hertz: L2 error %s (%s %%), half-width b = %s\n",
+                solve_num(b1, sizeof b1, "%.4g", run->pressure_error_abs),
+                solve_num(b2, sizeof b2, "%.2f", 100 * run->pressure_error_rel),
+                solve_num(b3, sizeof b3, "%.4g", run->hertz_halfwidth));
     fprintf(out, "time:    assemble %.3f s, setup %.3f s, solve %.3f s, total %.3f s\n", run->time.assemble,
             run->time.setup, run->time.solve, run->time.total);
     if (run->has_baseline)
@@ -157,12 +187,39 @@ static void solve_write_text(const cx_result *r, FILE *out)
             run->counters.factorizations, run->counters.solves, run->counters.matvecs);
 }
 
-/* Ctrl-C: remove a temporary output file being written, then stop. */
+/* Ctrl-C. While the method runs, the handler sets the session's cancel
+ * flag (an atomic store, safe in a handler): the run ends at the next
+ * check and its partial result is printed as cancelled. Before or after
+ * the run, it removes a temporary output file being written and stops. */
+static cx_session *volatile solve_running;
+
 static void solve_on_sigint(int sig)
 {
     (void)sig;
+    cx_session *s = solve_running;
+    if (s) {
+        cx_session_cancel(s);
+        return;
+    }
     cx_outfile_abandon_pending();
     _exit(CX_EXIT_INTERRUPTED);
+}
+
+/* The method's parameters: its defaults, then auto_sets ("key=value ...",
+ * --method auto's choice), then --set. */
+static int solve_method_params(const cx_method *m, const char *auto_sets, const solve_args *a,
+                               cx_param_values *pv, cx_diag *d)
+{
+    cx_param_default(pv, m->params);
+    char owner[64];
+    snprintf(owner, sizeof owner, "method '%s'", m->id);
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", auto_sets);
+    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok; tok = strtok_r(NULL, " ", &save))
+        CX_TRY(cx_param_set_pair(pv, tok, owner, d));
+    for (int k = 0; k < a->nsets; k++)
+        CX_TRY(cx_param_set_pair(pv, a->sets[k], owner, d));
+    return CX_OK;
 }
 
 int cli_solve(int argc, char **argv)
@@ -198,23 +255,21 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     if (cx_scene_open(a.scene, &sc, &d))
         return cli_fail(cmd, d.msg);
 
-    /* method, friction and parameters are checked before anything is built */
-    const char *mid = a.method ? a.method : (sc.nmethods > 0 ? sc.methods[0] : "ssn-tresca");
-    const cx_method *m = cx_method_find(mid);
-    if (!m) {
-        cx_diag_set(&d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", mid);
-        return cli_fail(cmd, d.msg);
-    }
-    cx_param_values pv;
-    cx_param_default(&pv, m->params);
-    char owner[64];
-    snprintf(owner, sizeof owner, "method '%s'", m->id);
-    for (int k = 0; k < a.nsets; k++)
-        if (cx_param_set_pair(&pv, a.sets[k], owner, &d))
-            return cli_fail(cmd, d.msg);
+    /* friction and a named method with its parameters are checked before
+     * anything is built; --method auto needs the problem */
     int law = sc.friction;
     if (a.friction && (law = cx_friction_from_name(a.friction)) < 0) {
         cx_diag_set(&d, CX_EINVAL, "--friction '%s': expected none, tresca or coulomb", a.friction);
+        return cli_fail(cmd, d.msg);
+    }
+    if (!(sc.laws & (1u << law))) {
+        char laws[32] = "";
+        for (int k = 0; k < 3; k++)
+            if (sc.laws & (1u << k))
+                snprintf(laws + strlen(laws), sizeof laws - strlen(laws), "%s%s", laws[0] ? ", " : "",
+                         cx_friction_name((cx_friction)k));
+        cx_diag_set(&d, CX_EINVAL, "--friction %s: scene '%s' allows only %s (its 'laws')",
+                    cx_friction_name((cx_friction)law), sc.id, laws);
         return cli_fail(cmd, d.msg);
     }
     double F = sc.F, slip = sc.slip_bound;
@@ -225,6 +280,17 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     if (a.slip && (cx_parse_double(a.slip, &slip) || slip < 0)) {
         cx_diag_set(&d, CX_EINVAL, "--slip '%s': expected a non-negative number", a.slip);
         return cli_fail(cmd, d.msg);
+    }
+    int is_auto = !a.method || strcmp(a.method, "auto") == 0;
+    const cx_method *m = NULL;
+    cx_param_values pv;
+    if (!is_auto) {
+        if (!(m = cx_method_find(a.method))) {
+            cx_diag_set(&d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", a.method);
+            return cli_fail(cmd, d.msg);
+        }
+        if (solve_method_params(m, "", &a, &pv, &d))
+            return cli_fail(cmd, d.msg);
     }
 
     cx_problem *p = NULL;
@@ -241,6 +307,14 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         cx_problem_destroy(&p);
         return cli_fail(cmd, d.msg);
     }
+    if (is_auto) {
+        const char *auto_sets;
+        m = cx_method_find(cx_scene_auto_method(&sc, a.level, p, (cx_friction)law, &auto_sets));
+        if (!m || solve_method_params(m, auto_sets, &a, &pv, &d)) {
+            cx_problem_destroy(&p);
+            return cli_fail(cmd, m ? d.msg : "--method auto: no method");
+        }
+    }
 
     cx_session *s = NULL;
     if (cx_session_create(&s, &p, &d)) {
@@ -253,14 +327,18 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         goto done;
     }
     const cx_problem *cp = cx_session_problem(s);
+    solve_running = s;   /* from here Ctrl-C cancels the run (the header may be seen first) */
     if (!a.json && !a.quiet) {
-        fprintf(summary, "%s level %d: %dD, %d dofs, %d contact points; %s, friction %s\n", sc.id,
-                a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id,
+        fprintf(summary, "%s level %d: %dD, %d dofs, %d contact points; %s%s, friction %s\n", sc.id,
+                a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id, is_auto ? " (auto)" : "",
                 cx_friction_name(cp->friction));
         fprintf(summary, "  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
+        fflush(summary);   /* the run may be long: show where it is */
     }
     solve_watch w = {a.json || a.quiet, summary};
-    if (cx_solver_solve(s, solve_print_step, &w, &d)) {
+    int solved = cx_solver_solve(s, solve_print_step, &w, &d);
+    solve_running = NULL;
+    if (solved) {
         cli_fail(cmd, d.msg);
         goto done;
     }
@@ -279,11 +357,14 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     res->run.time.total = t_total;
     res->run.has_baseline = a.baseline;
     res->run.time.baseline = t_base;
+    res->run.method_auto = is_auto;
     if (a.json)
         cx_result_write_json(res, stdout);
     else
         solve_write_text(res, summary);
-    code = res->run.converged ? CX_EXIT_OK : CX_EXIT_NOT_CONVERGED;
+    code = res->run.converged                   ? CX_EXIT_OK
+           : res->run.reason == CX_CANCELLED ? CX_EXIT_INTERRUPTED
+                                               : CX_EXIT_NOT_CONVERGED;
     if (cli_render_outputs(&a.render, &sc, s, res, a.json, &d))
         code = cli_fail(cmd, d.msg);
     cx_result_destroy(&res);

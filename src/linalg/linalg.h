@@ -201,5 +201,14 @@ typedef void (*cx_apply_fn)(void *ctx, const double *x, double *y);
 int cx_pcg(int n, cx_apply_fn apply, void *ctx, const double *inv_diag,
            const double *b, double *x, double rtol, int maxit, int *iters,
            double *work, cx_diag *d);
+/* The same with a stop test (a session's cancel flag and time limit):
+ * stop(stop_ctx) is asked every CX_PCG_CHECK_INTERVAL iterations; non-zero
+ * ends the iteration with CX_ENUMERIC ("interrupted"), x the last iterate.
+ * stop may be NULL. */
+#define CX_PCG_CHECK_INTERVAL 16
+typedef int (*cx_stop_fn)(void *stop_ctx);
+int cx_pcg_stop(int n, cx_apply_fn apply, void *ctx, const double *inv_diag,
+                const double *b, double *x, double rtol, int maxit, cx_stop_fn stop,
+                void *stop_ctx, int *iters, double *work, cx_diag *d);
 
 #endif

@@ -7,6 +7,13 @@
 int cx_pcg(int n, cx_apply_fn apply, void *ctx, const double *inv_diag, const double *b, double *x,
            double rtol, int maxit, int *iters, double *work, cx_diag *d)
 {
+    return cx_pcg_stop(n, apply, ctx, inv_diag, b, x, rtol, maxit, NULL, NULL, iters, work, d);
+}
+
+int cx_pcg_stop(int n, cx_apply_fn apply, void *ctx, const double *inv_diag, const double *b,
+                double *x, double rtol, int maxit, cx_stop_fn stop, void *stop_ctx, int *iters,
+                double *work, cx_diag *d)
+{
     double *r = work, *z = work + n, *p = work + 2 * n, *q = work + 3 * n;
     double nb = cx_vec_norm2(n, b);
     *iters = 0;
@@ -24,6 +31,10 @@ int cx_pcg(int n, cx_apply_fn apply, void *ctx, const double *inv_diag, const do
     double rz = cx_vec_dot(n, r, z), rn = cx_vec_norm2(n, r);
     int k = 0;
     for (; k < maxit && !(rn <= target); k++) {
+        if (stop && k > 0 && k % CX_PCG_CHECK_INTERVAL == 0 && stop(stop_ctx)) {
+            *iters = k;
+            return cx_diag_set(d, CX_ENUMERIC, "pcg: interrupted at iteration %d", k);
+        }
         apply(ctx, p, q);
         double pq = cx_vec_dot(n, p, q);
         if (!(pq > 0)) {

@@ -25,6 +25,7 @@ typedef struct cx_run_record {
     char title[128];                /* scene title */
     int level;                      /* mesh level */
     char method[CX_SCENE_NAMELEN];  /* method id ("" = none) */
+    int method_auto;                /* chosen by --method auto (set by the program) */
     cx_param_values params;         /* its parameters (params.n = 0: none) */
     char params_text[256];          /* the same as "key=value ..." */
     cx_friction friction;

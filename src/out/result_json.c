@@ -13,6 +13,7 @@ int cx_result_write_json(const cx_result *r, FILE *out)
     cx_json_str(&j, "scene", run->scene);
     cx_json_int(&j, "level", run->level);
     cx_json_str(&j, "method", run->method);
+    cx_json_bool(&j, "method_auto", run->method_auto);
     cx_json_str(&j, "friction", cx_friction_name(run->friction));
     if (run->friction == CX_FRICTION_TRESCA)
         cx_json_num(&j, "slip_bound", run->slip_bound);
@@ -24,6 +25,9 @@ int cx_result_write_json(const cx_result *r, FILE *out)
     cx_json_int(&j, "iterations", run->iterations);
     cx_json_bool(&j, "converged", run->converged);
     cx_json_str(&j, "reason", cx_reason_id(run->reason));
+    char outcome[CX_DIAG_LEN + 160];
+    cx_json_str(&j, "reason_text", cx_reason_format(run->reason, run->iterations, run->kkt, run->tol,
+                                                    run->message, outcome, sizeof outcome));
     if (run->message[0])
         cx_json_str(&j, "message", run->message);
     cx_json_num(&j, "kkt_error", run->kkt);

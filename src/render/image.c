@@ -220,6 +220,9 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
         snprintf(F, sizeof F, "%.17g", run->F);
         snprintf(slip, sizeof slip, "%.17g", run->slip_bound);
         snprintf(kkt, sizeof kkt, "%.6e", run->kkt);
+        char outcome[CX_DIAG_LEN + 160];   /* the outcome in solve/'s words */
+        cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
+                         sizeof outcome);
         snprintf(scale, sizeof scale, "%.6g", sc.scale);
         cx_png_text text[] = {
             {"Title", run->title},
@@ -231,6 +234,7 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
             {"slip bound", slip},
             {"parameters", run->params_text},
             {"kkt error", kkt},
+            {"outcome", outcome},
             {"field", cx_field_name(o->field)},
             {"displacement scale", scale},
             {"Software", "signorini " CX_VERSION},

@@ -508,6 +508,38 @@ static int ld_finish_support(ld_state *L)
     return CX_OK;
 }
 
+/* laws = none, tresca, coulomb: the friction laws the scene allows (all
+ * three if absent); the default law must be one of them. */
+static int ld_laws(ld_state *L)
+{
+    cx_scene *s = L->s;
+    const char *v = ld_value(L, "laws");
+    s->laws = CX_SCENE_ALL_LAWS;
+    if (!v)
+        return CX_OK;
+    s->laws = 0;
+    for (const char *p = v;;) {
+        p += strspn(p, " \t,");
+        if (!*p)
+            break;
+        size_t len = strcspn(p, " \t,");
+        char word[16] = "";
+        if (len < sizeof word)
+            memcpy(word, p, len);
+        int law = cx_parse_choice(word, ld_frictions);
+        if (law < 0)
+            return ld_bad(L, "laws", "expected a list of none, tresca, coulomb");
+        s->laws |= 1u << law;
+        p += len;
+    }
+    if (!s->laws)
+        return ld_bad(L, "laws", "expected at least one of none, tresca, coulomb");
+    if (!(s->laws & (1u << s->friction)))
+        return ld_bad(L, "laws", "the default friction '%s' is not among the laws",
+                      cx_friction_name(s->friction));
+    return CX_OK;
+}
+
 static int ld_friction(ld_state *L)
 {
     cx_scene *s = L->s;
@@ -515,7 +547,8 @@ static int ld_friction(ld_state *L)
     CX_TRY(ld_choice(L, "friction", ld_frictions, 0, 2, ld_frictions, &friction));
     s->friction = (cx_friction)friction;
     CX_TRY(ld_nonnegative(L, "slip_bound", &s->slip_bound));
-    return ld_nonnegative(L, "F", &s->F);
+    CX_TRY(ld_nonnegative(L, "F", &s->F));
+    return ld_laws(L);
 }
 
 /* Contact between two bodies (paper 000): boundary is the slave, master
@@ -629,7 +662,7 @@ static const ld_key ld_support_keys[] = {
     {"boundary", 1}, {"fix", 1}, {"value", 0}, {NULL, 0}};
 static const ld_key ld_contact_keys[] = {
     {"boundary", 1}, {"obstacle", 0}, {"point", 0}, {"normal", 0}, {"radius", 0},
-    {"direction", 0}, {"friction", 0}, {"slip_bound", 0}, {"F", 0}, {"master", 0}, {NULL, 0}};
+    {"direction", 0}, {"friction", 0}, {"slip_bound", 0}, {"F", 0}, {"master", 0}, {"laws", 0}, {NULL, 0}};
 static const ld_key ld_hertz_keys[] = {{"P", 1}, {"R", 1}, {NULL, 0}};
 static const ld_key ld_methods_keys[] = {{"list", 1}, {NULL, 0}};
 _Static_assert(sizeof ld_contact_keys / sizeof ld_contact_keys[0] - 1 <= LD_MAXKEYS &&
@@ -815,6 +848,7 @@ static void ld_default(cx_scene *s, const char *path)
     s->level = 1;
     s->level_max = LD_LEVEL_MAX_DEFAULT;
     s->F = 0.3;
+    s->laws = CX_SCENE_ALL_LAWS;
 }
 
 /* After the last line: the sections every scene needs, then the boundary

@@ -18,6 +18,7 @@
 #define CX_SCENE_MAX_LOADS 8
 #define CX_SCENE_MAX_METHODS 16
 #define CX_SCENE_NAMELEN 32
+#define CX_SCENE_ALL_LAWS 0x7u   /* cx_scene.laws: none, tresca and coulomb */
 
 typedef struct cx_scene_traction {
     char boundary[CX_SCENE_NAMELEN];
@@ -81,6 +82,7 @@ typedef struct cx_scene {
     cx_friction friction;         /* default law */
     double slip_bound;            /* Tresca bound (traction) */
     double F;                     /* Coulomb coefficient */
+    unsigned laws;                /* the laws it allows: bit (1u << cx_friction) each */
 
     /* [methods] */
     int nmethods;
@@ -127,5 +129,16 @@ double cx_scene_hertz_pressure(const cx_scene *s, double x);
  * CX_EUNSUPPORTED if the scene has no [hertz] section. */
 int cx_scene_pressure_error(const cx_scene *s, const cx_problem *p, const double *lN,
                             double *abs_err, double *rel_err);
+
+/* --method auto: the method for a scene under a friction law. A shipped
+ * scene at its default level takes the choice measured for it (the table
+ * in scene/auto.c: the method fastest to the default tolerance among those
+ * that support the scene); any other scene or level a rule from the
+ * problem's properties (dimension, law, floating bodies, multibody). p is
+ * the built problem (may be NULL: the scene's properties then). Returns
+ * the method id; *params the method's parameters ("key=value ...", "" for
+ * its defaults; never NULL). Constant strings. */
+const char *cx_scene_auto_method(const cx_scene *sc, int level, const cx_problem *p, cx_friction law,
+                                 const char **params);
 
 #endif

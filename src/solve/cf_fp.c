@@ -160,11 +160,13 @@ static int cffp_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     CX_TRY(cx_solver_solve(st->child, NULL, NULL, d));
     const cx_iterate *in = cx_session_iterate(st->child);
     it->inner = in->iter;
-    if (in->reason < 0)
-        return cx_diag_set(d, CX_ENUMERIC, "cf-fp: inner method '%s' at fixed-point step %d: %s%s%s",
-                           st->inner->id, fp, cx_reason_str(in->reason),
-                           cx_session_reason_msg(st->child)[0] ? ": " : "",
-                           cx_session_reason_msg(st->child));
+    /* an inner run that stops on its own criterion above its (loose)
+     * tolerance is an inexact inner solve, which the fixed point allows */
+    if (in->reason < 0 && in->reason != CX_STOPPED_OWN) {
+        char outcome[CX_DIAG_LEN];
+        return cx_diag_set(d, CX_ENUMERIC, "cf-fp: inner method '%s' at fixed-point step %d: %s",
+                           st->inner->id, fp, cx_session_outcome(st->child, outcome, sizeof outcome));
+    }
     memcpy(it->u, in->u, sizeof(double) * (size_t)p->n);
     it->u_partial = in->u_partial;   /* expanded once, when the whole run ends */
     memcpy(it->lN, in->lN, sizeof(double) * (size_t)m);

@@ -229,7 +229,14 @@ static int graves_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
 {
     graves_state *st = state;
     long before = st->g.pivots;
-    CX_TRY(cx_graves_run(&st->g, st->per_step, d));
+    /* the pivots of a step in chunks: each costs O(n^2) on the dense
+     * tableau, and a cancel or the time limit acts between chunks */
+    for (long done = 0; done < st->per_step && st->g.state == 0; done += CX_CHECK_INTERVAL) {
+        if (done > 0 && cx_session_interrupted(s))
+            break;
+        long chunk = st->per_step - done < CX_CHECK_INTERVAL ? st->per_step - done : CX_CHECK_INTERVAL;
+        CX_TRY(cx_graves_run(&st->g, chunk, d));
+    }
     it->inner = st->g.pivots - before;
     it->own = (double)st->g.pivots;
     if (st->g.state < 0) {

@@ -94,7 +94,11 @@ static int psor_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     const cx_lcp *L = r->L;
     const cx_csc *A = &L->A;
     double *v = r->v, change = 0;
-    for (int k = 0; k < st->sweeps; k++) {
+    int k = 0;
+    for (; k < st->sweeps; k++) {
+        /* a cancel or the time limit acts within CX_CHECK_INTERVAL sweeps */
+        if (k > 0 && k % CX_CHECK_INTERVAL == 0 && cx_session_interrupted(s))
+            break;
         change = 0;
         for (int i = 0; i < L->n; i++) {
             double res = L->b[i] - r->eps * v[i];
@@ -107,8 +111,8 @@ static int psor_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
             v[i] = vi;
         }
     }
-    it->inner = st->sweeps;
-    st->done += st->sweeps;
+    it->inner = k;
+    st->done += k;
     double vmax = cx_vec_norminf(L->n, v);
     it->own = vmax > 0 ? change / vmax : change;
     /* near the regularised solution the kkt error rests at its O(eps)

@@ -33,6 +33,7 @@ int cx_session_create_(cx_session **sp, cx_problem **pp, cx_session *parent, cx_
     cx_problem *p = *pp;
     s->p = p;
     s->parent = parent;
+    atomic_init(&s->cancel, 0);
     *pp = NULL;
     cx_options_default(&s->opt);
     s->it.u = CX_NEW(double, p->n);
@@ -107,11 +108,57 @@ const char *cx_session_reason_msg(const cx_session *s) { return s->reason_msg; }
 void cx_session_set_options(cx_session *s, const cx_options *opt)
 {
     s->opt = *opt;
-    /* a run stopped by a limit may go on under new options */
-    if (s->it.reason < 0 && s->it.reason != CX_DIVERGED_NAN && s->it.reason != CX_DIVERGED_BREAKDOWN)
-        s->it.reason = CX_ITERATING;
-    if (s->it.reason > 0 && s->it.kkt > s->opt.tol && !(s->opt.own_stop && s->it.own_done))
-        s->it.reason = CX_ITERATING;
+    cx_iterate *it = &s->it;
+    /* a run ended by a limit, a stall, a cancel or its own criterion may go
+     * on under new options; a breakdown, NaN, divergence or refusal may not */
+    switch (it->reason) {
+    case CX_CONVERGED_KKT:
+        if (it->kkt > s->opt.tol)
+            it->reason = s->opt.own_stop && it->own_done ? CX_STOPPED_OWN : CX_ITERATING;
+        break;
+    case CX_STOPPED_OWN:
+        if (it->kkt <= s->opt.tol)
+            it->reason = CX_CONVERGED_KKT;
+        else if (!s->opt.own_stop)
+            it->reason = CX_ITERATING;
+        break;
+    case CX_DIVERGED_MAXIT:
+    case CX_DIVERGED_STALL:
+    case CX_DIVERGED_TIME:
+    case CX_CANCELLED:
+        atomic_store(&s->cancel, 0);
+        it->reason = CX_ITERATING;
+        break;
+    default:
+        break;
+    }
+}
+
+void cx_session_cancel(cx_session *s)
+{
+    atomic_store(&s->cancel, 1);
+}
+
+int cx_session_stop(void *session)
+{
+    return cx_session_interrupted(session);
+}
+
+void cx_session_set_clock(cx_session *s, cx_clock_fn now, void *ctx)
+{
+    s->clock = now;
+    s->clock_ctx = ctx;
+}
+
+int cx_session_interrupted(cx_session *s)
+{
+    for (; s; s = s->parent) {
+        if (atomic_load(&s->cancel))
+            return 1;
+        if (s->has_deadline && cx_session_clock_(s) >= s->deadline)
+            return 1;
+    }
+    return 0;
 }
 
 /* Add the work done since 'before' to the cache counters. */
@@ -162,6 +209,11 @@ int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build
                        ? CX_OK
                        : cx_diag_set(d, s->entries[i].status, "%s", s->entries[i].msg);
         }
+    /* a factorisation cannot be interrupted: the cancel flag and the time
+     * limit are checked before it (after it, by the generic step); not a
+     * failure of the matrix, so nothing is remembered */
+    if (cx_session_interrupted(s))
+        return cx_diag_set(d, CX_ENUMERIC, "interrupted before building '%s'", key);
     if (s->nentries == s->centries) {
         int cap = s->centries ? 2 * s->centries : 4;
         cx_cache_entry *e = cx_realloc(s->entries, sizeof *e * (size_t)cap);
@@ -237,6 +289,8 @@ static void session_clear_run(cx_session *s)
     s->best_kkt = INFINITY;
     s->best_iter = 0;
     s->reason_msg[0] = '\0';
+    s->has_deadline = 0;
+    atomic_store(&s->cancel, 0);
 }
 
 int cx_session_set_method(cx_session *s, const cx_method *m, const cx_param_values *params,
@@ -267,6 +321,10 @@ int cx_session_set_method(cx_session *s, const cx_method *m, const cx_param_valu
         cx_free(s->state);
         s->state = NULL;
         s->method = NULL;
+        if (st == CX_EUNSUPPORTED) {
+            s->it.reason = CX_REFUSED;
+            snprintf(s->reason_msg, sizeof s->reason_msg, "%s", d ? d->msg : m->id);
+        }
         return st;
     }
     return CX_OK;

@@ -5,6 +5,8 @@
 
 #include "solve/solve.h"
 
+#include <stdatomic.h>
+
 typedef struct cx_cache_entry {
     char key[CX_CACHE_KEYLEN];
     void *obj;
@@ -31,6 +33,11 @@ struct cx_session {
     double best_kkt;             /* stall detection: best kkt so far ... */
     int best_iter;               /* ... and when it last halved */
     char reason_msg[CX_DIAG_LEN];/* why a run broke down */
+    atomic_int cancel;           /* cx_session_cancel: set from any thread or a signal handler */
+    int has_deadline;            /* the current step has a time limit ... */
+    double deadline;             /* ... which passes at this time of the clock */
+    cx_clock_fn clock;           /* the time limit's clock (NULL: cx_clock_now) */
+    void *clock_ctx;
     /* nested sessions (nested.c) */
     cx_session *parent;          /* the session whose cache and counters this one shares, or NULL */
     cx_counters base;            /* the root's run counters when this run started (nested) */
@@ -61,6 +68,12 @@ static inline void cx_session_sync_counters_(cx_session *s)
     s->it.counters.solves = c->solves - s->base.solves;
     s->it.counters.matvecs = c->matvecs - s->base.matvecs;
     s->it.counters.dual_products = c->dual_products - s->base.dual_products;
+}
+
+/* The time limit's clock. */
+static inline double cx_session_clock_(const cx_session *s)
+{
+    return s->clock ? s->clock(s->clock_ctx) : cx_clock_now();
 }
 
 #endif

@@ -17,26 +17,57 @@
 
 #include "solve/problem.h"
 
-/* ---- outcomes -------------------------------------------------------- */
-
+/* ---- outcomes -------------------------------------------------------- *
+ *
+ * The one table of outcome words (DESIGN.md §3): every output (text, JSON,
+ * explorer, bench tables, PNG metadata) names an outcome by its id and
+ * describes it with cx_reason_format's sentence. A run is converged only
+ * when its kkt error is at or below the tolerance: positive values are
+ * converged, negative values ended the run without converging. A method
+ * stopping on its own criterion above the tolerance has stopped
+ * (CX_STOPPED_OWN), not converged. A method ends its run with its own
+ * outcome by setting CX_DIVERGED_BREAKDOWN or CX_DIVERGED in it->reason,
+ * with its message in the step's diag. */
 #define CX_REASON_LIST(X)                                                         \
-    X(CX_ITERATING, 0, "iterating")                                               \
-    X(CX_CONVERGED_KKT, 1, "converged: kkt error below tolerance")                \
-    X(CX_CONVERGED_OWN, 2, "converged: the method's own criterion")               \
-    X(CX_DIVERGED_MAXIT, -1, "not converged: iteration limit reached")            \
-    X(CX_DIVERGED_NAN, -2, "diverged: NaN or Inf in the iterate")                 \
-    X(CX_DIVERGED_STALL, -3, "stalled: kkt error no longer decreases")            \
-    X(CX_DIVERGED_BREAKDOWN, -4, "breakdown: the method cannot continue")         \
-    X(CX_DIVERGED_TIME, -5, "not converged: time limit reached")
+    X(CX_ITERATING, 0, "iterating", "iterating")                                  \
+    X(CX_CONVERGED_KKT, 1, "converged", "converged")                              \
+    X(CX_STOPPED_OWN, -6, "stopped_own", "stopped by its own criterion")          \
+    X(CX_DIVERGED_STALL, -3, "stalled", "stalled")                                \
+    X(CX_DIVERGED_MAXIT, -1, "max_iter", "did not converge")                      \
+    X(CX_DIVERGED, -7, "diverged", "diverged")                                    \
+    X(CX_DIVERGED_BREAKDOWN, -4, "breakdown", "breakdown")                        \
+    X(CX_REFUSED, -8, "refused", "refused")                                       \
+    X(CX_CANCELLED, -9, "cancelled", "cancelled")                                 \
+    X(CX_DIVERGED_TIME, -5, "time_limit", "time limit")                           \
+    X(CX_DIVERGED_NAN, -2, "nonfinite", "overflow or NaN")
 
 typedef enum cx_reason {
-#define CX_REASON_ENUM_(name, value, text) name = value,
+#define CX_REASON_ENUM_(name, value, id, word) name = value,
     CX_REASON_LIST(CX_REASON_ENUM_)
 #undef CX_REASON_ENUM_
 } cx_reason;
 
-const char *cx_reason_str(int reason);    /* the text above */
-const char *cx_reason_id(int reason);     /* "converged_kkt", "diverged_maxit", ... */
+/* The outcome's short word ("stopped by its own criterion"; "unknown"). */
+const char *cx_reason_str(int reason);
+/* The outcome's id for machine-readable output ("converged", "stopped_own",
+ * "max_iter", ...; "unknown"). Literals: safe from any thread. */
+const char *cx_reason_id(int reason);
+/* The full sentence of an outcome into buf (len bytes, always terminated;
+ * returns buf): the word with what it depends on, e.g. "converged in 5
+ * iterations: kkt error 3.1e-12 <= tol 1e-10", "stopped by its own
+ * criterion at kkt 2.8e+00 > tol 1e-10 after 4 iterations: not converged",
+ * "breakdown at iteration 3: <msg>". iter, kkt, tol: the iterate's; msg:
+ * the method's or the generic layer's message (NULL or "" if none); a
+ * non-finite kkt is not printed. */
+char *cx_reason_format(int reason, int iter, double kkt, double tol, const char *msg, char *buf,
+                       size_t len);
+/* Non-zero if a run ended where its stopping rules say: converged, or
+ * stopped by the method's own criterion (the papers' tables count such
+ * runs; they are still not converged unless the kkt error is small). */
+static inline int cx_reason_criterion_met(int reason)
+{
+    return reason == CX_CONVERGED_KKT || reason == CX_STOPPED_OWN;
+}
 
 /* Per-point contact status. */
 typedef enum cx_point_status {
@@ -206,6 +237,34 @@ const cx_iterate *cx_session_iterate(const cx_session *s);
 int cx_session_complete_iterate(cx_session *s, cx_diag *d);
 /* Why the run broke down (the method's message), or "" . */
 const char *cx_session_reason_msg(const cx_session *s);
+/* The full sentence of the current iterate's outcome (cx_reason_format
+ * with its iterations, kkt error, tolerance and message) into buf. */
+char *cx_session_outcome(const cx_session *s, char *buf, size_t len);
+
+/* ---- cancelling and the time limit -------------------------------------
+ *
+ * cx_session_cancel sets the session's cancel flag (an atomic int): safe
+ * from a signal handler or another thread. The run then ends as
+ * CX_CANCELLED at the next check: after the current step, and inside long
+ * steps every CX_CHECK_INTERVAL inner iterations (PSOR sweeps, CG steps,
+ * pivots), where methods call cx_session_interrupted. The time limit
+ * (cx_options.time_limit) is checked at the same places. The flag is
+ * cleared when a new run starts (set_method, reset, friction change). A
+ * nested session is interrupted when any session above it is. */
+#define CX_CHECK_INTERVAL 16
+void cx_session_cancel(cx_session *s);
+/* Non-zero if the run must stop now: the cancel flag is set or the time
+ * limit has passed. For methods, inside their long loops; cheap (an atomic
+ * load, and a clock read only when a time limit is set). */
+int cx_session_interrupted(cx_session *s);
+/* The same as a linalg stop test (cx_stop_fn, e.g. for cx_pcg_stop):
+ * session is the cx_session. */
+int cx_session_stop(void *session);
+/* The clock of the time limit (seconds; default cx_clock_now): a test
+ * may inject its own to count checks instead of timing them. NULL
+ * restores the default. */
+typedef double (*cx_clock_fn)(void *ctx);
+void cx_session_set_clock(cx_session *s, cx_clock_fn now, void *ctx);
 
 /* ---- nested sessions (nested.c): a method that runs another method ----
  *

@@ -3,42 +3,92 @@
 #include "solve/session_impl.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
 
 static const struct {
     int value;
-    const char *id, *text;
+    const char *id, *word;
 } reason_table[] = {
-#define CX_REASON_ROW_(name, value, text) {value, #name, text},
+#define CX_REASON_ROW_(name, value, id, word) {value, id, word},
     CX_REASON_LIST(CX_REASON_ROW_)
 #undef CX_REASON_ROW_
 };
 
+#define REASON_COUNT (sizeof reason_table / sizeof reason_table[0])
+
 const char *cx_reason_str(int reason)
 {
-    for (size_t k = 0; k < sizeof reason_table / sizeof reason_table[0]; k++)
+    for (size_t k = 0; k < REASON_COUNT; k++)
         if (reason_table[k].value == reason)
-            return reason_table[k].text;
-    return "unknown reason";
+            return reason_table[k].word;
+    return "unknown";
 }
 
 const char *cx_reason_id(int reason)
 {
-    /* "CX_CONVERGED_KKT" -> "converged_kkt" */
-    static char ids[sizeof reason_table / sizeof reason_table[0]][32];
-    for (size_t k = 0; k < sizeof reason_table / sizeof reason_table[0]; k++)
-        if (reason_table[k].value == reason) {
-            if (!ids[k][0]) {
-                const char *src = reason_table[k].id + 3;
-                size_t i = 0;
-                for (; src[i] && i < sizeof ids[k] - 1; i++)
-                    ids[k][i] = (char)(src[i] >= 'A' && src[i] <= 'Z' ? src[i] - 'A' + 'a' : src[i]);
-                ids[k][i] = '\0';
-            }
-            return ids[k];
-        }
+    for (size_t k = 0; k < REASON_COUNT; k++)
+        if (reason_table[k].value == reason)
+            return reason_table[k].id;
     return "unknown";
+}
+
+char *cx_reason_format(int reason, int iter, double kkt, double tol, const char *msg, char *buf,
+                       size_t len)
+{
+    if (!buf || len == 0)
+        return buf;
+    const char *w = cx_reason_str(reason);
+    int has_msg = msg && msg[0];
+    char at[96] = "";
+    /* the kkt error and the tolerance, never a NaN or Inf */
+    if (isfinite(kkt))
+        snprintf(at, sizeof at, "kkt error %.3g %s tol %.3g", kkt, kkt <= tol ? "<=" : ">", tol);
+    else
+        snprintf(at, sizeof at, "no finite kkt error (tol %.3g)", tol);
+    switch (reason) {
+    case CX_CONVERGED_KKT:
+        snprintf(buf, len, "%s in %d iterations: %s", w, iter, at);
+        break;
+    case CX_STOPPED_OWN:
+        snprintf(buf, len, "%s at %s after %d iterations: not converged", w, at, iter);
+        break;
+    case CX_DIVERGED_MAXIT:
+        snprintf(buf, len, "%s in %d iterations: %s", w, iter, at);
+        break;
+    case CX_DIVERGED_STALL:
+        snprintf(buf, len, "%s: the kkt error no longer decreases (%s after %d iterations)", w, at,
+                 iter);
+        break;
+    case CX_REFUSED:
+        snprintf(buf, len, "%s: %s", w, has_msg ? msg : "the method does not take this problem");
+        break;
+    case CX_DIVERGED:
+    case CX_DIVERGED_BREAKDOWN:
+        snprintf(buf, len, "%s at iteration %d: %s%s%s%s", w, iter,
+                 has_msg ? msg : "the method cannot continue", isfinite(kkt) ? " (" : "",
+                 isfinite(kkt) ? at : "", isfinite(kkt) ? ")" : "");
+        break;
+    case CX_DIVERGED_NAN:
+        snprintf(buf, len, "%s: %s", w, has_msg ? msg : "a NaN or Inf in the iterate");
+        break;
+    case CX_CANCELLED:
+    case CX_DIVERGED_TIME:
+        snprintf(buf, len, "%s%s after %d iterations: %s%s%s", w, reason == CX_DIVERGED_TIME ? " reached" : "",
+                 iter, at, has_msg ? "; " : "", has_msg ? msg : "");
+        break;
+    default:
+        snprintf(buf, len, "%s after %d iterations: %s", w, iter, at);
+        break;
+    }
+    return buf;
+}
+
+char *cx_session_outcome(const cx_session *s, char *buf, size_t len)
+{
+    const cx_iterate *it = &s->it;
+    return cx_reason_format(it->reason, it->iter, it->kkt, s->opt.tol, s->reason_msg, buf, len);
 }
 
 /* Status of every contact point from the iterate, by the same natural maps
@@ -120,22 +170,68 @@ static int solver_expand(cx_session *s, cx_diag *d)
     return solver_kkt(s, d);
 }
 
-/* The outcome after a step, from the kkt error and the limits; time: the
- * run's time including this step. */
-static int solver_outcome(const cx_session *s, double time)
+/* Whether this session (not one above it) is cancelled or past its time
+ * limit: the deadline of the step, or the run's measured time. */
+static int solver_cancelled(const cx_session *s)
+{
+    return atomic_load(&s->cancel) != 0;
+}
+
+static int solver_timed_out(const cx_session *s, double time)
+{
+    if (s->opt.time_limit > 0 && time >= s->opt.time_limit)
+        return 1;
+    return s->has_deadline && cx_session_clock_(s) >= s->deadline;
+}
+
+/* The outcome after a step, from the kkt error, the flags and the limits;
+ * time: the run's time including this step. Converged means the kkt error
+ * is at or below the tolerance, and nothing else does. */
+static int solver_outcome(cx_session *s, double time)
 {
     const cx_iterate *it = &s->it;
     if (it->kkt <= s->opt.tol)
         return CX_CONVERGED_KKT;
+    if (solver_cancelled(s))
+        return CX_CANCELLED;
+    if (solver_timed_out(s, time))
+        return CX_DIVERGED_TIME;
+    if (s->parent && cx_session_interrupted(s->parent))
+        return CX_CANCELLED;   /* the run above it is ending */
     if (it->own_done && s->opt.own_stop)
-        return CX_CONVERGED_OWN;
+        return CX_STOPPED_OWN;
     if (it->iter >= s->opt.max_iter)
         return CX_DIVERGED_MAXIT;
     if (s->opt.stall_window > 0 && it->iter - s->best_iter >= s->opt.stall_window)
         return CX_DIVERGED_STALL;
-    if (s->opt.time_limit > 0 && time >= s->opt.time_limit)
-        return CX_DIVERGED_TIME;
     return CX_ITERATING;
+}
+
+/* The first non-finite value of the iterate, as a message: "NaN in u
+ * (entry 12) at iteration 3", "overflow: Inf in lN ...", or the kkt
+ * error's own overflow. Returns 0 if all is finite. */
+static int solver_nonfinite(const cx_session *s, char *msg, size_t len)
+{
+    const cx_iterate *it = &s->it;
+    const cx_problem *p = s->p;
+    const struct { const char *name; const double *x; int n; } vecs[] = {
+        {"u", it->u, p->n}, {"lN", it->lN, p->m}, {"lT", it->lT, p->nt}};
+    for (size_t v = 0; v < sizeof vecs / sizeof vecs[0]; v++)
+        for (int i = 0; i < vecs[v].n; i++)
+            if (!isfinite(vecs[v].x[i])) {
+                if (isnan(vecs[v].x[i]))
+                    snprintf(msg, len, "NaN in %s (entry %d) at iteration %d", vecs[v].name, i, it->iter);
+                else
+                    snprintf(msg, len, "overflow: Inf in %s (entry %d) at iteration %d", vecs[v].name, i,
+                             it->iter);
+                return 1;
+            }
+    if (!isfinite(it->kkt)) {
+        snprintf(msg, len, "%s in the kkt error at iteration %d (the iterate is finite)",
+                 isnan(it->kkt) ? "NaN" : "overflow: Inf", it->iter);
+        return 1;
+    }
+    return 0;
 }
 
 /* Stall detection: the best kkt so far, and when it last halved (or the
@@ -162,7 +258,7 @@ int cx_session_complete_iterate(cx_session *s, cx_diag *d)
     return CX_OK;
 }
 
-int cx_solver_step(cx_session *s, cx_diag *d)
+static int solver_step(cx_session *s, cx_diag *d)
 {
     cx_iterate *it = &s->it;
     if (!s->method)
@@ -176,6 +272,11 @@ int cx_solver_step(cx_session *s, cx_diag *d)
     it->inner = 0;
     cx_diag local;
     cx_diag_clear(&local);
+    /* the time limit as a deadline on the clock, for the checks inside
+     * the step (cx_session_interrupted) */
+    s->has_deadline = s->opt.time_limit > 0;
+    if (s->has_deadline)
+        s->deadline = cx_session_clock_(s) + (s->opt.time_limit - it->time);
     /* the step's time: the method's step and the expansion of a partial
      * iterate, not the kkt error */
     double t0 = cx_clock_now();
@@ -183,6 +284,16 @@ int cx_solver_step(cx_session *s, cx_diag *d)
     it->step_time = cx_clock_now() - t0;
     it->iter++;
     it->inner_total += it->inner;
+    /* a method that declares its end (breakdown, divergence) ends the run
+     * now, with its message: no later test may overwrite it */
+    int declared = it->reason == CX_DIVERGED_BREAKDOWN || it->reason == CX_DIVERGED ? it->reason : 0;
+    if (declared) {
+        snprintf(s->reason_msg, sizeof s->reason_msg, "%s",
+                 local.msg[0] ? local.msg : "the method cannot continue");
+        it->reason = CX_ITERATING;   /* set again below, once the bookkeeping is done */
+        if (st != CX_OK && st != CX_ENOMEM)
+            st = CX_OK;              /* the message is the outcome's, not an error of the run */
+    }
     if (st == CX_OK)
         st = solver_kkt(s, &local);
     double run_time = it->time + it->step_time;
@@ -191,7 +302,7 @@ int cx_solver_step(cx_session *s, cx_diag *d)
         /* a run that ends here ends on the whole iterate; a nested run's
          * is read by the method that runs it, which may need only the
          * contact dofs (cf-fp) */
-        if (it->u_partial && !s->parent && solver_outcome(s, run_time) != CX_ITERATING) {
+        if (it->u_partial && !s->parent && (declared || solver_outcome(s, run_time) != CX_ITERATING)) {
             double t1 = cx_clock_now();
             st = solver_expand(s, &local);
             it->step_time += cx_clock_now() - t1;
@@ -210,19 +321,43 @@ int cx_solver_step(cx_session *s, cx_diag *d)
         return cx_diag_set(d, CX_ENOMEM, "out of memory in %s", s->method->id);
     }
     if (st != CX_OK) {
-        /* a method that cannot go on is an outcome, with its reason */
-        it->reason = CX_DIVERGED_BREAKDOWN;
-        snprintf(s->reason_msg, sizeof s->reason_msg, "%s", cx_diag_msg(&local, st));
+        /* a step cut short by a cancel or the time limit may fail on the
+         * way out (an inner run cancelled): the outcome is the cancel */
+        int cut = solver_cancelled(s) ? CX_CANCELLED
+                  : solver_timed_out(s, it->time) ? CX_DIVERGED_TIME
+                  : s->parent && cx_session_interrupted(s->parent) ? CX_CANCELLED
+                  : CX_ITERATING;
+        /* a method that cannot go on is an outcome, with its reason (a
+         * declared end keeps the method's words) */
+        it->reason = cut != CX_ITERATING ? cut : declared ? declared : CX_DIVERGED_BREAKDOWN;
+        if (!declared)
+            snprintf(s->reason_msg, sizeof s->reason_msg, "%s", cx_diag_msg(&local, st));
         return CX_OK;
     }
-    if (!isfinite(it->kkt)) {
+    if (declared) {
+        if (isfinite(it->kkt))
+            solver_classify(s);
+        it->reason = declared;
+        return CX_OK;
+    }
+    char msg[CX_DIAG_LEN];
+    if (solver_nonfinite(s, msg, sizeof msg)) {
         it->reason = CX_DIVERGED_NAN;
-        snprintf(s->reason_msg, sizeof s->reason_msg, "NaN or Inf in the iterate at iteration %d", it->iter);
+        snprintf(s->reason_msg, sizeof s->reason_msg, "%s", msg);
         return CX_OK;
     }
     solver_classify(s);
     it->reason = solver_outcome(s, it->u_partial ? run_time : it->time);
     return CX_OK;
+}
+
+int cx_solver_step(cx_session *s, cx_diag *d)
+{
+    int st = solver_step(s, d);
+    /* the deadline holds during a step only: the time between steps (the
+     * explorer paused) is not the run's */
+    s->has_deadline = 0;
+    return st;
 }
 
 int cx_solver_solve(cx_session *s, cx_observer obs, void *ctx, cx_diag *d)

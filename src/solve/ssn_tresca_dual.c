@@ -190,6 +190,8 @@ static int sdual_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
         st->p[i] = st->set[i] == 0 ? -st->g[i] : 0;
     while (nfree > 0 && inner < st->max_inner && f2 > tol2 &&
            !(st->adaptive && inner > 0 && b2 > st->gamma * st->gamma * f2)) {
+        if (inner > 0 && inner % CX_CHECK_INTERVAL == 0 && cx_session_interrupted(s))
+            break;   /* cancelled or out of time: the iterate so far stands */
         CX_TRY(cx_dual_apply(st->D, st->tangential, st->p, st->Ap, st->zp));
         double pAp = cx_vec_dot(nd, st->p, st->Ap);
         if (!(pAp > 0))

@@ -154,6 +154,8 @@ static int glob_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     memcpy(st->p, st->phi, sizeof(double) * (size_t)nd);
     while (inner < st->max_inner && gp2 > 0 && b2 <= st->gamma * st->gamma * rp &&
            sqrt(gp2) > st->eps * 1e-3 * st->bnorm) {
+        if (inner > 0 && inner % CX_CHECK_INTERVAL == 0 && cx_session_interrupted(s))
+            break;   /* cancelled or out of time: the iterate so far is feasible */
         CX_TRY(cx_dual_apply(st->D, st->tangential, st->p, st->Ap, st->zp));
         inner++;
         double pAp = cx_vec_dot(nd, st->p, st->Ap);

@@ -412,6 +412,6 @@ void tui_panel_runs(const tui_state *st, tui_box b)
             role = TUI_C_CURRENT;
         tui_put(y, b.x, role, b.w, "%-14.14s %-7s %5d %s %8.1f %6ld  %s", run->method, cx_friction_name(run->law),
             s ? s->iter : 0, kkt, s ? 1e3 * s->time : 0, s ? s->solves : 0,
-            run->reason ? cx_reason_id(run->reason) : r == st->nruns - 1 ? "current" : "stopped");
+            run->reason ? cx_reason_str(run->reason) : r == st->nruns - 1 ? "current" : "stopped");
     }
 }

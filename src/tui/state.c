@@ -68,6 +68,22 @@ static int state_method_index(const char *id)
     return -1;
 }
 
+/* --method auto's choice for the selected scene, level and law, if it is
+ * registered (else the selection stays). */
+static void state_select_auto(tui_state *st)
+{
+    const char *sets;
+    int i = state_method_index(cx_scene_auto_method(&st->scene, st->sel_level, NULL, st->sel_law, &sets));
+    if (i < 0)
+        return;
+    st->sel_method = i;
+    cx_param_default(&st->sel_params, cx_method_at(i)->params);
+    char buf[128];
+    snprintf(buf, sizeof buf, "%s", sets);
+    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok; tok = strtok_r(NULL, " ", &save))
+        cx_param_set_pair(&st->sel_params, tok, cx_method_at(i)->id, NULL);
+}
+
 /* The selections a freshly loaded scene starts from. */
 static void state_select_scene_defaults(tui_state *st)
 {
@@ -84,6 +100,7 @@ static void state_select_scene_defaults(tui_state *st)
         }
     }
     cx_param_default(&st->sel_params, cx_method_at(st->sel_method)->params);
+    state_select_auto(st);
 }
 
 static double state_sel_coef(const tui_state *st)
@@ -624,8 +641,8 @@ static void state_after_step(tui_state *st, int status, const cx_diag *d)
         st->running = 0;
         const char *why = cx_session_reason_msg(st->session);
         snprintf(run->reason_msg, sizeof run->reason_msg, "%s", why);
-        tui_msg(st, it->reason < 0, "%s after %d iterations%s%s", cx_reason_str(it->reason), it->iter,
-                why[0] ? ": " : "", why);
+        char outcome[CX_DIAG_LEN + 128];
+        tui_msg(st, it->reason < 0, "%s", cx_session_outcome(st->session, outcome, sizeof outcome));
     }
 }
 
@@ -724,6 +741,8 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
         }
         st->sel_method = i;
         cx_param_default(&st->sel_params, cx_method_at(i)->params);
+    } else {
+        state_select_auto(st);   /* for the level and law asked for */
     }
     st->field = TUI_F_METHOD;
     job_start(st, TUI_JOB_BUILD);

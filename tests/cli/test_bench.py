@@ -132,7 +132,7 @@ with tempfile.TemporaryDirectory() as tmp:
     rows = [r for r in j["rows"] if r["method"] == "ssn-tresca"]
     check([r["case"] for r in rows] == ["nominal", "load-1e-8"], f"cases {[r['case'] for r in rows]}")
     for r in rows:
-        check(r["converged"] == "no" and r["reason"] == "diverged_maxit" and r["iterations"] == 2,
+        check(r["converged"] == "no" and r["reason"] == "max_iter" and r["iterations"] == 2,
               f"forced failure row {r}")
         check(r["nonfinite"] == "no" and r["kkt"] is not None and r["kkt"] > 1e-10, "a finite kkt, not small")
 

@@ -29,7 +29,8 @@ check(j["scene"] == "hertz" and j["method"] == "ssn-tresca" and j["dim"] == 2, "
 check(j["contact_points"] == 17, f"17 arc nodes at level 16, got {j['contact_points']}")
 # 17 x 17 nodes, 2 dofs each, u_x = 0 on the 17 axis nodes
 check(j["dofs"] == 2 * 17 * 17 - 17, f"dofs = 561, got {j['dofs']}")
-check(j["converged"] is True and j["reason"] == "converged_kkt", "converged on the kkt error")
+check(j["converged"] is True and j["reason"] == "converged", "converged on the kkt error")
+check(j["reason_text"].startswith("converged in "), f"the outcome's sentence: {j['reason_text']}")
 check(0 < j["kkt_error"] < 1e-12, f"kkt {j['kkt_error']}")
 check(2 <= j["iterations"] <= 12, f"iterations {j['iterations']}")
 for t in ["assemble", "setup", "solve", "total", "linear_solve"]:
@@ -65,7 +66,7 @@ check(code == 0 and j["params"]["rho"] == 0.01 and j["friction"] == "tresca" and
 # not converging is a result: exit 3
 code, out, err = run("solve", "hertz", "--level", "16", "--json", "--max-iter", "1")
 j = json.loads(out)
-check(code == 3 and j["converged"] is False and j["reason"] == "diverged_maxit", f"max-iter 1: {code} {j['reason']}")
+check(code == 3 and j["converged"] is False and j["reason"] == "max_iter", f"max-iter 1: {code} {j['reason']}")
 check(j["kkt_error"] is not None, "kkt reported even when not converged")
 
 # text summary
@@ -78,11 +79,12 @@ one_line_error(*run("solve", "nosuchscene")[::2], "unknown scene 'nosuchscene'")
 one_line_error(*run("solve", "hertz", "--level", "abc")[::2], "--level", "abc")
 one_line_error(*run("solve", "hertz", "--tol", "-1")[::2], "--tol")
 one_line_error(*run("solve", "hertz", "--friction", "sticky")[::2], "--friction", "sticky")
-one_line_error(*run("solve", "hertz", "--set", "rho=-3")[::2], "rho", "ssn-tresca")
+one_line_error(*run("solve", "hertz", "--method", "ssn-tresca", "--set", "rho=-3")[::2], "rho", "ssn-tresca")
 one_line_error(*run("solve", "hertz", "--set", "zeta=1")[::2], "unknown parameter 'zeta'")
 one_line_error(*run("solve", "hertz", "--bogus")[::2], "unknown option '--bogus'")
 one_line_error(*run("solve", "hertz", "--F")[::2], "--F", "needs a value")
-one_line_error(*run("solve", "hertz", "--friction", "coulomb")[::2], "does not support Coulomb")
+one_line_error(*run("solve", "hertz", "--method", "ssn-tresca", "--friction", "coulomb")[::2],
+               "does not support Coulomb")
 one_line_error(*run("solve")[::2], "missing SCENE")
 one_line_error(*run("frobnicate")[::2], "unknown command")
 one_line_error(*run("solve", "hertz", "--level", "999999")[::2], "level")

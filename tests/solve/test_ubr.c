@@ -44,7 +44,7 @@ static void check_paper_band(const char *scene, const int *levels, int nlev, con
         const cx_iterate *it = cx_session_iterate(s);
         fprintf(stderr, "%s %d: ubr-c %s %d iterations (paper's criterion), kkt %.2e\n", scene, levels[k], r,
                 it->iter, it->kkt);
-        CX_CHECK(it->reason == CX_CONVERGED_OWN);
+        CX_CHECK(it->reason == CX_STOPPED_OWN);
         CX_CHECK(it->iter >= lo && it->iter <= hi);
         CX_CHECK(it->counters.factorizations == 1);
         mn = it->iter < mn ? it->iter : mn;
