@@ -96,6 +96,35 @@ typedef struct bench_result {
 void bench_run(cx_session *s, const cx_method *m, const cx_param_values *pv,
                const cx_options *opt, const bench_ref *ref, bench_result *r);
 
+/* The most runs a median is taken over (--repeat). */
+#define BENCH_MAX_REPEAT 1000
+
+/* Medians over the runs of one case, each run on a fresh problem paired
+ * with the baseline of that problem measured just before it. */
+typedef struct bench_paired {
+    int runs;                  /* runs that finished (0: failed or interrupted) */
+    double time;               /* setup + solve, seconds */
+    double ratio;              /* time / its baseline */
+    double setup, solve;
+    double baseline;           /* factorise + solve K */
+    double assembly;           /* build of the problem */
+    double assembly_ratio;     /* assembly / its baseline */
+    double peak_mb;            /* the largest heap_mb of the runs */
+} bench_paired;
+
+/* The measurement protocol of wp and scaling: repeat times, build the
+ * problem of spec (assembly timed), measure its baseline, run m on a new
+ * session of it. res is the last run's result (failed: the message of a
+ * build or of the run; interrupted: Ctrl-C before a result); out the
+ * medians of the runs that finished. */
+void bench_run_paired(const bench_problem_spec *spec, const cx_method *m, const cx_param_values *pv,
+                      const cx_options *opt, const bench_ref *ref, int repeat, bench_result *res,
+                      bench_paired *out);
+
+/* The baseline of p (DESIGN.md §5: analyse + factorise + solve K): the
+ * median of n timings (n clipped to [1, BENCH_MAX_REPEAT]). */
+int bench_baseline(const cx_problem *p, int n, double *seconds, cx_diag *d);
+
 /* Errors of (u, lN, lT) against ref on problem p. */
 void bench_errors(const cx_problem *p, const bench_ref *ref, const double *u, const double *lN,
                   const double *lT, double *err_u, double *err_l);
@@ -262,7 +291,8 @@ int bench_paper_003(int argc, char **argv);
 /* Print "signorini CMD: message" on stderr and return CX_EXIT_ERROR. */
 int bench_fail(const char *cmd, const char *msg);
 
-/* Median of v[0..n-1] (reorders v). */
+/* Median of v[0..n-1] (reorders v); NaN when n <= 0. The one median of
+ * the benchmarks: every "median of N" goes through it. */
 double bench_median(double *v, int n);
 
 #endif

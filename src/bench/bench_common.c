@@ -85,8 +85,9 @@ int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag 
             c->max_iter = (int)n;
             break;
         case 9:
-            if (cx_parse_int(v, 1, 1000, &n)) {
-                cx_diag_set(d, CX_EINVAL, "--repeat '%s': expected an integer in [1, 1000]", v);
+            if (cx_parse_int(v, 1, BENCH_MAX_REPEAT, &n)) {
+                cx_diag_set(d, CX_EINVAL, "--repeat '%s': expected an integer in [1, %d]", v,
+                            BENCH_MAX_REPEAT);
                 return -1;
             }
             c->repeat = (int)n;

@@ -166,18 +166,16 @@ static int bench_scaling_plot(const bench_table *t, const char *png, cx_diag *d)
 static int scaling_level_costs(const bench_problem_spec *spec, int repeat, double *t_asm,
                                double *t_base, double *factor_mb, cx_problem **p, cx_diag *d)
 {
-    double ta[64], tb[64];
-    int n = repeat < 64 ? repeat : 64, nb = n;
+    double ta[BENCH_MAX_REPEAT];
+    int n = repeat < BENCH_MAX_REPEAT ? repeat : BENCH_MAX_REPEAT;
     for (int k = 0; k < n; k++) {
         cx_problem_destroy(p);
         CX_TRY(bench_build(spec, p, &ta[k], d));
     }
+    *t_asm = bench_median(ta, n);
     /* the level's baseline for rows without a run (each run is paired
      * with its own) */
-    for (int k = 0; k < nb; k++)
-        CX_TRY(cx_problem_baseline(*p, &tb[k], d));
-    *t_asm = bench_median(ta, n);
-    *t_base = bench_median(tb, nb);
+    CX_TRY(bench_baseline(*p, n, t_base, d));
     /* the factor of the constrained-order Cholesky every Schur method uses */
     cx_schur *S = NULL;
     int st = cx_schur_create(&S, &(*p)->K, (*p)->cdofs, (*p)->nc, NULL, d);
@@ -241,38 +239,9 @@ int bench_scaling(int argc, char **argv)
             cx_options opt;
             bench_common_options(&a.c, &opt);
             opt.tol = a.tol;
-            /* each run paired with a baseline just before it (see wp) */
-            double times[64], setups[64], solves[64], bases[64], ratios[64], asms[64], aratios[64];
-            double peak = 0;
-            int nt = 0;
             bench_result res;
-            memset(&res, 0, sizeof res);
-            for (int rep = 0; rep < a.c.repeat && rep < 64; rep++) {
-                cx_problem *q = NULL;
-                cx_session *s = NULL;
-                double ta = NAN;
-                if (bench_build(&spec, &q, &ta, &d) || cx_session_create(&s, &q, &d)) {
-                    cx_problem_destroy(&q);
-                    res.failed = 1;
-                    snprintf(res.msg, sizeof res.msg, "%s", d.msg);
-                    break;
-                }
-                double tb = NAN;
-                cx_problem_baseline(cx_session_problem(s), &tb, NULL);
-                bench_run(s, methods[k], NULL, &opt, ref_ok ? &ref : NULL, &res);
-                peak = fmax(peak, res.heap_mb);
-                cx_session_destroy(&s);
-                if (res.failed || res.interrupted)
-                    break;
-                setups[nt] = res.t_setup;
-                solves[nt] = res.t_solve;
-                bases[nt] = tb;
-                asms[nt] = ta;
-                aratios[nt] = ta / tb;
-                times[nt] = res.t_setup + res.t_solve;
-                ratios[nt] = times[nt] / tb;
-                nt++;
-            }
+            bench_paired med;
+            bench_run_paired(&spec, methods[k], NULL, &opt, ref_ok ? &ref : NULL, a.c.repeat, &res, &med);
             if (res.interrupted)
                 break;
             int r = bench_table_row(&t);
@@ -289,17 +258,15 @@ int bench_scaling(int argc, char **argv)
             bench_set_result(&t, r, &res);
             if (res.failed)
                 continue;
-            double time = bench_median(times, nt);
-            bench_set_num(&t, r, "time", time);
-            double tb = bench_median(bases, nt);
-            bench_set_num(&t, r, "baseline", tb);
-            bench_set_num(&t, r, "assembly", bench_median(asms, nt));
-            bench_set_num(&t, r, "assembly/baseline", bench_median(aratios, nt));
-            bench_set_num(&t, r, "ratio", bench_median(ratios, nt));
-            bench_set_num(&t, r, "setup", bench_median(setups, nt));
-            bench_set_num(&t, r, "solve", bench_median(solves, nt));
-            bench_set_num(&t, r, "peak_mb", peak);
-            bench_set_num(&t, r, "peak/factor", peak / fmb);
+            bench_set_num(&t, r, "time", med.time);
+            bench_set_num(&t, r, "baseline", med.baseline);
+            bench_set_num(&t, r, "assembly", med.assembly);
+            bench_set_num(&t, r, "assembly/baseline", med.assembly_ratio);
+            bench_set_num(&t, r, "ratio", med.ratio);
+            bench_set_num(&t, r, "setup", med.setup);
+            bench_set_num(&t, r, "solve", med.solve);
+            bench_set_num(&t, r, "peak_mb", med.peak_mb);
+            bench_set_num(&t, r, "peak/factor", med.peak_mb / fmb);
         }
         bench_ref_clear(&ref);
         cx_problem_destroy(&p);
@@ -328,5 +295,5 @@ int bench_scaling(int argc, char **argv)
             code = bench_fail("bench scaling", d.msg);
     }
     bench_table_clear(&t);
-    return bench_interrupted() ? 130 : code;
+    return bench_interrupted() ? CX_EXIT_INTERRUPTED : code;
 }

@@ -482,5 +482,5 @@ int bench_stress(int argc, char **argv)
     if (code == CX_EXIT_OK && bench_output(&a.c, &t, &d))
         code = bench_fail("bench stress", d.msg);
     bench_table_clear(&t);
-    return bench_interrupted() ? 130 : code;
+    return bench_interrupted() ? CX_EXIT_INTERRUPTED : code;
 }

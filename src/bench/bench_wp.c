@@ -129,17 +129,6 @@ static const char *wp_sweep_of(const wp_args *a, const cx_method *m, double *val
     return NULL;
 }
 
-/* Median of repeat timings of the baseline. */
-static int wp_baseline(const cx_problem *p, int repeat, double *t, cx_diag *d)
-{
-    double v[64];
-    int n = repeat < 64 ? repeat : 64;
-    for (int k = 0; k < n; k++)
-        CX_TRY(cx_problem_baseline(p, &v[k], d));
-    *t = bench_median(v, n);
-    return CX_OK;
-}
-
 /* The plot of time against the error in the energy norm, one curve per
  * method and parameter value, the baseline as a vertical line. */
 static int bench_wp_plot(const bench_table *t, double baseline, const char *png, cx_diag *d)
@@ -212,7 +201,7 @@ int bench_wp(int argc, char **argv)
     bench_ref ref;
     uint64_t shash;
     if (bench_build(&spec, &p, &t_asm, &d) || bench_methods(a.c.methods, p, methods, 64, &nm, &d) ||
-        wp_baseline(p, a.c.repeat < 3 ? 3 : a.c.repeat, &baseline, &d) ||
+        bench_baseline(p, a.c.repeat < 3 ? 3 : a.c.repeat, &baseline, &d) ||
         bench_scene_hash(&sc, &shash, &d)) {
         cx_problem_destroy(&p);
         return bench_fail("bench wp", d.msg);
@@ -270,34 +259,9 @@ int bench_wp(int argc, char **argv)
                 opt.tol = a.tols[q];
                 opt.own_stop = 0;
                 bench_result res;
-                /* each run is paired with a baseline measured just before
-                 * it: the ratio is the median of the pairs, robust to the
-                 * load of a shared machine drifting during the benchmark */
-                double times[64], ratios[64], setups[64], solves[64];
-                int nt = 0;
-                for (int rep = 0; rep < a.c.repeat && rep < 64 && !bench_interrupted(); rep++) {
-                    cx_problem *q2 = NULL;
-                    cx_session *s = NULL;
-                    if (bench_build(&spec, &q2, NULL, &d) || cx_session_create(&s, &q2, &d)) {
-                        cx_problem_destroy(&q2);
-                        memset(&res, 0, sizeof res);
-                        res.failed = 1;
-                        snprintf(res.msg, sizeof res.msg, "%s", d.msg);
-                        break;
-                    }
-                    double tb = NAN;
-                    cx_problem_baseline(cx_session_problem(s), &tb, NULL);
-                    bench_run(s, m, &pv, &opt, ref_ok ? &ref : NULL, &res);
-                    cx_session_destroy(&s);
-                    if (res.failed || res.interrupted)
-                        break;
-                    setups[nt] = res.t_setup;
-                    solves[nt] = res.t_solve;
-                    times[nt] = res.t_setup + res.t_solve;
-                    ratios[nt] = times[nt] / tb;
-                    nt++;
-                }
-                if (res.interrupted || (!res.failed && nt == 0))
+                bench_paired med;
+                bench_run_paired(&spec, m, &pv, &opt, ref_ok ? &ref : NULL, a.c.repeat, &res, &med);
+                if (res.interrupted)
                     break;
                 int r = bench_table_row(&t);
                 bench_set_str(&t, r, "scene", "%s", sc.id);
@@ -310,11 +274,10 @@ int bench_wp(int argc, char **argv)
                 bench_set_result(&t, r, &res);
                 if (res.failed)
                     continue;
-                double time = bench_median(times, nt);
-                bench_set_num(&t, r, "time", time);
-                bench_set_num(&t, r, "ratio", bench_median(ratios, nt));
-                bench_set_num(&t, r, "setup", bench_median(setups, nt));
-                bench_set_num(&t, r, "solve", bench_median(solves, nt));
+                bench_set_num(&t, r, "time", med.time);
+                bench_set_num(&t, r, "ratio", med.ratio);
+                bench_set_num(&t, r, "setup", med.setup);
+                bench_set_num(&t, r, "solve", med.solve);
                 bench_set_int(&t, r, "factorizations", res.work.factorizations);
                 bench_set_int(&t, r, "solves", res.work.solves);
             }
@@ -330,5 +293,5 @@ int bench_wp(int argc, char **argv)
     bench_table_clear(&t);
     bench_ref_clear(&ref);
     cx_problem_destroy(&p);
-    return bench_interrupted() ? 130 : code;
+    return bench_interrupted() ? CX_EXIT_INTERRUPTED : code;
 }

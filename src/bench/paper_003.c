@@ -95,23 +95,6 @@ static double p003_peak_mb(void)
     return ru.ru_maxrss / 1024.0;
 }
 
-static int p003_cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* median of three baselines of the problem */
-static int p003_baseline(const cx_problem *p, double *sec, cx_diag *d)
-{
-    double t[3];
-    for (int k = 0; k < 3; k++)
-        CX_TRY(cx_problem_baseline(p, &t[k], d));
-    qsort(t, 3, sizeof t[0], p003_cmp);
-    *sec = t[1];
-    return CX_OK;
-}
-
 typedef struct {
     int ok;                 /* solved */
     double time, base;
@@ -127,7 +110,7 @@ static void p003_solve(const cx_scene *sc, int level, const p003_table *tb, doub
     cx_problem *p = NULL;
     cx_session *s = NULL;
     memset(r, 0, sizeof *r);
-    if (cx_scene_build(sc, level, &p, &d) || p003_baseline(p, &r->base, &d)) {
+    if (cx_scene_build(sc, level, &p, &d) || bench_baseline(p, 3, &r->base, &d)) {
         snprintf(r->why, sizeof r->why, "%s", d.msg);
         cx_problem_destroy(&p);
         return;
