@@ -56,11 +56,13 @@ typedef struct bench_ref {
  * small table per friction law that supports p (see bench_ref.c). */
 const cx_method *bench_ref_method(const cx_problem *p);
 
-/* Key of a reference: FNV-1a over the scene file's bytes, the level, the
- * law and its value and the variant. */
-int bench_ref_key(const bench_problem_spec *spec, uint64_t *hash, cx_diag *d);
-/* The hash of the scene file alone (for the headers). */
-int bench_scene_hash(const cx_scene *s, uint64_t *hash, cx_diag *d);
+/* Key of a reference: FNV-1a over a canonical serialisation of the
+ * parsed scene (every field that changes the problem; see bench_ref.c),
+ * the level, the law, its value and the variant. Never re-reads the
+ * file, so a scene from a pipe or changed in memory has its own key. */
+uint64_t bench_ref_key(const bench_problem_spec *spec);
+/* The same hash of the parsed scene alone (the headers' "scene hash"). */
+uint64_t bench_scene_hash(const cx_scene *s);
 
 /* Read the reference of spec from dir (created if missing), or compute it
  * with the reference method to kkt < 1e-12 and store it (temp + rename).

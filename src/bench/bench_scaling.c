@@ -195,8 +195,8 @@ int bench_scaling(int argc, char **argv)
     if (scaling_parse(argc, argv, &a, &d) || cx_scene_open(a.scene, &sc, &d))
         return bench_fail("bench scaling", d.msg);
     bench_problem_spec spec = {&sc, 0, CX_FRICTION_NONE, 0, "", NULL, NULL};
-    uint64_t shash;
-    if (bench_common_law(&a.c, &sc, &spec.law, &spec.value, &d) || bench_scene_hash(&sc, &shash, &d))
+    uint64_t shash = bench_scene_hash(&sc);
+    if (bench_common_law(&a.c, &sc, &spec.law, &spec.value, &d))
         return bench_fail("bench scaling", d.msg);
     for (int k = 0; k < a.nlevels; k++)
         if (a.levels[k] > sc.level_max) {

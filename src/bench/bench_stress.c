@@ -459,9 +459,8 @@ int bench_stress(int argc, char **argv)
     bench_progress_start(total);
     for (int k = 0; k < a.nscenes && !bench_interrupted() && code == CX_EXIT_OK; k++) {
         cx_scene sc;
-        uint64_t h;
-        if (cx_scene_open(a.scenes[k], &sc, &d) == CX_OK && bench_scene_hash(&sc, &h, NULL) == CX_OK)
-            bench_meta(&t, sc.id, "hash %016llx (%s)", (unsigned long long)h, sc.path);
+        if (cx_scene_open(a.scenes[k], &sc, &d) == CX_OK)
+            bench_meta(&t, sc.id, "hash %016llx (%s)", (unsigned long long)bench_scene_hash(&sc), sc.path);
         code = stress_scene(&a, a.scenes[k], &t, &done, total);
     }
     bench_progress_end();

@@ -199,10 +199,9 @@ int bench_wp(int argc, char **argv)
     int nm;
     double baseline;
     bench_ref ref;
-    uint64_t shash;
+    uint64_t shash = bench_scene_hash(&sc);
     if (bench_build(&spec, &p, &t_asm, &d) || bench_methods(a.c.methods, p, methods, 64, &nm, &d) ||
-        bench_baseline(p, a.c.repeat < 3 ? 3 : a.c.repeat, &baseline, &d) ||
-        bench_scene_hash(&sc, &shash, &d)) {
+        bench_baseline(p, a.c.repeat < 3 ? 3 : a.c.repeat, &baseline, &d)) {
         cx_problem_destroy(&p);
         return bench_fail("bench wp", d.msg);
     }
