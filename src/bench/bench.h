@@ -64,10 +64,20 @@ uint64_t bench_ref_key(const bench_problem_spec *spec);
 /* The same hash of the parsed scene alone (the headers' "scene hash"). */
 uint64_t bench_scene_hash(const cx_scene *s);
 
-/* Read the reference of spec from dir (created if missing), or compute it
- * with the reference method to kkt < 1e-12 and store it (temp + rename).
- * p is the problem of spec (already built). */
-int bench_ref_get(const char *dir, const bench_problem_spec *spec, const cx_problem *p,
+/* Where references are kept: --cache DIR, else $XDG_CACHE_HOME/signorini,
+ * else ~/.cache/signorini (bench_common_finish). A cache that cannot be
+ * created or written gives one warning line on stderr, then the run goes
+ * on without it (off). */
+typedef struct bench_cache {
+    char dir[512];             /* "" : none */
+    int off;                   /* 1 once warned: compute, never read or store */
+} bench_cache;
+
+/* Read the reference of spec from the cache (its directory created if
+ * missing), or compute it with the reference method to kkt < 1e-12 and
+ * store it (temp + rename). p is the problem of spec (already built). A
+ * cache that fails is turned off with its warning, never an error. */
+int bench_ref_get(bench_cache *cache, const bench_problem_spec *spec, const cx_problem *p,
                   double time_limit, bench_ref *r, cx_diag *d);
 void bench_ref_clear(bench_ref *r);
 
@@ -202,7 +212,7 @@ typedef struct bench_common {
     const char *csv;           /* --csv FILE */
     int json;                  /* --json: the JSON on stdout instead of the table */
     const char *png;           /* --png FILE (refused until the renderer lands) */
-    const char *cache;         /* --cache DIR (default: next to --csv, else ./signorini-ref) */
+    const char *cache;         /* --cache DIR (default: see bench_cache) */
     const char *methods;       /* --methods a,b */
     const char *friction;      /* --friction LAW */
     const char *value;         /* --slip / --F value */
@@ -210,14 +220,15 @@ typedef struct bench_common {
     int max_iter;              /* --max-iter N (0: the default) */
     int repeat;                /* --repeat N: timings are medians of N runs */
     int threads;               /* --threads N (0: as the environment says) */
-    char cache_dir[512];
+    bench_cache refs;          /* the reference cache the options give */
 } bench_common;
 
 /* If argv[*i] is a common option, consume it and return 1; -1 on a bad
  * value (message in d); 0 otherwise. */
 int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d);
 void bench_common_default(bench_common *c, int repeat);
-/* Check what needs checking once the options are read (PNG, cache dir). */
+/* Check what needs checking once the options are read (PNG), set the
+ * thread counts and the reference cache's directory. */
 int bench_common_finish(bench_common *c, cx_diag *d);
 extern const char bench_common_help[];
 /* If argv asks for --help / -h: print usage and the common options, return 1. */

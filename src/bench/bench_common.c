@@ -28,8 +28,8 @@ const char bench_common_help[] =
     "  --csv FILE           also write the rows as CSV (header lines start with '#')\n"
     "  --json               print JSON {meta, rows} on stdout instead of the table\n"
     "  --png FILE           the plot of the runs (PNG, through the renderer)\n"
-    "  --cache DIR          reference solutions (default: signorini-ref/ beside\n"
-    "                       the --csv file, else in the current directory)\n";
+    "  --cache DIR          reference solutions (default: $XDG_CACHE_HOME/signorini,\n"
+    "                       else ~/.cache/signorini)\n";
 
 const char bench_png_missing[] = "PNG plots need the renderer (not in this build)";
 
@@ -137,14 +137,19 @@ int bench_common_finish(bench_common *c, cx_diag *d)
     if (c->png)
         return cx_diag_set(d, CX_EUNSUPPORTED, "%s", bench_png_missing);
 #endif
-    if (c->cache) {
-        snprintf(c->cache_dir, sizeof c->cache_dir, "%s", c->cache);
-    } else if (c->csv && strcmp(c->csv, "-") != 0 && strrchr(c->csv, '/')) {
-        int len = (int)(strrchr(c->csv, '/') - c->csv);
-        snprintf(c->cache_dir, sizeof c->cache_dir, "%.*s/signorini-ref", len, c->csv);
-    } else {
-        snprintf(c->cache_dir, sizeof c->cache_dir, "signorini-ref");
-    }
+    /* the XDG base directory rule: a relative $XDG_CACHE_HOME is ignored */
+    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    char *dir = c->refs.dir;
+    size_t len = sizeof c->refs.dir;
+    if (c->cache && c->cache[0])
+        snprintf(dir, len, "%s", c->cache);
+    else if (xdg && xdg[0] == '/')
+        snprintf(dir, len, "%s/signorini", xdg);
+    else if (home && home[0])
+        snprintf(dir, len, "%s/.cache/signorini", home);
+    else
+        dir[0] = '\0';   /* bench_ref_get warns once and runs uncached */
+    c->refs.off = 0;
     return CX_OK;
 }
 

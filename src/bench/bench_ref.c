@@ -207,8 +207,9 @@ static int ref_alloc(bench_ref *r, const cx_problem *p)
     return r->u && r->lN && r->lT ? CX_OK : CX_ENOMEM;
 }
 
-/* mkdir -p */
-static int ref_mkdir(const char *dir, cx_diag *d)
+/* mkdir -p, then check that dir is a directory we may write in (errno
+ * set when not). */
+static int ref_mkdir(const char *dir)
 {
     char buf[512];
     snprintf(buf, sizeof buf, "%s", dir);
@@ -217,13 +218,30 @@ static int ref_mkdir(const char *dir, cx_diag *d)
             char keep = *c;
             *c = '\0';
             if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-                return cx_diag_set(d, CX_EIO, "--cache %s: cannot create the directory", dir);
+                return CX_EIO;
             *c = keep;
             if (!keep)
                 break;
         }
     }
-    return CX_OK;
+    struct stat st;
+    if (stat(dir, &st) != 0)
+        return CX_EIO;
+    if (!S_ISDIR(st.st_mode)) {
+        errno = ENOTDIR;
+        return CX_EIO;
+    }
+    return access(dir, W_OK | X_OK) == 0 ? CX_OK : CX_EIO;
+}
+
+/* The one warning of a cache that fails: the run goes on without it. */
+static void ref_cache_off(bench_cache *cache, const char *why)
+{
+    if (cache->off)
+        return;
+    cache->off = 1;
+    fprintf(stderr, "signorini bench: warning: reference cache %s: %s; references are not kept\n",
+            cache->dir[0] ? cache->dir : "(none: neither $XDG_CACHE_HOME nor $HOME is set)", why);
 }
 
 static void ref_path(const char *dir, const bench_problem_spec *spec, uint64_t hash, char *path,
@@ -339,23 +357,26 @@ static int ref_compute(const bench_problem_spec *spec, const cx_problem *p, doub
     return CX_OK;
 }
 
-int bench_ref_get(const char *dir, const bench_problem_spec *spec, const cx_problem *p,
+int bench_ref_get(bench_cache *cache, const bench_problem_spec *spec, const cx_problem *p,
                   double time_limit, bench_ref *r, cx_diag *d)
 {
     memset(r, 0, sizeof *r);
     char path[700]; /* dir (512) + name */
     uint64_t hash = bench_ref_key(spec);
-    CX_TRY(ref_mkdir(dir, d));
-    ref_path(dir, spec, hash, path, sizeof path);
-    if (ref_read(path, p, r) == CX_OK) {
-        r->cached = 1;
-    } else {
+    if (!cache->off && !cache->dir[0])
+        ref_cache_off(cache, "no directory");
+    if (!cache->off && ref_mkdir(cache->dir) != CX_OK)
+        ref_cache_off(cache, strerror(errno));
+    if (!cache->off) {
+        ref_path(cache->dir, spec, hash, path, sizeof path);
+        r->cached = ref_read(path, p, r) == CX_OK;
+    }
+    if (!r->cached) {
         CX_TRY(ref_compute(spec, p, time_limit, r, d));
-        int st = ref_write(path, r, d);
-        if (st != CX_OK) {
-            bench_ref_clear(r);
-            return st;
-        }
+        cx_diag wd;
+        cx_diag_clear(&wd);
+        if (!cache->off && ref_write(path, r, &wd) != CX_OK)
+            ref_cache_off(cache, "cannot write in it");
     }
     r->hash = hash;
     double *w = malloc(sizeof(double) * ((size_t)p->n + 1));

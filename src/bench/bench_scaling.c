@@ -229,7 +229,7 @@ int bench_scaling(int argc, char **argv)
             break;
         }
         bench_ref ref = {0};
-        int ref_ok = !a.no_ref && bench_ref_get(a.c.cache_dir, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
+        int ref_ok = !a.no_ref && bench_ref_get(&a.c.refs, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
         if (!a.no_ref)
             bench_meta(&t, label, ref_ok ? "reference %s kkt %.2e%s (%s)" : "no reference: %s",
                        ref_ok ? ref.method : d.msg, ref.kkt,

@@ -206,7 +206,7 @@ static void stress_nominal_clear(stress_nominal *nom)
 
 /* One case on one problem: build it, its reference, then every method.
  * methods[k] is run when it supports the problem, else a row says why. */
-static void stress_case(const stress_args *a, const stress_row_ctx *x, const bench_problem_spec *spec,
+static void stress_case(stress_args *a, const stress_row_ctx *x, const bench_problem_spec *spec,
                         const cx_method *const *methods, int nm, stress_nominal *nominal,
                         int case_kind, int *done, int total)
 {
@@ -227,7 +227,7 @@ static void stress_case(const stress_args *a, const stress_row_ctx *x, const ben
     bench_ref ref;
     cx_diag rd;
     cx_diag_clear(&rd);
-    int ref_ok = bench_ref_get(a->c.cache_dir, spec, cp, 10 * a->c.time_limit, &ref, &rd) == CX_OK;
+    int ref_ok = bench_ref_get(&a->c.refs, spec, cp, 10 * a->c.time_limit, &ref, &rd) == CX_OK;
     int rows = 0;
     for (int k = 0; k < nm && !bench_interrupted(); k++) {
         char label[128];
@@ -268,7 +268,7 @@ static void stress_case(const stress_args *a, const stress_row_ctx *x, const ben
 
 /* Each real parameter of each method at default x 1e-5 and x 1e5 (clipped
  * to its range): ten decades. */
-static void stress_params(const stress_args *a, const stress_row_ctx *x, const bench_problem_spec *spec,
+static void stress_params(stress_args *a, const stress_row_ctx *x, const bench_problem_spec *spec,
                           const cx_method *const *methods, int nm, stress_nominal *nominal)
 {
     cx_diag d;
@@ -280,7 +280,7 @@ static void stress_params(const stress_args *a, const stress_row_ctx *x, const b
         return;
     }
     bench_ref ref;
-    int ref_ok = bench_ref_get(a->c.cache_dir, spec, cx_session_problem(s), 10 * a->c.time_limit, &ref, &d) == CX_OK;
+    int ref_ok = bench_ref_get(&a->c.refs, spec, cx_session_problem(s), 10 * a->c.time_limit, &ref, &d) == CX_OK;
     for (int k = 0; k < nm && !bench_interrupted(); k++) {
         const cx_method *m = methods[k];
         for (int j = 0; m->params && m->params[j].key; j++) {
@@ -317,7 +317,7 @@ static void stress_params(const stress_args *a, const stress_row_ctx *x, const b
 }
 
 /* All the selected cases on one scene. */
-static int stress_scene(const stress_args *a, const char *id, bench_table *t, int *done, int total)
+static int stress_scene(stress_args *a, const char *id, bench_table *t, int *done, int total)
 {
     cx_diag d;
     cx_diag_clear(&d);

@@ -205,7 +205,7 @@ int bench_wp(int argc, char **argv)
         cx_problem_destroy(&p);
         return bench_fail("bench wp", d.msg);
     }
-    int ref_ok = bench_ref_get(a.c.cache_dir, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
+    int ref_ok = bench_ref_get(&a.c.refs, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
 
     bench_table t;
     bench_table_init(&t, wp_cols);
