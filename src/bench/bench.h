@@ -286,6 +286,9 @@ void bench_progress_end(void);
 int bench_interrupted(void);
 /* An observer that stops a run on Ctrl-C. */
 int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it);
+/* cx_solver_solve under bench_observer, for the paper drivers: a run
+ * stopped by Ctrl-C is CX_EIO "interrupted (Ctrl-C)", never a result. */
+int bench_solve(cx_session *s, cx_diag *d);
 
 /* ---- the benchmarks ---------------------------------------------------- */
 

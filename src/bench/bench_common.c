@@ -267,6 +267,12 @@ int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it)
     return progress_stop != 0;
 }
 
+int bench_solve(cx_session *s, cx_diag *d)
+{
+    CX_TRY(cx_solver_solve(s, bench_observer, NULL, d));
+    return bench_interrupted() ? cx_diag_set(d, CX_EIO, "interrupted (Ctrl-C)") : CX_OK;
+}
+
 void bench_catch_sigint(void)
 {
     struct sigaction sa;

@@ -67,7 +67,7 @@ static int p000_method(cx_session *s, const p000_run *r, p000_result *out, cx_di
         CX_TRY(cx_param_set_pair(&v, r->sets[k], r->id, d));
     CX_TRY(cx_session_set_method(s, m, &v, &o, d));
     long s0 = cx_session_iterate(s)->counters.solves;
-    CX_TRY(cx_solver_solve(s, NULL, NULL, d));
+    CX_TRY(bench_solve(s, d));
     const cx_iterate *it = cx_session_iterate(s);
     out->nk = it->counters.solves - s0;
     out->kmax = it->iter;
@@ -180,7 +180,7 @@ int bench_paper_000(int argc, char **argv)
         double ta, tsetup = 0, tb;
         int n, m;
         if (p000_row(&sc, row, slip, repeat, res, &ta, &tsetup, &tb, &n, &m, &d))
-            return bench_fail("bench paper 000", d.msg);
+            return bench_interrupted() ? CX_EXIT_INTERRUPTED : bench_fail("bench paper 000", d.msg);
         char nm[24], cell[5][32], both[5][64];
         snprintf(nm, sizeof nm, "%d/%d", n, m);
         for (int k = 0; k < 5; k++) {

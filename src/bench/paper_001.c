@@ -156,7 +156,7 @@ static int p001_level(const cx_scene *sc, int level, int repeat, int solves, p00
     o.tol = 1e-300;
     o.max_iter = 100;
     if ((st = cx_session_set_method(s, cx_method_find("ssstar"), NULL, &o, d)) ||
-        (st = cx_solver_solve(s, NULL, NULL, d)))
+        (st = bench_solve(s, d)))
         goto done;
     const cx_iterate *it = cx_session_iterate(s);
     row->solver = it->time;
@@ -274,8 +274,11 @@ int bench_paper_001(int argc, char **argv)
     for (int L = 1; L <= P001_LEVELS; L++) {
         if (!want[L])
             continue;
-        if (p001_level(&sc, L, repeat, solves, &rows[n], &d))
-            return bench_fail("bench paper 001", d.msg);
+        if (p001_level(&sc, L, repeat, solves, &rows[n], &d)) {
+            if (!bench_interrupted())
+                return bench_fail("bench paper 001", d.msg);
+            break;   /* Ctrl-C: the table of the levels that finished */
+        }
         fprintf(stderr, "level %d done (%.1f s)\n", L,
                 rows[n].assembly + rows[n].schur + (isnan(rows[n].solves) ? 0 : rows[n].solves) +
                     rows[n].solver);

@@ -82,7 +82,7 @@ static int p2_run(cx_session *s, const char *method, const char *sets, int own, 
     o.max_iter = max_iter;
     o.stall_window = 0;
     CX_TRY(cx_session_set_method(s, m, &pv, &o, d));
-    CX_TRY(cx_solver_solve(s, NULL, NULL, d));
+    CX_TRY(bench_solve(s, d));
     const cx_iterate *it = cx_session_iterate(s);
     r->iter = it->iter;
     r->reason = it->reason;
@@ -438,6 +438,6 @@ int bench_paper_002(int argc, char **argv)
     if (!st && (tables & 128))
         st = p2_perf(nlev == 5, &d);
     if (st)
-        return bench_fail("bench paper 002", d.msg);
+        return bench_interrupted() ? CX_EXIT_INTERRUPTED : bench_fail("bench paper 002", d.msg);
     return CX_EXIT_OK;
 }

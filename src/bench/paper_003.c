@@ -130,7 +130,7 @@ static void p003_solve(const cx_scene *sc, int level, const p003_table *tb, doub
     o.stall_window = 100000;   /* the methods end on their own criteria */
     o.tol = 1e-15;
     if ((tb->set && cx_param_set_pair(&pv, tb->set, tb->method, &d)) ||
-        cx_session_set_method(s, m, &pv, &o, &d) || cx_solver_solve(s, NULL, NULL, &d)) {
+        cx_session_set_method(s, m, &pv, &o, &d) || bench_solve(s, &d)) {
         snprintf(r->why, sizeof r->why, "%s", d.msg);
         cx_session_destroy(&s);
         return;
@@ -246,7 +246,7 @@ int bench_paper_003(int argc, char **argv)
         if ((!only || strcmp(only, p003_geo[g]) == 0) && p003_sizes(&sc[g], g, max_level))
             return CX_EXIT_ERROR;
 
-    for (int t = 0; t < P003_NTABLES; t++) {
+    for (int t = 0; t < P003_NTABLES && !bench_interrupted(); t++) {
         const p003_table *tb = &p003_tables[t];
         if (!p003_in_list(tables, tb->table))
             continue;
@@ -255,11 +255,11 @@ int bench_paper_003(int argc, char **argv)
                tb->set ? tb->set : "");
         printf("  %-12s %-6s %10s %8s %7s %9s %10s %9s %8s\n", "geometry", "h", "ours (s)",
                "ratio", "iters", "kkt", "paper (s)", "own", "peak MB");
-        for (int g = 0; g < 3; g++) {
+        for (int g = 0; g < 3 && !bench_interrupted(); g++) {
             if (only && strcmp(only, p003_geo[g]) != 0)
                 continue;
             int failed = 0;
-            for (int l = 0; l < P003_NLEVELS && p003_levels[l] <= top; l++) {
+            for (int l = 0; l < P003_NLEVELS && p003_levels[l] <= top && !bench_interrupted(); l++) {
                 int N = p003_levels[l];
                 double paper = tb->paper[g][l];
                 char ptxt[16];

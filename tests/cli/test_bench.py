@@ -325,6 +325,25 @@ with tempfile.TemporaryDirectory() as tmp:
     left = [os.path.join(r, f) for r, _, fs in os.walk(ctrlc) for f in fs if ".tmp" in f]
     check(left == [], f"no temporary file after Ctrl-C: {left}")
 
+    # a paper driver too: Ctrl-C after its first level, the table of the
+    # levels that finished, exit 130
+    p = subprocess.Popen([exe, "bench", "paper", "001"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    err, deadline = b"", time.time() + 60
+    while b"level 2 done" not in err and time.time() < deadline:
+        ready, _, _ = select.select([p.stderr], [], [], 1)
+        if ready:
+            chunk = os.read(p.stderr.fileno(), 4096)
+            if not chunk:
+                break
+            err += chunk
+    p.send_signal(signal.SIGINT)
+    out, rest = p.communicate(timeout=60)
+    err += rest
+    check(p.returncode == 130, f"paper 001: exit 130 after Ctrl-C, got {p.returncode} ({err[-300:]!r})")
+    levels = [l.split()[0] for l in out.decode().splitlines() if l[:5].strip().isdigit()]
+    check(levels[:2] == ["1", "2"] and b"interrupted" in err,
+          f"paper 001: the levels that finished are printed: {levels}, {err[-200:]!r}")
+
     # ---- errors: one line, nothing written ----
     code, out, err = run("bench", "wp")
     one_line_error(code, err, "missing SCENE")
