@@ -36,6 +36,8 @@ typedef struct bench_problem_spec {
 
 /* Build the problem of spec (assembly timed into *t_assemble, may be NULL). */
 int bench_build(const bench_problem_spec *spec, cx_problem **p, double *t_assemble, cx_diag *d);
+/* Build the problem of spec and a new session on it (*s NULL on failure). */
+int bench_session(const bench_problem_spec *spec, cx_session **s, double *t_assemble, cx_diag *d);
 
 /* ---- the reference solution (DESIGN.md §3) -------------------------- */
 
@@ -226,6 +228,24 @@ typedef struct bench_common {
 /* If argv[*i] is a common option, consume it and return 1; -1 on a bad
  * value (message in d); 0 otherwise. */
 int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d);
+
+/* A benchmark's own arguments: if argv[*i] is one of its options or a
+ * positional argument it takes, consume it (advance *i past a value) and
+ * return 1; 0 if it is not its own; negative on a bad value (message in d). */
+typedef int (*bench_arg_fn)(void *args, int argc, char **argv, int *i, cx_diag *d);
+/* The one argument loop of the benchmarks: each argument is a common
+ * option (into c) or one of own's; anything else is an error naming it
+ * and 'signorini bench KIND --help'. CX_EINVAL with the message in d. */
+int bench_parse(int argc, char **argv, const char *kind, bench_common *c, bench_arg_fn own, void *args,
+                cx_diag *d);
+/* For a bench_arg_fn taking one SCENE: 0 if argv[*i] is an option, 1
+ * after setting *scene, negative if a scene was given already. */
+int bench_arg_scene(char **argv, const int *i, const char **scene, cx_diag *d);
+/* Open the scene id (or path) into sc and describe the problem to run:
+ * spec = sc at level (<= 0: the scene's), under the law and value the
+ * common options give. */
+int bench_open(const bench_common *c, const char *id, int level, cx_scene *sc,
+               bench_problem_spec *spec, cx_diag *d);
 void bench_common_default(bench_common *c, int repeat);
 /* Check what needs checking once the options are read (PNG), set the
  * thread counts and the reference cache's directory. */

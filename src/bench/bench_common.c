@@ -46,6 +46,18 @@ int bench_fail(const char *cmd, const char *msg)
     return CX_EXIT_ERROR;
 }
 
+/* An integer option's value in [lo, hi]: 1, or -1 with the range in d. */
+static int common_int(const char *name, const char *v, long lo, long hi, int *out, cx_diag *d)
+{
+    long n;
+    if (cx_parse_int(v, lo, hi, &n)) {
+        cx_diag_set(d, CX_EINVAL, "%s '%s': expected an integer in [%ld, %ld]", name, v, lo, hi);
+        return -1;
+    }
+    *out = (int)n;
+    return 1;
+}
+
 int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d)
 {
     static const char *const names[] = {"--csv", "--png", "--cache", "--methods", "--friction",
@@ -63,7 +75,6 @@ int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag 
                 return -1;
             continue;
         }
-        long n;
         switch (k) {
         case 0: c->csv = v; break;
         case 1: c->png = v; break;
@@ -78,31 +89,53 @@ int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag 
             }
             break;
         case 8:
-            if (cx_parse_int(v, 1, 100000000, &n)) {
-                cx_diag_set(d, CX_EINVAL, "--max-iter '%s': expected a positive integer", v);
-                return -1;
-            }
-            c->max_iter = (int)n;
-            break;
+            return common_int(names[k], v, 1, 100000000, &c->max_iter, d);
         case 9:
-            if (cx_parse_int(v, 1, BENCH_MAX_REPEAT, &n)) {
-                cx_diag_set(d, CX_EINVAL, "--repeat '%s': expected an integer in [1, %d]", v,
-                            BENCH_MAX_REPEAT);
-                return -1;
-            }
-            c->repeat = (int)n;
-            break;
+            return common_int(names[k], v, 1, BENCH_MAX_REPEAT, &c->repeat, d);
         case 10:
-            if (cx_parse_int(v, 1, 1024, &n)) {
-                cx_diag_set(d, CX_EINVAL, "--threads '%s': expected an integer in [1, 1024]", v);
-                return -1;
-            }
-            c->threads = (int)n;
-            break;
+            return common_int(names[k], v, 1, 1024, &c->threads, d);
         }
         return 1;
     }
     return 0;
+}
+
+int bench_parse(int argc, char **argv, const char *kind, bench_common *c, bench_arg_fn own, void *args,
+                cx_diag *d)
+{
+    for (int i = 1; i < argc; i++) {
+        int r = bench_common_option(argc, argv, &i, c, d);
+        if (r == 0)
+            r = own(args, argc, argv, &i, d);
+        if (r < 0)
+            return CX_EINVAL;
+        if (r > 0)
+            continue;
+        if (argv[i][0] == '-' && argv[i][1])
+            return cx_diag_set(d, CX_EINVAL, "unknown option '%s' (see 'signorini bench %s --help')", argv[i],
+                               kind);
+        return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s' (see 'signorini bench %s --help')",
+                           argv[i], kind);
+    }
+    return CX_OK;
+}
+
+int bench_arg_scene(char **argv, const int *i, const char **scene, cx_diag *d)
+{
+    if (argv[*i][0] == '-' && argv[*i][1])
+        return 0;
+    if (*scene)
+        return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s': one scene only", argv[*i]);
+    *scene = argv[*i];
+    return 1;
+}
+
+int bench_open(const bench_common *c, const char *id, int level, cx_scene *sc,
+               bench_problem_spec *spec, cx_diag *d)
+{
+    CX_TRY(cx_scene_open(id, sc, d));
+    *spec = (bench_problem_spec){sc, level, CX_FRICTION_NONE, 0, "", NULL, NULL};
+    return bench_common_law(c, sc, &spec->law, &spec->value, d);
 }
 
 /* Thread counts of the libraries loaded (OpenBLAS, the OpenMP runtime

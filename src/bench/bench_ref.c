@@ -310,13 +310,9 @@ static int ref_compute(const bench_problem_spec *spec, const cx_problem *p, doub
     double best = INFINITY;
     char why[CX_DIAG_LEN] = "";
     for (int k = 0; k < nc && best > REF_TOL && !bench_interrupted(); k++) {
-        cx_problem *q = NULL;
         cx_session *s = NULL;
         cx_diag local;
-        int st = bench_build(spec, &q, NULL, &local);
-        if (st == CX_OK)
-            st = cx_session_create(&s, &q, &local);
-        cx_problem_destroy(&q);
+        int st = bench_session(spec, &s, NULL, &local);
         if (st == CX_OK)
             st = cx_session_set_method(s, cand[k], NULL, &opt, &local);
         if (st == CX_OK)

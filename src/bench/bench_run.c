@@ -28,6 +28,16 @@ int bench_build(const bench_problem_spec *spec, cx_problem **p, double *t_assemb
     return CX_OK;
 }
 
+int bench_session(const bench_problem_spec *spec, cx_session **s, double *t_assemble, cx_diag *d)
+{
+    cx_problem *p = NULL;
+    *s = NULL;
+    CX_TRY(bench_build(spec, &p, t_assemble, d));
+    int st = cx_session_create(s, &p, d);
+    cx_problem_destroy(&p);
+    return st;
+}
+
 /* sqrt(e' K e) */
 static double run_energy(const cx_problem *p, const double *e, double *work)
 {
@@ -198,13 +208,11 @@ void bench_run_paired(const bench_problem_spec *spec, const cx_method *m, const 
     memset(res, 0, sizeof *res);
     memset(out, 0, sizeof *out);
     for (int rep = 0; rep < repeat && rep < BENCH_MAX_REPEAT && !bench_interrupted(); rep++) {
-        cx_problem *q = NULL;
         cx_session *s = NULL;
         cx_diag d;
         cx_diag_clear(&d);
         double ta = NAN, tb = NAN;
-        if (bench_build(spec, &q, &ta, &d) || cx_session_create(&s, &q, &d)) {
-            cx_problem_destroy(&q);
+        if (bench_session(spec, &s, &ta, &d)) {
             memset(res, 0, sizeof *res);
             res->failed = 1;
             snprintf(res->msg, sizeof res->msg, "%s", d.msg);

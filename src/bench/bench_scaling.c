@@ -66,36 +66,33 @@ static int scaling_levels(const char *v, scaling_args *a, cx_diag *d)
     return CX_OK;
 }
 
+/* scaling's own arguments (bench_arg_fn): --no-reference, --levels,
+ * --tol, SCENE. */
+static int scaling_arg(void *args, int argc, char **argv, int *i, cx_diag *d)
+{
+    scaling_args *a = args;
+    const char *v;
+    int r;
+    if (strcmp(argv[*i], "--no-reference") == 0) {
+        a->no_ref = 1;
+        return 1;
+    }
+    if ((r = cx_arg_option(argc, argv, i, "--levels", &v, d)) != 0)
+        return r < 0 ? r : scaling_levels(v, a, d) ? CX_EINVAL : 1;
+    if ((r = cx_arg_option(argc, argv, i, "--tol", &v, d)) != 0) {
+        if (r > 0 && (cx_parse_double(v, &a->tol) || !(a->tol > 0)))
+            return cx_diag_set(d, CX_EINVAL, "--tol '%s': expected a positive number", v);
+        return r;
+    }
+    return bench_arg_scene(argv, i, &a->scene, d);
+}
+
 static int scaling_parse(int argc, char **argv, scaling_args *a, cx_diag *d)
 {
     memset(a, 0, sizeof *a);
     bench_common_default(&a->c, 3);
     a->tol = 1e-10;
-    for (int i = 1; i < argc; i++) {
-        int r = bench_common_option(argc, argv, &i, &a->c, d);
-        if (r < 0)
-            return CX_EINVAL;
-        if (r)
-            continue;
-        const char *v;
-        if (strcmp(argv[i], "--no-reference") == 0) {
-            a->no_ref = 1;
-        } else if ((r = cx_arg_option(argc, argv, &i, "--levels", &v, d)) > 0) {
-            CX_TRY(scaling_levels(v, a, d));
-        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--tol", &v, d)) > 0) {
-            if (cx_parse_double(v, &a->tol) || !(a->tol > 0))
-                return cx_diag_set(d, CX_EINVAL, "--tol '%s': expected a positive number", v);
-        } else if (r < 0) {
-            return CX_EINVAL;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            return cx_diag_set(d, CX_EINVAL, "unknown option '%s' (see 'signorini bench scaling --help')",
-                               argv[i]);
-        } else if (a->scene) {
-            return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s': one scene only", argv[i]);
-        } else {
-            a->scene = argv[i];
-        }
-    }
+    CX_TRY(bench_parse(argc, argv, "scaling", &a->c, scaling_arg, a, d));
     if (!a->scene)
         return cx_diag_set(d, CX_EINVAL, "missing SCENE (see 'signorini bench scaling --help')");
     if (a->nlevels == 0)
@@ -192,12 +189,10 @@ int bench_scaling(int argc, char **argv)
     cx_diag_clear(&d);
     scaling_args a;
     cx_scene sc;
-    if (scaling_parse(argc, argv, &a, &d) || cx_scene_open(a.scene, &sc, &d))
+    bench_problem_spec spec;
+    if (scaling_parse(argc, argv, &a, &d) || bench_open(&a.c, a.scene, 0, &sc, &spec, &d))
         return bench_fail("bench scaling", d.msg);
-    bench_problem_spec spec = {&sc, 0, CX_FRICTION_NONE, 0, "", NULL, NULL};
     uint64_t shash = bench_scene_hash(&sc);
-    if (bench_common_law(&a.c, &sc, &spec.law, &spec.value, &d))
-        return bench_fail("bench scaling", d.msg);
     for (int k = 0; k < a.nlevels; k++)
         if (a.levels[k] > sc.level_max) {
             cx_diag_set(&d, CX_EINVAL, "--levels: level %d: scene '%s' allows levels 1 to %d", a.levels[k],

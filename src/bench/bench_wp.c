@@ -47,7 +47,7 @@ typedef struct {
     int level;
     double tols[WP_MAX_VALUES];
     int ntols;
-    const char *sweep_key;
+    char sweep_key[CX_PARAM_STRLEN];   /* "": each method's own (wp_sweeps) */
     double sweep[WP_MAX_VALUES];
     int nsweep;
 } wp_args;
@@ -64,6 +64,28 @@ static int wp_list(const char *opt, const char *text, double *out, int *n, cx_di
     return CX_OK;
 }
 
+/* wp's own arguments (bench_arg_fn): --level, --tols, --sweep, SCENE. */
+static int wp_arg(void *args, int argc, char **argv, int *i, cx_diag *d)
+{
+    wp_args *a = args;
+    const char *v;
+    int r;
+    if ((r = cx_arg_option(argc, argv, i, "--level", &v, d)) != 0)
+        return r < 0 ? r : cx_arg_level(v, &a->level, d) ? CX_EINVAL : 1;
+    if ((r = cx_arg_option(argc, argv, i, "--tols", &v, d)) != 0)
+        return r < 0 ? r : wp_list("--tols", v, a->tols, &a->ntols, d) ? CX_EINVAL : 1;
+    if ((r = cx_arg_option(argc, argv, i, "--sweep", &v, d)) != 0) {
+        if (r < 0)
+            return r;
+        const char *eq = strchr(v, '=');
+        if (!eq || eq == v)
+            return cx_diag_set(d, CX_EINVAL, "--sweep '%s': expected KEY=v1,v2,...", v);
+        snprintf(a->sweep_key, sizeof a->sweep_key, "%.*s", (int)(eq - v), v);
+        return wp_list("--sweep", eq + 1, a->sweep, &a->nsweep, d) ? CX_EINVAL : 1;
+    }
+    return bench_arg_scene(argv, i, &a->scene, d);
+}
+
 static int wp_parse(int argc, char **argv, wp_args *a, cx_diag *d)
 {
     memset(a, 0, sizeof *a);
@@ -71,35 +93,7 @@ static int wp_parse(int argc, char **argv, wp_args *a, cx_diag *d)
     static const double tols[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
     a->ntols = 6;
     memcpy(a->tols, tols, sizeof tols);
-    for (int i = 1; i < argc; i++) {
-        int r = bench_common_option(argc, argv, &i, &a->c, d);
-        if (r < 0)
-            return CX_EINVAL;
-        if (r)
-            continue;
-        const char *v;
-        if ((r = cx_arg_option(argc, argv, &i, "--level", &v, d)) > 0) {
-            CX_TRY(cx_arg_level(v, &a->level, d));
-        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--tols", &v, d)) > 0) {
-            CX_TRY(wp_list("--tols", v, a->tols, &a->ntols, d));
-        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--sweep", &v, d)) > 0) {
-            const char *eq = strchr(v, '=');
-            if (!eq || eq == v)
-                return cx_diag_set(d, CX_EINVAL, "--sweep '%s': expected KEY=v1,v2,...", v);
-            static char key[CX_PARAM_STRLEN];
-            snprintf(key, sizeof key, "%.*s", (int)(eq - v), v);
-            a->sweep_key = key;
-            CX_TRY(wp_list("--sweep", eq + 1, a->sweep, &a->nsweep, d));
-        } else if (r < 0) {
-            return CX_EINVAL;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            return cx_diag_set(d, CX_EINVAL, "unknown option '%s' (see 'signorini bench wp --help')", argv[i]);
-        } else if (a->scene) {
-            return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s': one scene only", argv[i]);
-        } else {
-            a->scene = argv[i];
-        }
-    }
+    CX_TRY(bench_parse(argc, argv, "wp", &a->c, wp_arg, a, d));
     if (!a->scene)
         return cx_diag_set(d, CX_EINVAL, "missing SCENE (see 'signorini bench wp --help')");
     return bench_common_finish(&a->c, d);
@@ -111,7 +105,7 @@ static const char *wp_sweep_of(const wp_args *a, const cx_method *m, double *val
     cx_param_values pv;
     cx_param_default(&pv, m->params);
     *n = 0;
-    if (a->sweep_key) {
+    if (a->sweep_key[0]) {
         if (cx_param_find(&pv, a->sweep_key) < 0)
             return NULL;
         memcpy(values, a->sweep, sizeof(double) * (size_t)a->nsweep);
@@ -185,10 +179,8 @@ int bench_wp(int argc, char **argv)
     cx_diag_clear(&d);
     wp_args a;
     cx_scene sc;
-    if (wp_parse(argc, argv, &a, &d) || cx_scene_open(a.scene, &sc, &d))
-        return bench_fail("bench wp", d.msg);
-    bench_problem_spec spec = {&sc, a.level, CX_FRICTION_NONE, 0, "", NULL, NULL};
-    if (bench_common_law(&a.c, &sc, &spec.law, &spec.value, &d))
+    bench_problem_spec spec;
+    if (wp_parse(argc, argv, &a, &d) || bench_open(&a.c, a.scene, a.level, &sc, &spec, &d))
         return bench_fail("bench wp", d.msg);
     int level = a.level > 0 ? a.level : sc.level;
 
