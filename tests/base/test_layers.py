@@ -4,7 +4,8 @@ a layer includes only its own headers and those of the layers below it.
 The program layers (cli/, tui/) sit on top and never include each other,
 nor declare or call each other's functions (cli_*, tui_*) by hand. The
 program itself, src/main.c, stands above them all and is the one file of
-src/ outside a layer: it may include any layer."""
+src/ outside a layer: it may include any layer. The library (base/ up to
+render/) installs no signal handler: Ctrl-C belongs to the programs."""
 import os
 import re
 import sys
@@ -22,6 +23,8 @@ include = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/[^"]+"')
 # hand-written prototype), outside comments
 call = {"cli": re.compile(r'\btui_[a-z0-9_]+\s*\('), "tui": re.compile(r'\bcli_[a-z0-9_]+\s*\(')}
 comment = re.compile(r'/\*.*?\*/|//[^\n]*', re.S)
+LIBRARY = ORDER[:ORDER.index("render") + 1]
+handler = re.compile(r'\b(signal|sigaction)\s*\(')
 bad = []
 for layer in sorted(os.listdir(src)):
     path = os.path.join(src, layer)
@@ -43,8 +46,13 @@ for layer in sorted(os.listdir(src)):
             continue
         with open(os.path.join(path, name), encoding="utf-8") as f:
             text = f.read()
+        code = comment.sub(lambda m: "\n" * m.group(0).count("\n"), text)
+        if layer in LIBRARY:
+            for lineno, line in enumerate(code.splitlines(), 1):
+                if handler.search(line):
+                    bad.append(f"src/{layer}/{name}:{lineno}: the library installs no signal handler "
+                               f"(the programs own Ctrl-C)")
         if layer in call:
-            code = comment.sub(lambda m: "\n" * m.group(0).count("\n"), text)
             for lineno, line in enumerate(code.splitlines(), 1):
                 for m in call[layer].finditer(line):
                     bad.append(f"src/{layer}/{name}:{lineno}: '{layer}' names '{m.group(0).rstrip('( ')}' "
