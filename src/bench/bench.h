@@ -50,6 +50,7 @@ typedef struct bench_ref {
     int iterations;
     char method[CX_SCENE_NAMELEN];
     int cached;                /* 1: read from the cache, 0: computed now */
+    int kept;                  /* 1: in the cache (read or stored) */
     cx_counters work;          /* work of computing it (zero when cached) */
     uint64_t hash;             /* the key it is stored under */
 } bench_ref;
@@ -65,6 +66,9 @@ const cx_method *bench_ref_method(const cx_problem *p);
 uint64_t bench_ref_key(const bench_problem_spec *spec);
 /* The same hash of the parsed scene alone (the headers' "scene hash"). */
 uint64_t bench_scene_hash(const cx_scene *s);
+/* Where a reference came from, for the headers: "cached", "computed" or
+ * "computed, not kept" (the cache is off). */
+const char *bench_ref_origin(const bench_ref *r);
 
 /* Where references are kept: --cache DIR, else $XDG_CACHE_HOME/signorini,
  * else ~/.cache/signorini (bench_common_finish). A cache that cannot be
@@ -293,14 +297,15 @@ extern const char bench_png_missing[];
 /* ---- progress and Ctrl-C ------------------------------------------------ */
 
 /* From now on Ctrl-C (SIGINT) sets a flag that the runs and the loops of
- * the benchmark poll, instead of ending the process. */
+ * the benchmark poll, instead of ending the process; a second Ctrl-C ends
+ * it. */
 void bench_catch_sigint(void);
 /* Start a bar of total cases (drawn on stderr only when it is a
  * terminal). */
 void bench_progress_start(int total);
 /* Case k (0-based) starts: label names it. */
 void bench_progress_case(int k, const char *label);
-/* Erase the bar; restore the default SIGINT handler. */
+/* Erase the bar; say on stderr when Ctrl-C stopped the benchmark. */
 void bench_progress_end(void);
 /* 1 once Ctrl-C was pressed. */
 int bench_interrupted(void);

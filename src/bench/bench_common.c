@@ -284,9 +284,16 @@ static volatile sig_atomic_t progress_stop;
 static int progress_total, progress_tty;
 static double progress_t0;
 
+/* The first Ctrl-C asks the benchmark to stop after the run in progress
+ * and write what it has (no half-written file then); a second one, for a
+ * step that does not poll (a large factorisation), ends the process. */
 static void progress_on_sigint(int sig)
 {
-    (void)sig;
+    if (progress_stop) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
     progress_stop = 1;
 }
 
@@ -344,7 +351,6 @@ void bench_progress_end(void)
 {
     if (progress_tty && progress_total > 0)
         fputs("\r\033[K", stderr);
-    signal(SIGINT, SIG_DFL);
     if (progress_stop)
         fputs("signorini bench: interrupted: the table keeps the runs that finished\n", stderr);
 }

@@ -188,6 +188,11 @@ uint64_t bench_ref_key(const bench_problem_spec *spec)
     return h;
 }
 
+const char *bench_ref_origin(const bench_ref *r)
+{
+    return r->cached ? "cached" : r->kept ? "computed" : "computed, not kept";
+}
+
 void bench_ref_clear(bench_ref *r)
 {
     free(r->u);
@@ -374,6 +379,7 @@ int bench_ref_get(bench_cache *cache, const bench_problem_spec *spec, const cx_p
         if (!cache->off && ref_write(path, r, &wd) != CX_OK)
             ref_cache_off(cache, "cannot write in it");
     }
+    r->kept = !cache->off;
     r->hash = hash;
     double *w = malloc(sizeof(double) * ((size_t)p->n + 1));
     if (!w) {

@@ -229,7 +229,7 @@ int bench_scaling(int argc, char **argv)
             bench_meta(&t, label, ref_ok ? "reference %s kkt %.2e%s (%s)" : "no reference: %s",
                        ref_ok ? ref.method : d.msg, ref.kkt,
                        ref.kkt > 1e-12 ? " (above 1e-12: the best it reached)" : "",
-                       ref.cached ? "cached" : "computed");
+                       bench_ref_origin(&ref));
         for (int k = 0; k < nm && !bench_interrupted(); k++) {
             cx_options opt;
             bench_common_options(&a.c, &opt);

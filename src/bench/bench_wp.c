@@ -210,7 +210,7 @@ int bench_wp(int argc, char **argv)
     if (ref_ok)
         bench_meta(&t, "reference", "%s, kkt %.2e%s, %d iterations, %s (key %016llx, %ld factorisations)",
                    ref.method, ref.kkt, ref.kkt > 1e-12 ? " (above 1e-12: the best it reached)" : "",
-                   ref.iterations, ref.cached ? "cached" : "computed", (unsigned long long)ref.hash,
+                   ref.iterations, bench_ref_origin(&ref), (unsigned long long)ref.hash,
                    ref.work.factorizations);
     else
         bench_meta(&t, "reference", "none: %s", d.msg);
