@@ -1,6 +1,11 @@
 /* signorini bench: the benchmarks. Each kind is a row of the table below;
  * the papers' tables are rows of bench_papers[]. A benchmark prints its
- * tables on stdout; timings live here, never in the test suite. */
+ * tables on stdout; timings live here, never in the test suite.
+ *
+ * Ctrl-C belongs to the bench (the library installs no signal handler):
+ * bench_main catches SIGINT for every kind and paper, the runs stop through
+ * bench_observer, what finished is printed, and the exit status is
+ * CX_EXIT_INTERRUPTED (130). */
 #include "bench/bench.h"
 
 #include <stdio.h>
@@ -59,8 +64,16 @@ static int bench_paper_run(int argc, char **argv)
     if (argc < 2)
         return bench_fail("bench paper", "which paper? (see 'signorini bench --help')");
     for (int k = 0; bench_papers[k].id; k++)
-        if (strcmp(bench_papers[k].id, argv[1]) == 0)
-            return bench_papers[k].run(argc - 1, argv + 1);
+        if (strcmp(bench_papers[k].id, argv[1]) == 0) {
+            bench_catch_sigint();
+            int code = bench_papers[k].run(argc - 1, argv + 1);
+            fflush(stdout);
+            if (!bench_interrupted())
+                return code;
+            fprintf(stderr, "signorini bench paper %s: interrupted: the lines above finished\n",
+                    bench_papers[k].id);
+            return CX_EXIT_INTERRUPTED;
+        }
     char msg[128];
     snprintf(msg, sizeof msg, "unknown paper '%s' (see 'signorini bench --help')", argv[1]);
     return bench_fail("bench paper", msg);

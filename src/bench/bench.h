@@ -36,6 +36,8 @@ typedef struct bench_problem_spec {
 
 /* Build the problem of spec (assembly timed into *t_assemble, may be NULL). */
 int bench_build(const bench_problem_spec *spec, cx_problem **p, double *t_assemble, cx_diag *d);
+/* Build the problem of spec and a new session on it (*s NULL on failure). */
+int bench_session(const bench_problem_spec *spec, cx_session **s, double *t_assemble, cx_diag *d);
 
 /* ---- the reference solution (DESIGN.md §3) -------------------------- */
 
@@ -48,6 +50,7 @@ typedef struct bench_ref {
     int iterations;
     char method[CX_SCENE_NAMELEN];
     int cached;                /* 1: read from the cache, 0: computed now */
+    int kept;                  /* 1: in the cache (read or stored) */
     cx_counters work;          /* work of computing it (zero when cached) */
     uint64_t hash;             /* the key it is stored under */
 } bench_ref;
@@ -56,16 +59,31 @@ typedef struct bench_ref {
  * small table per friction law that supports p (see bench_ref.c). */
 const cx_method *bench_ref_method(const cx_problem *p);
 
-/* Key of a reference: FNV-1a over the scene file's bytes, the level, the
- * law and its value and the variant. */
-int bench_ref_key(const bench_problem_spec *spec, uint64_t *hash, cx_diag *d);
-/* The hash of the scene file alone (for the headers). */
-int bench_scene_hash(const cx_scene *s, uint64_t *hash, cx_diag *d);
+/* Key of a reference: FNV-1a over a canonical serialisation of the
+ * parsed scene (every field that changes the problem; see bench_ref.c),
+ * the level, the law, its value and the variant. Never re-reads the
+ * file, so a scene from a pipe or changed in memory has its own key. */
+uint64_t bench_ref_key(const bench_problem_spec *spec);
+/* The same hash of the parsed scene alone (the headers' "scene hash"). */
+uint64_t bench_scene_hash(const cx_scene *s);
+/* Where a reference came from, for the headers: "cached", "computed" or
+ * "computed, not kept" (the cache is off). */
+const char *bench_ref_origin(const bench_ref *r);
 
-/* Read the reference of spec from dir (created if missing), or compute it
- * with the reference method to kkt < 1e-12 and store it (temp + rename).
- * p is the problem of spec (already built). */
-int bench_ref_get(const char *dir, const bench_problem_spec *spec, const cx_problem *p,
+/* Where references are kept: --cache DIR, else $XDG_CACHE_HOME/signorini,
+ * else ~/.cache/signorini (bench_common_finish). A cache that cannot be
+ * created or written gives one warning line on stderr, then the run goes
+ * on without it (off). */
+typedef struct bench_cache {
+    char dir[512];             /* "" : none */
+    int off;                   /* 1 once warned: compute, never read or store */
+} bench_cache;
+
+/* Read the reference of spec from the cache (its directory created if
+ * missing), or compute it with the reference method to kkt < 1e-12 and
+ * store it (temp + rename). p is the problem of spec (already built). A
+ * cache that fails is turned off with its warning, never an error. */
+int bench_ref_get(bench_cache *cache, const bench_problem_spec *spec, const cx_problem *p,
                   double time_limit, bench_ref *r, cx_diag *d);
 void bench_ref_clear(bench_ref *r);
 
@@ -95,6 +113,35 @@ typedef struct bench_result {
  * failure is described in r. */
 void bench_run(cx_session *s, const cx_method *m, const cx_param_values *pv,
                const cx_options *opt, const bench_ref *ref, bench_result *r);
+
+/* The most runs a median is taken over (--repeat). */
+#define BENCH_MAX_REPEAT 1000
+
+/* Medians over the runs of one case, each run on a fresh problem paired
+ * with the baseline of that problem measured just before it. */
+typedef struct bench_paired {
+    int runs;                  /* runs that finished (0: failed or interrupted) */
+    double time;               /* setup + solve, seconds */
+    double ratio;              /* time / its baseline */
+    double setup, solve;
+    double baseline;           /* factorise + solve K */
+    double assembly;           /* build of the problem */
+    double assembly_ratio;     /* assembly / its baseline */
+    double peak_mb;            /* the largest heap_mb of the runs */
+} bench_paired;
+
+/* The measurement protocol of wp and scaling: repeat times, build the
+ * problem of spec (assembly timed), measure its baseline, run m on a new
+ * session of it. res is the last run's result (failed: the message of a
+ * build or of the run; interrupted: Ctrl-C before a result); out the
+ * medians of the runs that finished. */
+void bench_run_paired(const bench_problem_spec *spec, const cx_method *m, const cx_param_values *pv,
+                      const cx_options *opt, const bench_ref *ref, int repeat, bench_result *res,
+                      bench_paired *out);
+
+/* The baseline of p (DESIGN.md §5: analyse + factorise + solve K): the
+ * median of n timings (n clipped to [1, BENCH_MAX_REPEAT]). */
+int bench_baseline(const cx_problem *p, int n, double *seconds, cx_diag *d);
 
 /* Errors of (u, lN, lT) against ref on problem p. */
 void bench_errors(const cx_problem *p, const bench_ref *ref, const double *u, const double *lN,
@@ -166,7 +213,7 @@ typedef struct bench_common {
     const char *csv;           /* --csv FILE */
     int json;                  /* --json: the JSON on stdout instead of the table */
     const char *png;           /* --png FILE (refused until the renderer lands) */
-    const char *cache;         /* --cache DIR (default: next to --csv, else ./signorini-ref) */
+    const char *cache;         /* --cache DIR (default: see bench_cache) */
     const char *methods;       /* --methods a,b */
     const char *friction;      /* --friction LAW */
     const char *value;         /* --slip / --F value */
@@ -174,14 +221,33 @@ typedef struct bench_common {
     int max_iter;              /* --max-iter N (0: the default) */
     int repeat;                /* --repeat N: timings are medians of N runs */
     int threads;               /* --threads N (0: as the environment says) */
-    char cache_dir[512];
+    bench_cache refs;          /* the reference cache the options give */
 } bench_common;
 
 /* If argv[*i] is a common option, consume it and return 1; -1 on a bad
  * value (message in d); 0 otherwise. */
 int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d);
+
+/* A benchmark's own arguments: if argv[*i] is one of its options or a
+ * positional argument it takes, consume it (advance *i past a value) and
+ * return 1; 0 if it is not its own; negative on a bad value (message in d). */
+typedef int (*bench_arg_fn)(void *args, int argc, char **argv, int *i, cx_diag *d);
+/* The one argument loop of the benchmarks: each argument is a common
+ * option (into c) or one of own's; anything else is an error naming it
+ * and 'signorini bench KIND --help'. CX_EINVAL with the message in d. */
+int bench_parse(int argc, char **argv, const char *kind, bench_common *c, bench_arg_fn own, void *args,
+                cx_diag *d);
+/* For a bench_arg_fn taking one SCENE: 0 if argv[*i] is an option, 1
+ * after setting *scene, negative if a scene was given already. */
+int bench_arg_scene(char **argv, const int *i, const char **scene, cx_diag *d);
+/* Open the scene id (or path) into sc and describe the problem to run:
+ * spec = sc at level (<= 0: the scene's), under the law and value the
+ * common options give. */
+int bench_open(const bench_common *c, const char *id, int level, cx_scene *sc,
+               bench_problem_spec *spec, cx_diag *d);
 void bench_common_default(bench_common *c, int repeat);
-/* Check what needs checking once the options are read (PNG, cache dir). */
+/* Check what needs checking once the options are read (PNG), set the
+ * thread counts and the reference cache's directory. */
 int bench_common_finish(bench_common *c, cx_diag *d);
 extern const char bench_common_help[];
 /* If argv asks for --help / -h: print usage and the common options, return 1. */
@@ -242,6 +308,9 @@ void bench_progress_end(void);
 int bench_interrupted(void);
 /* An observer that stops a run on Ctrl-C. */
 int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it);
+/* cx_solver_solve under bench_observer, for the paper drivers: a run
+ * stopped by Ctrl-C is CX_EIO "interrupted (Ctrl-C)", never a result. */
+int bench_solve(cx_session *s, cx_diag *d);
 
 /* ---- the benchmarks ---------------------------------------------------- */
 
@@ -260,7 +329,8 @@ int bench_paper_003(int argc, char **argv);
 /* Print "signorini CMD: message" on stderr and return CX_EXIT_ERROR. */
 int bench_fail(const char *cmd, const char *msg);
 
-/* Median of v[0..n-1] (reorders v). */
+/* Median of v[0..n-1] (reorders v); NaN when n <= 0. The one median of
+ * the benchmarks: every "median of N" goes through it. */
 double bench_median(double *v, int n);
 
 #endif

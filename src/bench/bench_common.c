@@ -29,8 +29,8 @@ const char bench_common_help[] =
     "  --csv FILE           also write the rows as CSV (header lines start with '#')\n"
     "  --json               print JSON {meta, rows} on stdout instead of the table\n"
     "  --png FILE           the plot of the runs (PNG, through the renderer)\n"
-    "  --cache DIR          reference solutions (default: signorini-ref/ beside\n"
-    "                       the --csv file, else in the current directory)\n";
+    "  --cache DIR          reference solutions (default: $XDG_CACHE_HOME/signorini,\n"
+    "                       else ~/.cache/signorini)\n";
 
 const char bench_png_missing[] = "PNG plots need the renderer (not in this build)";
 
@@ -45,6 +45,18 @@ int bench_fail(const char *cmd, const char *msg)
 {
     fprintf(stderr, "signorini %s: %s\n", cmd, msg);
     return CX_EXIT_ERROR;
+}
+
+/* An integer option's value in [lo, hi]: 1, or -1 with the range in d. */
+static int common_int(const char *name, const char *v, long lo, long hi, int *out, cx_diag *d)
+{
+    long n;
+    if (cx_parse_int(v, lo, hi, &n)) {
+        cx_diag_set(d, CX_EINVAL, "%s '%s': expected an integer in [%ld, %ld]", name, v, lo, hi);
+        return -1;
+    }
+    *out = (int)n;
+    return 1;
 }
 
 int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d)
@@ -64,7 +76,6 @@ int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag 
                 return -1;
             continue;
         }
-        long n;
         switch (k) {
         case 0: c->csv = v; break;
         case 1: c->png = v; break;
@@ -79,30 +90,53 @@ int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag 
             }
             break;
         case 8:
-            if (cx_parse_int(v, 1, 100000000, &n)) {
-                cx_diag_set(d, CX_EINVAL, "--max-iter '%s': expected a positive integer", v);
-                return -1;
-            }
-            c->max_iter = (int)n;
-            break;
+            return common_int(names[k], v, 1, 100000000, &c->max_iter, d);
         case 9:
-            if (cx_parse_int(v, 1, 1000, &n)) {
-                cx_diag_set(d, CX_EINVAL, "--repeat '%s': expected an integer in [1, 1000]", v);
-                return -1;
-            }
-            c->repeat = (int)n;
-            break;
+            return common_int(names[k], v, 1, BENCH_MAX_REPEAT, &c->repeat, d);
         case 10:
-            if (cx_parse_int(v, 1, 1024, &n)) {
-                cx_diag_set(d, CX_EINVAL, "--threads '%s': expected an integer in [1, 1024]", v);
-                return -1;
-            }
-            c->threads = (int)n;
-            break;
+            return common_int(names[k], v, 1, 1024, &c->threads, d);
         }
         return 1;
     }
     return 0;
+}
+
+int bench_parse(int argc, char **argv, const char *kind, bench_common *c, bench_arg_fn own, void *args,
+                cx_diag *d)
+{
+    for (int i = 1; i < argc; i++) {
+        int r = bench_common_option(argc, argv, &i, c, d);
+        if (r == 0)
+            r = own(args, argc, argv, &i, d);
+        if (r < 0)
+            return CX_EINVAL;
+        if (r > 0)
+            continue;
+        if (argv[i][0] == '-' && argv[i][1])
+            return cx_diag_set(d, CX_EINVAL, "unknown option '%s' (see 'signorini bench %s --help')", argv[i],
+                               kind);
+        return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s' (see 'signorini bench %s --help')",
+                           argv[i], kind);
+    }
+    return CX_OK;
+}
+
+int bench_arg_scene(char **argv, const int *i, const char **scene, cx_diag *d)
+{
+    if (argv[*i][0] == '-' && argv[*i][1])
+        return 0;
+    if (*scene)
+        return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s': one scene only", argv[*i]);
+    *scene = argv[*i];
+    return 1;
+}
+
+int bench_open(const bench_common *c, const char *id, int level, cx_scene *sc,
+               bench_problem_spec *spec, cx_diag *d)
+{
+    CX_TRY(cx_scene_open(id, sc, d));
+    *spec = (bench_problem_spec){sc, level, CX_FRICTION_NONE, 0, "", NULL, NULL};
+    return bench_common_law(c, sc, &spec->law, &spec->value, d);
 }
 
 /* Thread counts of the libraries loaded (OpenBLAS, the OpenMP runtime
@@ -137,14 +171,19 @@ int bench_common_finish(bench_common *c, cx_diag *d)
     if (c->png)
         return cx_diag_set(d, CX_EUNSUPPORTED, "%s", bench_png_missing);
 #endif
-    if (c->cache) {
-        snprintf(c->cache_dir, sizeof c->cache_dir, "%s", c->cache);
-    } else if (c->csv && strcmp(c->csv, "-") != 0 && strrchr(c->csv, '/')) {
-        int len = (int)(strrchr(c->csv, '/') - c->csv);
-        snprintf(c->cache_dir, sizeof c->cache_dir, "%.*s/signorini-ref", len, c->csv);
-    } else {
-        snprintf(c->cache_dir, sizeof c->cache_dir, "signorini-ref");
-    }
+    /* the XDG base directory rule: a relative $XDG_CACHE_HOME is ignored */
+    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    char *dir = c->refs.dir;
+    size_t len = sizeof c->refs.dir;
+    if (c->cache && c->cache[0])
+        snprintf(dir, len, "%s", c->cache);
+    else if (xdg && xdg[0] == '/')
+        snprintf(dir, len, "%s/signorini", xdg);
+    else if (home && home[0])
+        snprintf(dir, len, "%s/.cache/signorini", home);
+    else
+        dir[0] = '\0';   /* bench_ref_get warns once and runs uncached */
+    c->refs.off = 0;
     return CX_OK;
 }
 
@@ -289,6 +328,12 @@ int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it)
     (void)s;
     (void)it;
     return progress_stop != 0;
+}
+
+int bench_solve(cx_session *s, cx_diag *d)
+{
+    CX_TRY(cx_solver_solve(s, bench_observer, NULL, d));
+    return bench_interrupted() ? cx_diag_set(d, CX_EIO, "interrupted (Ctrl-C)") : CX_OK;
 }
 
 void bench_catch_sigint(void)

@@ -1,7 +1,7 @@
 /* The reference solution of DESIGN.md §3: computed once per scene, level,
  * friction law and value (and stress variant) by the most robust method to
- * kkt < 1e-12, stored on disk under a hash of the scene file's bytes and
- * those values, and read back by the next benchmark run.
+ * kkt < 1e-12, stored on disk under a hash of the parsed scene and those
+ * values (bench_ref_key), and read back by the next benchmark run.
  *
  * File: one text line "CXREF 1 n m nt kkt iterations method", then the
  * doubles u (n), lN (m), lT (nt) in the machine's byte order. A file that
@@ -59,41 +59,139 @@ const cx_method *bench_ref_method(const cx_problem *p)
     return ref_candidates(p, m, 1) ? m[0] : NULL;
 }
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t len)
+/* ---- the key: a canonical serialisation of the parsed scene ----------
+ *
+ * The key is computed from what was parsed, never from the file by its
+ * path: a scene read from a pipe (/dev/stdin) has no bytes left to re-read,
+ * and a scene changed in memory (bench stress) is not the file. Each field
+ * that changes the problem goes into FNV-1a in a fixed order: integers and
+ * enums as 64-bit values, doubles by their bit pattern, strings up to and
+ * with their NUL, arrays after their count; never pointers or padding, so
+ * equal scenes give equal keys whatever the memory held. Left out: the
+ * path, id and title, the default and largest level (the level of the run
+ * is part of the key), the suited methods and the analytical Hertz data
+ * (they change no matrix). */
+
+#define FNV_OFFSET 14695981039346656037ull
+#define FNV_PRIME 1099511628211ull
+
+static void key_bytes(uint64_t *h, const void *data, size_t len)
 {
     const unsigned char *c = data;
     for (size_t k = 0; k < len; k++) {
-        h ^= c[k];
-        h *= 1099511628211ull;
+        *h ^= c[k];
+        *h *= FNV_PRIME;
     }
+}
+
+/* little-endian whatever the machine, so a key names the same scene
+ * everywhere */
+static void key_u64(uint64_t *h, uint64_t v)
+{
+    unsigned char b[8];
+    for (int k = 0; k < 8; k++)
+        b[k] = (unsigned char)(v >> (8 * k));
+    key_bytes(h, b, sizeof b);
+}
+
+static void key_int(uint64_t *h, long long v) { key_u64(h, (uint64_t)v); }
+
+static void key_double(uint64_t *h, double v)
+{
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    key_u64(h, bits);
+}
+
+static void key_doubles(uint64_t *h, const double *v, int n)
+{
+    for (int k = 0; k < n; k++)
+        key_double(h, v[k]);
+}
+
+static void key_ints(uint64_t *h, const int *v, int n)
+{
+    for (int k = 0; k < n; k++)
+        key_int(h, v[k]);
+}
+
+static void key_str(uint64_t *h, const char *s, size_t cap)
+{
+    key_bytes(h, s, strnlen(s, cap));
+    key_bytes(h, "", 1);
+}
+
+static void key_scene(uint64_t *h, const cx_scene *s)
+{
+    key_str(h, "cx_scene 1", 16);   /* the layout below: change it when fields join */
+    key_int(h, s->dim);
+    /* [mesh] */
+    key_int(h, s->generator);
+    key_int(h, s->element);
+    key_doubles(h, s->lo, 3);
+    key_doubles(h, s->hi, 3);
+    key_double(h, s->radius);
+    key_ints(h, s->cells, 3);
+    key_double(h, s->interface);
+    key_ints(h, s->cells_lower, 3);
+    key_int(h, s->level_rule);
+    key_int(h, s->bond);
+    key_double(h, s->gap_h);
+    /* [material] */
+    key_double(h, s->mat.E);
+    key_double(h, s->mat.nu);
+    key_int(h, s->mat.model);
+    key_doubles(h, s->body_force, 3);
+    /* loads and supports */
+    int nt = s->ntractions < CX_SCENE_MAX_LOADS ? s->ntractions : CX_SCENE_MAX_LOADS;
+    key_int(h, nt);
+    for (int k = 0; k < nt; k++) {
+        key_str(h, s->tractions[k].boundary, CX_SCENE_NAMELEN);
+        key_doubles(h, s->tractions[k].t.t0, 3);
+        key_doubles(h, s->tractions[k].t.G, 9);
+    }
+    int ns = s->nsupports < CX_SCENE_MAX_LOADS ? s->nsupports : CX_SCENE_MAX_LOADS;
+    key_int(h, ns);
+    for (int k = 0; k < ns; k++) {
+        key_str(h, s->supports[k].boundary, CX_SCENE_NAMELEN);
+        key_int(h, s->supports[k].comps);
+        key_doubles(h, s->supports[k].value, 3);
+    }
+    /* [contact]: the scene's own law and values too, since the build
+     * starts from them before the case sets its own */
+    key_str(h, s->contact_boundary, CX_SCENE_NAMELEN);
+    key_str(h, s->contact_master, CX_SCENE_NAMELEN);
+    key_int(h, s->obstacle.kind);
+    key_doubles(h, s->obstacle.point, 3);
+    key_doubles(h, s->obstacle.normal, 3);
+    key_double(h, s->obstacle.radius);
+    key_doubles(h, s->obstacle.direction, 3);
+    key_int(h, s->friction);
+    key_double(h, s->slip_bound);
+    key_double(h, s->F);
+}
+
+uint64_t bench_scene_hash(const cx_scene *s)
+{
+    uint64_t h = FNV_OFFSET;
+    key_scene(&h, s);
     return h;
 }
 
-int bench_scene_hash(const cx_scene *s, uint64_t *hash, cx_diag *d)
+uint64_t bench_ref_key(const bench_problem_spec *spec)
 {
-    FILE *f = fopen(s->path, "rb");
-    if (!f)
-        return cx_diag_set(d, CX_EIO, "%s: cannot read", s->path);
-    uint64_t h = 14695981039346656037ull;
-    char buf[4096];
-    size_t got;
-    while ((got = fread(buf, 1, sizeof buf, f)) > 0)
-        h = fnv1a(h, buf, got);
-    fclose(f);
-    *hash = h;
-    return CX_OK;
+    uint64_t h = FNV_OFFSET;
+    key_scene(&h, spec->scene);
+    key_int(&h, spec->level > 0 ? spec->level : spec->scene->level);
+    key_int(&h, spec->law);
+    key_double(&h, spec->law == CX_FRICTION_NONE ? 0.0 : spec->value);
+    key_str(&h, spec->variant ? spec->variant : "", 256);
+    return h;
 }
 
-int bench_ref_key(const bench_problem_spec *spec, uint64_t *hash, cx_diag *d)
+const char *bench_ref_origin(const bench_ref *r)
 {
-    CX_TRY(bench_scene_hash(spec->scene, hash, d));
-    char text[256];
-    int level = spec->level > 0 ? spec->level : spec->scene->level;
-    int n = snprintf(text, sizeof text, "level=%d friction=%s value=%.17g variant=%s", level,
-                     cx_friction_name(spec->law), spec->law == CX_FRICTION_NONE ? 0.0 : spec->value,
-                     spec->variant ? spec->variant : "");
-    *hash = fnv1a(*hash, text, (size_t)n);
-    return CX_OK;
+    return r->cached ? "cached" : r->kept ? "computed" : "computed, not kept";
 }
 
 void bench_ref_clear(bench_ref *r)
@@ -115,8 +213,9 @@ static int ref_alloc(bench_ref *r, const cx_problem *p)
     return r->u && r->lN && r->lT ? CX_OK : CX_ENOMEM;
 }
 
-/* mkdir -p */
-static int ref_mkdir(const char *dir, cx_diag *d)
+/* mkdir -p, then check that dir is a directory we may write in (errno
+ * set when not). */
+static int ref_mkdir(const char *dir)
 {
     char buf[512];
     snprintf(buf, sizeof buf, "%s", dir);
@@ -125,13 +224,30 @@ static int ref_mkdir(const char *dir, cx_diag *d)
             char keep = *c;
             *c = '\0';
             if (mkdir(buf, 0777) != 0 && errno != EEXIST)
-                return cx_diag_set(d, CX_EIO, "--cache %s: cannot create the directory", dir);
+                return CX_EIO;
             *c = keep;
             if (!keep)
                 break;
         }
     }
-    return CX_OK;
+    struct stat st;
+    if (stat(dir, &st) != 0)
+        return CX_EIO;
+    if (!S_ISDIR(st.st_mode)) {
+        errno = ENOTDIR;
+        return CX_EIO;
+    }
+    return access(dir, W_OK | X_OK) == 0 ? CX_OK : CX_EIO;
+}
+
+/* The one warning of a cache that fails: the run goes on without it. */
+static void ref_cache_off(bench_cache *cache, const char *why)
+{
+    if (cache->off)
+        return;
+    cache->off = 1;
+    fprintf(stderr, "signorini bench: warning: reference cache %s: %s; references are not kept\n",
+            cache->dir[0] ? cache->dir : "(none: neither $XDG_CACHE_HOME nor $HOME is set)", why);
 }
 
 static void ref_path(const char *dir, const bench_problem_spec *spec, uint64_t hash, char *path,
@@ -199,13 +315,9 @@ static int ref_compute(const bench_problem_spec *spec, const cx_problem *p, doub
     double best = INFINITY;
     char why[CX_DIAG_LEN] = "";
     for (int k = 0; k < nc && best > REF_TOL && !bench_interrupted(); k++) {
-        cx_problem *q = NULL;
         cx_session *s = NULL;
         cx_diag local;
-        int st = bench_build(spec, &q, NULL, &local);
-        if (st == CX_OK)
-            st = cx_session_create(&s, &q, &local);
-        cx_problem_destroy(&q);
+        int st = bench_session(spec, &s, NULL, &local);
         if (st == CX_OK)
             st = cx_session_set_method(s, cand[k], NULL, &opt, &local);
         if (st == CX_OK)
@@ -248,25 +360,28 @@ static int ref_compute(const bench_problem_spec *spec, const cx_problem *p, doub
     return CX_OK;
 }
 
-int bench_ref_get(const char *dir, const bench_problem_spec *spec, const cx_problem *p,
+int bench_ref_get(bench_cache *cache, const bench_problem_spec *spec, const cx_problem *p,
                   double time_limit, bench_ref *r, cx_diag *d)
 {
     memset(r, 0, sizeof *r);
     char path[700]; /* dir (512) + name */
-    uint64_t hash;
-    CX_TRY(bench_ref_key(spec, &hash, d));
-    CX_TRY(ref_mkdir(dir, d));
-    ref_path(dir, spec, hash, path, sizeof path);
-    if (ref_read(path, p, r) == CX_OK) {
-        r->cached = 1;
-    } else {
-        CX_TRY(ref_compute(spec, p, time_limit, r, d));
-        int st = ref_write(path, r, d);
-        if (st != CX_OK) {
-            bench_ref_clear(r);
-            return st;
-        }
+    uint64_t hash = bench_ref_key(spec);
+    if (!cache->off && !cache->dir[0])
+        ref_cache_off(cache, "no directory");
+    if (!cache->off && ref_mkdir(cache->dir) != CX_OK)
+        ref_cache_off(cache, strerror(errno));
+    if (!cache->off) {
+        ref_path(cache->dir, spec, hash, path, sizeof path);
+        r->cached = ref_read(path, p, r) == CX_OK;
     }
+    if (!r->cached) {
+        CX_TRY(ref_compute(spec, p, time_limit, r, d));
+        cx_diag wd;
+        cx_diag_clear(&wd);
+        if (!cache->off && ref_write(path, r, &wd) != CX_OK)
+            ref_cache_off(cache, "cannot write in it");
+    }
+    r->kept = !cache->off;
     r->hash = hash;
     double *w = malloc(sizeof(double) * ((size_t)p->n + 1));
     if (!w) {

@@ -28,6 +28,16 @@ int bench_build(const bench_problem_spec *spec, cx_problem **p, double *t_assemb
     return CX_OK;
 }
 
+int bench_session(const bench_problem_spec *spec, cx_session **s, double *t_assemble, cx_diag *d)
+{
+    cx_problem *p = NULL;
+    *s = NULL;
+    CX_TRY(bench_build(spec, &p, t_assemble, d));
+    int st = cx_session_create(s, &p, d);
+    cx_problem_destroy(&p);
+    return st;
+}
+
 /* sqrt(e' K e) */
 static double run_energy(const cx_problem *p, const double *e, double *work)
 {
@@ -180,4 +190,66 @@ double bench_median(double *v, int n)
         return NAN;
     qsort(v, (size_t)n, sizeof *v, cmp_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int bench_baseline(const cx_problem *p, int n, double *seconds, cx_diag *d)
+{
+    double t[BENCH_MAX_REPEAT];
+    n = n < 1 ? 1 : n > BENCH_MAX_REPEAT ? BENCH_MAX_REPEAT : n;
+    for (int k = 0; k < n; k++)
+        CX_TRY(cx_problem_baseline(p, &t[k], d));
+    *seconds = bench_median(t, n);
+    return CX_OK;
+}
+
+void bench_run_paired(const bench_problem_spec *spec, const cx_method *m, const cx_param_values *pv,
+                      const cx_options *opt, const bench_ref *ref, int repeat, bench_result *res,
+                      bench_paired *out)
+{
+    double time[BENCH_MAX_REPEAT], ratio[BENCH_MAX_REPEAT], setup[BENCH_MAX_REPEAT],
+        solve[BENCH_MAX_REPEAT], base[BENCH_MAX_REPEAT], assembly[BENCH_MAX_REPEAT],
+        aratio[BENCH_MAX_REPEAT];
+    int n = 0;
+    memset(res, 0, sizeof *res);
+    memset(out, 0, sizeof *out);
+    for (int rep = 0; rep < repeat && rep < BENCH_MAX_REPEAT && !bench_interrupted(); rep++) {
+        cx_session *s = NULL;
+        cx_diag d;
+        cx_diag_clear(&d);
+        double ta = NAN, tb = NAN;
+        if (bench_session(spec, &s, &ta, &d)) {
+            memset(res, 0, sizeof *res);
+            res->failed = 1;
+            snprintf(res->msg, sizeof res->msg, "%s", d.msg);
+            break;
+        }
+        /* the baseline of this very problem, just before the run: the
+         * ratio is robust to the load of a shared machine drifting during
+         * the benchmark */
+        cx_problem_baseline(cx_session_problem(s), &tb, NULL);
+        bench_run(s, m, pv, opt, ref, res);
+        cx_session_destroy(&s);
+        out->peak_mb = fmax(out->peak_mb, res->heap_mb);
+        if (res->failed || res->interrupted)
+            break;
+        setup[n] = res->t_setup;
+        solve[n] = res->t_solve;
+        time[n] = res->t_setup + res->t_solve;
+        ratio[n] = time[n] / tb;
+        base[n] = tb;
+        assembly[n] = ta;
+        aratio[n] = ta / tb;
+        n++;
+    }
+    /* stopped by Ctrl-C before the first run: not a result either */
+    if (!res->failed && n == 0)
+        res->interrupted = 1;
+    out->runs = n;
+    out->time = bench_median(time, n);
+    out->ratio = bench_median(ratio, n);
+    out->setup = bench_median(setup, n);
+    out->solve = bench_median(solve, n);
+    out->baseline = bench_median(base, n);
+    out->assembly = bench_median(assembly, n);
+    out->assembly_ratio = bench_median(aratio, n);
 }

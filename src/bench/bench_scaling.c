@@ -66,36 +66,33 @@ static int scaling_levels(const char *v, scaling_args *a, cx_diag *d)
     return CX_OK;
 }
 
+/* scaling's own arguments (bench_arg_fn): --no-reference, --levels,
+ * --tol, SCENE. */
+static int scaling_arg(void *args, int argc, char **argv, int *i, cx_diag *d)
+{
+    scaling_args *a = args;
+    const char *v;
+    int r;
+    if (strcmp(argv[*i], "--no-reference") == 0) {
+        a->no_ref = 1;
+        return 1;
+    }
+    if ((r = cx_arg_option(argc, argv, i, "--levels", &v, d)) != 0)
+        return r < 0 ? r : scaling_levels(v, a, d) ? CX_EINVAL : 1;
+    if ((r = cx_arg_option(argc, argv, i, "--tol", &v, d)) != 0) {
+        if (r > 0 && (cx_parse_double(v, &a->tol) || !(a->tol > 0)))
+            return cx_diag_set(d, CX_EINVAL, "--tol '%s': expected a positive number", v);
+        return r;
+    }
+    return bench_arg_scene(argv, i, &a->scene, d);
+}
+
 static int scaling_parse(int argc, char **argv, scaling_args *a, cx_diag *d)
 {
     memset(a, 0, sizeof *a);
     bench_common_default(&a->c, 3);
     a->tol = 1e-10;
-    for (int i = 1; i < argc; i++) {
-        int r = bench_common_option(argc, argv, &i, &a->c, d);
-        if (r < 0)
-            return CX_EINVAL;
-        if (r)
-            continue;
-        const char *v;
-        if (strcmp(argv[i], "--no-reference") == 0) {
-            a->no_ref = 1;
-        } else if ((r = cx_arg_option(argc, argv, &i, "--levels", &v, d)) > 0) {
-            CX_TRY(scaling_levels(v, a, d));
-        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--tol", &v, d)) > 0) {
-            if (cx_parse_double(v, &a->tol) || !(a->tol > 0))
-                return cx_diag_set(d, CX_EINVAL, "--tol '%s': expected a positive number", v);
-        } else if (r < 0) {
-            return CX_EINVAL;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            return cx_diag_set(d, CX_EINVAL, "unknown option '%s' (see 'signorini bench scaling --help')",
-                               argv[i]);
-        } else if (a->scene) {
-            return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s': one scene only", argv[i]);
-        } else {
-            a->scene = argv[i];
-        }
-    }
+    CX_TRY(bench_parse(argc, argv, "scaling", &a->c, scaling_arg, a, d));
     if (!a->scene)
         return cx_diag_set(d, CX_EINVAL, "missing SCENE (see 'signorini bench scaling --help')");
     if (a->nlevels == 0)
@@ -166,18 +163,16 @@ static int bench_scaling_plot(const bench_table *t, const char *png, cx_diag *d)
 static int scaling_level_costs(const bench_problem_spec *spec, int repeat, double *t_asm,
                                double *t_base, double *factor_mb, cx_problem **p, cx_diag *d)
 {
-    double ta[64], tb[64];
-    int n = repeat < 64 ? repeat : 64, nb = n;
+    double ta[BENCH_MAX_REPEAT];
+    int n = repeat < BENCH_MAX_REPEAT ? repeat : BENCH_MAX_REPEAT;
     for (int k = 0; k < n; k++) {
         cx_problem_destroy(p);
         CX_TRY(bench_build(spec, p, &ta[k], d));
     }
+    *t_asm = bench_median(ta, n);
     /* the level's baseline for rows without a run (each run is paired
      * with its own) */
-    for (int k = 0; k < nb; k++)
-        CX_TRY(cx_problem_baseline(*p, &tb[k], d));
-    *t_asm = bench_median(ta, n);
-    *t_base = bench_median(tb, nb);
+    CX_TRY(bench_baseline(*p, n, t_base, d));
     /* the factor of the constrained-order Cholesky every Schur method uses */
     cx_schur *S = NULL;
     int st = cx_schur_create(&S, &(*p)->K, (*p)->cdofs, (*p)->nc, NULL, d);
@@ -194,12 +189,10 @@ int bench_scaling(int argc, char **argv)
     cx_diag_clear(&d);
     scaling_args a;
     cx_scene sc;
-    if (scaling_parse(argc, argv, &a, &d) || cx_scene_open(a.scene, &sc, &d))
+    bench_problem_spec spec;
+    if (scaling_parse(argc, argv, &a, &d) || bench_open(&a.c, a.scene, 0, &sc, &spec, &d))
         return bench_fail("bench scaling", d.msg);
-    bench_problem_spec spec = {&sc, 0, CX_FRICTION_NONE, 0, "", NULL, NULL};
-    uint64_t shash;
-    if (bench_common_law(&a.c, &sc, &spec.law, &spec.value, &d) || bench_scene_hash(&sc, &shash, &d))
-        return bench_fail("bench scaling", d.msg);
+    uint64_t shash = bench_scene_hash(&sc);
     for (int k = 0; k < a.nlevels; k++)
         if (a.levels[k] > sc.level_max) {
             cx_diag_set(&d, CX_EINVAL, "--levels: level %d: scene '%s' allows levels 1 to %d", a.levels[k],
@@ -231,48 +224,19 @@ int bench_scaling(int argc, char **argv)
             break;
         }
         bench_ref ref = {0};
-        int ref_ok = !a.no_ref && bench_ref_get(a.c.cache_dir, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
+        int ref_ok = !a.no_ref && bench_ref_get(&a.c.refs, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
         if (!a.no_ref)
             bench_meta(&t, label, ref_ok ? "reference %s kkt %.2e%s (%s)" : "no reference: %s",
                        ref_ok ? ref.method : d.msg, ref.kkt,
                        ref.kkt > 1e-12 ? " (above 1e-12: the best it reached)" : "",
-                       ref.cached ? "cached" : "computed");
+                       bench_ref_origin(&ref));
         for (int k = 0; k < nm && !bench_interrupted(); k++) {
             cx_options opt;
             bench_common_options(&a.c, &opt);
             opt.tol = a.tol;
-            /* each run paired with a baseline just before it (see wp) */
-            double times[64], setups[64], solves[64], bases[64], ratios[64], asms[64], aratios[64];
-            double peak = 0;
-            int nt = 0;
             bench_result res;
-            memset(&res, 0, sizeof res);
-            for (int rep = 0; rep < a.c.repeat && rep < 64; rep++) {
-                cx_problem *q = NULL;
-                cx_session *s = NULL;
-                double ta = NAN;
-                if (bench_build(&spec, &q, &ta, &d) || cx_session_create(&s, &q, &d)) {
-                    cx_problem_destroy(&q);
-                    res.failed = 1;
-                    snprintf(res.msg, sizeof res.msg, "%s", d.msg);
-                    break;
-                }
-                double tb = NAN;
-                cx_problem_baseline(cx_session_problem(s), &tb, NULL);
-                bench_run(s, methods[k], NULL, &opt, ref_ok ? &ref : NULL, &res);
-                peak = fmax(peak, res.heap_mb);
-                cx_session_destroy(&s);
-                if (res.failed || res.interrupted)
-                    break;
-                setups[nt] = res.t_setup;
-                solves[nt] = res.t_solve;
-                bases[nt] = tb;
-                asms[nt] = ta;
-                aratios[nt] = ta / tb;
-                times[nt] = res.t_setup + res.t_solve;
-                ratios[nt] = times[nt] / tb;
-                nt++;
-            }
+            bench_paired med;
+            bench_run_paired(&spec, methods[k], NULL, &opt, ref_ok ? &ref : NULL, a.c.repeat, &res, &med);
             if (res.interrupted)
                 break;
             int r = bench_table_row(&t);
@@ -289,17 +253,15 @@ int bench_scaling(int argc, char **argv)
             bench_set_result(&t, r, &res);
             if (res.failed)
                 continue;
-            double time = bench_median(times, nt);
-            bench_set_num(&t, r, "time", time);
-            double tb = bench_median(bases, nt);
-            bench_set_num(&t, r, "baseline", tb);
-            bench_set_num(&t, r, "assembly", bench_median(asms, nt));
-            bench_set_num(&t, r, "assembly/baseline", bench_median(aratios, nt));
-            bench_set_num(&t, r, "ratio", bench_median(ratios, nt));
-            bench_set_num(&t, r, "setup", bench_median(setups, nt));
-            bench_set_num(&t, r, "solve", bench_median(solves, nt));
-            bench_set_num(&t, r, "peak_mb", peak);
-            bench_set_num(&t, r, "peak/factor", peak / fmb);
+            bench_set_num(&t, r, "time", med.time);
+            bench_set_num(&t, r, "baseline", med.baseline);
+            bench_set_num(&t, r, "assembly", med.assembly);
+            bench_set_num(&t, r, "assembly/baseline", med.assembly_ratio);
+            bench_set_num(&t, r, "ratio", med.ratio);
+            bench_set_num(&t, r, "setup", med.setup);
+            bench_set_num(&t, r, "solve", med.solve);
+            bench_set_num(&t, r, "peak_mb", med.peak_mb);
+            bench_set_num(&t, r, "peak/factor", med.peak_mb / fmb);
         }
         bench_ref_clear(&ref);
         cx_problem_destroy(&p);
@@ -328,5 +290,5 @@ int bench_scaling(int argc, char **argv)
             code = bench_fail("bench scaling", d.msg);
     }
     bench_table_clear(&t);
-    return bench_interrupted() ? 130 : code;
+    return bench_interrupted() ? CX_EXIT_INTERRUPTED : code;
 }

@@ -73,32 +73,31 @@ typedef struct {
     double *u, *lN, *lT;
 } stress_nominal;
 
+/* stress's own arguments (bench_arg_fn): --level, --cases, SCENE... */
+static int stress_arg(void *args, int argc, char **argv, int *i, cx_diag *d)
+{
+    stress_args *a = args;
+    const char *v;
+    int r;
+    if ((r = cx_arg_option(argc, argv, i, "--level", &v, d)) != 0)
+        return r < 0 ? r : cx_arg_level(v, &a->level, d) ? CX_EINVAL : 1;
+    if ((r = cx_arg_option(argc, argv, i, "--cases", &v, d)) != 0) {
+        a->cases = r > 0 ? v : NULL;
+        return r;
+    }
+    if (argv[*i][0] == '-' && argv[*i][1])
+        return 0;
+    if (a->nscenes == 32)
+        return cx_diag_set(d, CX_EINVAL, "too many scenes (at most 32)");
+    a->scenes[a->nscenes++] = argv[*i];
+    return 1;
+}
+
 static int stress_parse(int argc, char **argv, stress_args *a, cx_diag *d)
 {
     memset(a, 0, sizeof *a);
     bench_common_default(&a->c, 1);
-    for (int i = 1; i < argc; i++) {
-        int r = bench_common_option(argc, argv, &i, &a->c, d);
-        if (r < 0)
-            return CX_EINVAL;
-        if (r)
-            continue;
-        const char *v;
-        if ((r = cx_arg_option(argc, argv, &i, "--level", &v, d)) > 0) {
-            CX_TRY(cx_arg_level(v, &a->level, d));
-        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--cases", &v, d)) > 0) {
-            a->cases = v;
-        } else if (r < 0) {
-            return CX_EINVAL;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            return cx_diag_set(d, CX_EINVAL, "unknown option '%s' (see 'signorini bench stress --help')",
-                               argv[i]);
-        } else if (a->nscenes == 32) {
-            return cx_diag_set(d, CX_EINVAL, "too many scenes (at most 32)");
-        } else {
-            a->scenes[a->nscenes++] = argv[i];
-        }
-    }
+    CX_TRY(bench_parse(argc, argv, "stress", &a->c, stress_arg, a, d));
     return bench_common_finish(&a->c, d);
 }
 
@@ -206,16 +205,14 @@ static void stress_nominal_clear(stress_nominal *nom)
 
 /* One case on one problem: build it, its reference, then every method.
  * methods[k] is run when it supports the problem, else a row says why. */
-static void stress_case(const stress_args *a, const stress_row_ctx *x, const bench_problem_spec *spec,
+static void stress_case(stress_args *a, const stress_row_ctx *x, const bench_problem_spec *spec,
                         const cx_method *const *methods, int nm, stress_nominal *nominal,
                         int case_kind, int *done, int total)
 {
     cx_diag d;
     cx_diag_clear(&d);
-    cx_problem *p = NULL;
     cx_session *s = NULL;
-    if (bench_build(spec, &p, NULL, &d) || cx_session_create(&s, &p, &d)) {
-        cx_problem_destroy(&p);
+    if (bench_session(spec, &s, NULL, &d)) {
         int r = stress_row(x, "-");
         bench_set_str(x->t, r, "converged", "n/a");
         bench_set_str(x->t, r, "reason", "%s", d.status == CX_EUNSUPPORTED ? "n/a" : "build failed");
@@ -227,7 +224,7 @@ static void stress_case(const stress_args *a, const stress_row_ctx *x, const ben
     bench_ref ref;
     cx_diag rd;
     cx_diag_clear(&rd);
-    int ref_ok = bench_ref_get(a->c.cache_dir, spec, cp, 10 * a->c.time_limit, &ref, &rd) == CX_OK;
+    int ref_ok = bench_ref_get(&a->c.refs, spec, cp, 10 * a->c.time_limit, &ref, &rd) == CX_OK;
     int rows = 0;
     for (int k = 0; k < nm && !bench_interrupted(); k++) {
         char label[128];
@@ -268,19 +265,16 @@ static void stress_case(const stress_args *a, const stress_row_ctx *x, const ben
 
 /* Each real parameter of each method at default x 1e-5 and x 1e5 (clipped
  * to its range): ten decades. */
-static void stress_params(const stress_args *a, const stress_row_ctx *x, const bench_problem_spec *spec,
+static void stress_params(stress_args *a, const stress_row_ctx *x, const bench_problem_spec *spec,
                           const cx_method *const *methods, int nm, stress_nominal *nominal)
 {
     cx_diag d;
     cx_diag_clear(&d);
-    cx_problem *p = NULL;
     cx_session *s = NULL;
-    if (bench_build(spec, &p, NULL, &d) || cx_session_create(&s, &p, &d)) {
-        cx_problem_destroy(&p);
+    if (bench_session(spec, &s, NULL, &d))
         return;
-    }
     bench_ref ref;
-    int ref_ok = bench_ref_get(a->c.cache_dir, spec, cx_session_problem(s), 10 * a->c.time_limit, &ref, &d) == CX_OK;
+    int ref_ok = bench_ref_get(&a->c.refs, spec, cx_session_problem(s), 10 * a->c.time_limit, &ref, &d) == CX_OK;
     for (int k = 0; k < nm && !bench_interrupted(); k++) {
         const cx_method *m = methods[k];
         for (int j = 0; m->params && m->params[j].key; j++) {
@@ -317,15 +311,13 @@ static void stress_params(const stress_args *a, const stress_row_ctx *x, const b
 }
 
 /* All the selected cases on one scene. */
-static int stress_scene(const stress_args *a, const char *id, bench_table *t, int *done, int total)
+static int stress_scene(stress_args *a, const char *id, bench_table *t, int *done, int total)
 {
     cx_diag d;
     cx_diag_clear(&d);
     cx_scene sc;
-    if (cx_scene_open(id, &sc, &d))
-        return bench_fail("bench stress", d.msg);
-    bench_problem_spec nominal_spec = {&sc, a->level, CX_FRICTION_NONE, 0, "", NULL, NULL};
-    if (bench_common_law(&a->c, &sc, &nominal_spec.law, &nominal_spec.value, &d))
+    bench_problem_spec nominal_spec;
+    if (bench_open(&a->c, id, a->level, &sc, &nominal_spec, &d))
         return bench_fail("bench stress", d.msg);
     cx_problem *p0 = NULL;
     const cx_method *methods[STRESS_MAX_METHODS];
@@ -459,9 +451,8 @@ int bench_stress(int argc, char **argv)
     bench_progress_start(total);
     for (int k = 0; k < a.nscenes && !bench_interrupted() && code == CX_EXIT_OK; k++) {
         cx_scene sc;
-        uint64_t h;
-        if (cx_scene_open(a.scenes[k], &sc, &d) == CX_OK && bench_scene_hash(&sc, &h, NULL) == CX_OK)
-            bench_meta(&t, sc.id, "hash %016llx (%s)", (unsigned long long)h, sc.path);
+        if (cx_scene_open(a.scenes[k], &sc, &d) == CX_OK)
+            bench_meta(&t, sc.id, "hash %016llx (%s)", (unsigned long long)bench_scene_hash(&sc), sc.path);
         code = stress_scene(&a, a.scenes[k], &t, &done, total);
     }
     bench_progress_end();
@@ -482,5 +473,5 @@ int bench_stress(int argc, char **argv)
     if (code == CX_EXIT_OK && bench_output(&a.c, &t, &d))
         code = bench_fail("bench stress", d.msg);
     bench_table_clear(&t);
-    return bench_interrupted() ? 130 : code;
+    return bench_interrupted() ? CX_EXIT_INTERRUPTED : code;
 }

@@ -47,7 +47,7 @@ typedef struct {
     int level;
     double tols[WP_MAX_VALUES];
     int ntols;
-    const char *sweep_key;
+    char sweep_key[CX_PARAM_STRLEN];   /* "": each method's own (wp_sweeps) */
     double sweep[WP_MAX_VALUES];
     int nsweep;
 } wp_args;
@@ -64,6 +64,28 @@ static int wp_list(const char *opt, const char *text, double *out, int *n, cx_di
     return CX_OK;
 }
 
+/* wp's own arguments (bench_arg_fn): --level, --tols, --sweep, SCENE. */
+static int wp_arg(void *args, int argc, char **argv, int *i, cx_diag *d)
+{
+    wp_args *a = args;
+    const char *v;
+    int r;
+    if ((r = cx_arg_option(argc, argv, i, "--level", &v, d)) != 0)
+        return r < 0 ? r : cx_arg_level(v, &a->level, d) ? CX_EINVAL : 1;
+    if ((r = cx_arg_option(argc, argv, i, "--tols", &v, d)) != 0)
+        return r < 0 ? r : wp_list("--tols", v, a->tols, &a->ntols, d) ? CX_EINVAL : 1;
+    if ((r = cx_arg_option(argc, argv, i, "--sweep", &v, d)) != 0) {
+        if (r < 0)
+            return r;
+        const char *eq = strchr(v, '=');
+        if (!eq || eq == v)
+            return cx_diag_set(d, CX_EINVAL, "--sweep '%s': expected KEY=v1,v2,...", v);
+        snprintf(a->sweep_key, sizeof a->sweep_key, "%.*s", (int)(eq - v), v);
+        return wp_list("--sweep", eq + 1, a->sweep, &a->nsweep, d) ? CX_EINVAL : 1;
+    }
+    return bench_arg_scene(argv, i, &a->scene, d);
+}
+
 static int wp_parse(int argc, char **argv, wp_args *a, cx_diag *d)
 {
     memset(a, 0, sizeof *a);
@@ -71,35 +93,7 @@ static int wp_parse(int argc, char **argv, wp_args *a, cx_diag *d)
     static const double tols[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
     a->ntols = 6;
     memcpy(a->tols, tols, sizeof tols);
-    for (int i = 1; i < argc; i++) {
-        int r = bench_common_option(argc, argv, &i, &a->c, d);
-        if (r < 0)
-            return CX_EINVAL;
-        if (r)
-            continue;
-        const char *v;
-        if ((r = cx_arg_option(argc, argv, &i, "--level", &v, d)) > 0) {
-            CX_TRY(cx_arg_level(v, &a->level, d));
-        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--tols", &v, d)) > 0) {
-            CX_TRY(wp_list("--tols", v, a->tols, &a->ntols, d));
-        } else if (r == 0 && (r = cx_arg_option(argc, argv, &i, "--sweep", &v, d)) > 0) {
-            const char *eq = strchr(v, '=');
-            if (!eq || eq == v)
-                return cx_diag_set(d, CX_EINVAL, "--sweep '%s': expected KEY=v1,v2,...", v);
-            static char key[CX_PARAM_STRLEN];
-            snprintf(key, sizeof key, "%.*s", (int)(eq - v), v);
-            a->sweep_key = key;
-            CX_TRY(wp_list("--sweep", eq + 1, a->sweep, &a->nsweep, d));
-        } else if (r < 0) {
-            return CX_EINVAL;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            return cx_diag_set(d, CX_EINVAL, "unknown option '%s' (see 'signorini bench wp --help')", argv[i]);
-        } else if (a->scene) {
-            return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s': one scene only", argv[i]);
-        } else {
-            a->scene = argv[i];
-        }
-    }
+    CX_TRY(bench_parse(argc, argv, "wp", &a->c, wp_arg, a, d));
     if (!a->scene)
         return cx_diag_set(d, CX_EINVAL, "missing SCENE (see 'signorini bench wp --help')");
     return bench_common_finish(&a->c, d);
@@ -111,7 +105,7 @@ static const char *wp_sweep_of(const wp_args *a, const cx_method *m, double *val
     cx_param_values pv;
     cx_param_default(&pv, m->params);
     *n = 0;
-    if (a->sweep_key) {
+    if (a->sweep_key[0]) {
         if (cx_param_find(&pv, a->sweep_key) < 0)
             return NULL;
         memcpy(values, a->sweep, sizeof(double) * (size_t)a->nsweep);
@@ -127,17 +121,6 @@ static const char *wp_sweep_of(const wp_args *a, const cx_method *m, double *val
             return wp_sweeps[k].key;
         }
     return NULL;
-}
-
-/* Median of repeat timings of the baseline. */
-static int wp_baseline(const cx_problem *p, int repeat, double *t, cx_diag *d)
-{
-    double v[64];
-    int n = repeat < 64 ? repeat : 64;
-    for (int k = 0; k < n; k++)
-        CX_TRY(cx_problem_baseline(p, &v[k], d));
-    *t = bench_median(v, n);
-    return CX_OK;
 }
 
 /* The plot of time against the error in the energy norm, one curve per
@@ -196,10 +179,8 @@ int bench_wp(int argc, char **argv)
     cx_diag_clear(&d);
     wp_args a;
     cx_scene sc;
-    if (wp_parse(argc, argv, &a, &d) || cx_scene_open(a.scene, &sc, &d))
-        return bench_fail("bench wp", d.msg);
-    bench_problem_spec spec = {&sc, a.level, CX_FRICTION_NONE, 0, "", NULL, NULL};
-    if (bench_common_law(&a.c, &sc, &spec.law, &spec.value, &d))
+    bench_problem_spec spec;
+    if (wp_parse(argc, argv, &a, &d) || bench_open(&a.c, a.scene, a.level, &sc, &spec, &d))
         return bench_fail("bench wp", d.msg);
     int level = a.level > 0 ? a.level : sc.level;
 
@@ -210,14 +191,13 @@ int bench_wp(int argc, char **argv)
     int nm;
     double baseline;
     bench_ref ref;
-    uint64_t shash;
+    uint64_t shash = bench_scene_hash(&sc);
     if (bench_build(&spec, &p, &t_asm, &d) || bench_methods(a.c.methods, p, methods, 64, &nm, &d) ||
-        wp_baseline(p, a.c.repeat < 3 ? 3 : a.c.repeat, &baseline, &d) ||
-        bench_scene_hash(&sc, &shash, &d)) {
+        bench_baseline(p, a.c.repeat < 3 ? 3 : a.c.repeat, &baseline, &d)) {
         cx_problem_destroy(&p);
         return bench_fail("bench wp", d.msg);
     }
-    int ref_ok = bench_ref_get(a.c.cache_dir, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
+    int ref_ok = bench_ref_get(&a.c.refs, &spec, p, 10 * a.c.time_limit, &ref, &d) == CX_OK;
 
     bench_table t;
     bench_table_init(&t, wp_cols);
@@ -230,7 +210,7 @@ int bench_wp(int argc, char **argv)
     if (ref_ok)
         bench_meta(&t, "reference", "%s, kkt %.2e%s, %d iterations, %s (key %016llx, %ld factorisations)",
                    ref.method, ref.kkt, ref.kkt > 1e-12 ? " (above 1e-12: the best it reached)" : "",
-                   ref.iterations, ref.cached ? "cached" : "computed", (unsigned long long)ref.hash,
+                   ref.iterations, bench_ref_origin(&ref), (unsigned long long)ref.hash,
                    ref.work.factorizations);
     else
         bench_meta(&t, "reference", "none: %s", d.msg);
@@ -270,34 +250,9 @@ int bench_wp(int argc, char **argv)
                 opt.tol = a.tols[q];
                 opt.own_stop = 0;
                 bench_result res;
-                /* each run is paired with a baseline measured just before
-                 * it: the ratio is the median of the pairs, robust to the
-                 * load of a shared machine drifting during the benchmark */
-                double times[64], ratios[64], setups[64], solves[64];
-                int nt = 0;
-                for (int rep = 0; rep < a.c.repeat && rep < 64 && !bench_interrupted(); rep++) {
-                    cx_problem *q2 = NULL;
-                    cx_session *s = NULL;
-                    if (bench_build(&spec, &q2, NULL, &d) || cx_session_create(&s, &q2, &d)) {
-                        cx_problem_destroy(&q2);
-                        memset(&res, 0, sizeof res);
-                        res.failed = 1;
-                        snprintf(res.msg, sizeof res.msg, "%s", d.msg);
-                        break;
-                    }
-                    double tb = NAN;
-                    cx_problem_baseline(cx_session_problem(s), &tb, NULL);
-                    bench_run(s, m, &pv, &opt, ref_ok ? &ref : NULL, &res);
-                    cx_session_destroy(&s);
-                    if (res.failed || res.interrupted)
-                        break;
-                    setups[nt] = res.t_setup;
-                    solves[nt] = res.t_solve;
-                    times[nt] = res.t_setup + res.t_solve;
-                    ratios[nt] = times[nt] / tb;
-                    nt++;
-                }
-                if (res.interrupted || (!res.failed && nt == 0))
+                bench_paired med;
+                bench_run_paired(&spec, m, &pv, &opt, ref_ok ? &ref : NULL, a.c.repeat, &res, &med);
+                if (res.interrupted)
                     break;
                 int r = bench_table_row(&t);
                 bench_set_str(&t, r, "scene", "%s", sc.id);
@@ -310,11 +265,10 @@ int bench_wp(int argc, char **argv)
                 bench_set_result(&t, r, &res);
                 if (res.failed)
                     continue;
-                double time = bench_median(times, nt);
-                bench_set_num(&t, r, "time", time);
-                bench_set_num(&t, r, "ratio", bench_median(ratios, nt));
-                bench_set_num(&t, r, "setup", bench_median(setups, nt));
-                bench_set_num(&t, r, "solve", bench_median(solves, nt));
+                bench_set_num(&t, r, "time", med.time);
+                bench_set_num(&t, r, "ratio", med.ratio);
+                bench_set_num(&t, r, "setup", med.setup);
+                bench_set_num(&t, r, "solve", med.solve);
                 bench_set_int(&t, r, "factorizations", res.work.factorizations);
                 bench_set_int(&t, r, "solves", res.work.solves);
             }
@@ -330,5 +284,5 @@ int bench_wp(int argc, char **argv)
     bench_table_clear(&t);
     bench_ref_clear(&ref);
     cx_problem_destroy(&p);
-    return bench_interrupted() ? 130 : code;
+    return bench_interrupted() ? CX_EXIT_INTERRUPTED : code;
 }

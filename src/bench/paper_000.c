@@ -52,12 +52,6 @@ typedef struct {
     double kkt, time;
 } p000_result;
 
-static int p000_cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static int p000_method(cx_session *s, const p000_run *r, p000_result *out, cx_diag *d)
 {
     const cx_method *m = cx_method_find(r->id);
@@ -73,7 +67,7 @@ static int p000_method(cx_session *s, const p000_run *r, p000_result *out, cx_di
         CX_TRY(cx_param_set_pair(&v, r->sets[k], r->id, d));
     CX_TRY(cx_session_set_method(s, m, &v, &o, d));
     long s0 = cx_session_iterate(s)->counters.solves;
-    CX_TRY(cx_solver_solve(s, NULL, NULL, d));
+    CX_TRY(bench_solve(s, d));
     const cx_iterate *it = cx_session_iterate(s);
     out->nk = it->counters.solves - s0;
     out->kmax = it->iter;
@@ -91,17 +85,11 @@ static int p000_row(const cx_scene *sc, int row, double slip, int repeat, p000_r
     double t0 = cx_clock_now();
     CX_TRY(cx_scene_build(sc, 50 + 5 * row, &p, d));
     *t_asm = cx_clock_now() - t0;
-    int st = CX_OK;
-    int nb = repeat > 3 ? repeat : 3;
-    double tbs[64];
-    for (int k = 0; k < nb && !st; k++)
-        st = cx_problem_baseline(p, &tbs[k], d);
+    int st = bench_baseline(p, repeat > 3 ? repeat : 3, t_base, d);
     if (st) {
         cx_problem_destroy(&p);
         return st;
     }
-    qsort(tbs, (size_t)nb, sizeof tbs[0], p000_cmp);
-    *t_base = tbs[nb / 2];
     *n = p->n;
     *m = p->m;
     CX_TRY(cx_session_create(&s, &p, d));
@@ -114,13 +102,13 @@ static int p000_row(const cx_scene *sc, int row, double slip, int repeat, p000_r
     *t_setup = cx_clock_now() - t0;
     /* the counts repeat exactly; the time is the median of the runs */
     for (int k = 0; k < 5 && !st; k++) {
-        double t[64];
-        for (int r = 0; r < repeat && !st; r++) {
+        double t[BENCH_MAX_REPEAT];
+        int nt = 0;
+        for (int r = 0; r < repeat && r < BENCH_MAX_REPEAT && !st; r++) {
             st = p000_method(s, &p000_runs[k], &res[k], d);
-            t[r] = res[k].time;
+            t[nt++] = res[k].time;
         }
-        qsort(t, (size_t)repeat, sizeof t[0], p000_cmp);
-        res[k].time = t[repeat / 2];
+        res[k].time = bench_median(t, nt);
     }
 done:
     cx_session_destroy(&s);
@@ -192,7 +180,7 @@ int bench_paper_000(int argc, char **argv)
         double ta, tsetup = 0, tb;
         int n, m;
         if (p000_row(&sc, row, slip, repeat, res, &ta, &tsetup, &tb, &n, &m, &d))
-            return bench_fail("bench paper 000", d.msg);
+            return bench_interrupted() ? CX_EXIT_INTERRUPTED : bench_fail("bench paper 000", d.msg);
         char nm[24], cell[5][32], both[5][64];
         snprintf(nm, sizeof nm, "%d/%d", n, m);
         for (int k = 0; k < 5; k++) {

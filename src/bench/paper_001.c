@@ -51,12 +51,6 @@ typedef struct {
     double assembly, baseline, schur, solves, solver, post, kkt, sdiff, rss_mib;
 } p001_row;
 
-static int p001_cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* "1-7", "8", "2,4,6" into want[1..8]; 0 or -1 (bad). */
 static int p001_levels(const char *text, int want[P001_LEVELS + 1])
 {
@@ -117,18 +111,12 @@ static int p001_level(const cx_scene *sc, int level, int repeat, int solves, p00
         row->contact += hit[i];
     cx_free(hit);
 
-    double times[16];
-    for (int r = 0; r < repeat; r++) {
-        int st = cx_problem_baseline(p, &times[r], d);
-        if (st) {
-            cx_problem_destroy(&p);
-            return st;
-        }
+    int st = bench_baseline(p, repeat, &row->baseline, d);
+    if (st) {
+        cx_problem_destroy(&p);
+        return st;
     }
-    qsort(times, (size_t)repeat, sizeof times[0], p001_cmp);
-    row->baseline = times[repeat / 2];
 
-    int st;
     if ((st = cx_session_create(&s, &p, d)))
         goto done;
     const cx_problem *pp = cx_session_problem(s);
@@ -168,7 +156,7 @@ static int p001_level(const cx_scene *sc, int level, int repeat, int solves, p00
     o.tol = 1e-300;
     o.max_iter = 100;
     if ((st = cx_session_set_method(s, cx_method_find("ssstar"), NULL, &o, d)) ||
-        (st = cx_solver_solve(s, NULL, NULL, d)))
+        (st = bench_solve(s, d)))
         goto done;
     const cx_iterate *it = cx_session_iterate(s);
     row->solver = it->time;
@@ -286,8 +274,11 @@ int bench_paper_001(int argc, char **argv)
     for (int L = 1; L <= P001_LEVELS; L++) {
         if (!want[L])
             continue;
-        if (p001_level(&sc, L, repeat, solves, &rows[n], &d))
-            return bench_fail("bench paper 001", d.msg);
+        if (p001_level(&sc, L, repeat, solves, &rows[n], &d)) {
+            if (!bench_interrupted())
+                return bench_fail("bench paper 001", d.msg);
+            break;   /* Ctrl-C: the table of the levels that finished */
+        }
         fprintf(stderr, "level %d done (%.1f s)\n", L,
                 rows[n].assembly + rows[n].schur + (isnan(rows[n].solves) ? 0 : rows[n].solves) +
                     rows[n].solver);

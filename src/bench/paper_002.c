@@ -55,12 +55,7 @@ static int p2_open(p2_case *c, const char *scene, int level, int baseline, cx_di
     c->nodes = p->mesh->nnodes;
     c->m = p->m;
     /* the baseline: the median of three (the machine is shared) */
-    double t[3];
-    int st = CX_OK;
-    for (int k = 0; k < (baseline ? 3 : 0) && !st; k++)
-        st = cx_problem_baseline(p, &t[k], d);
-    if (!st && baseline)
-        c->t_base = fmax(fmin(t[0], t[1]), fmin(fmax(t[0], t[1]), t[2]));
+    int st = baseline ? bench_baseline(p, 3, &c->t_base, d) : CX_OK;
     if (!st)
         st = cx_session_create(&c->s, &p, d);
     if (st)
@@ -87,7 +82,7 @@ static int p2_run(cx_session *s, const char *method, const char *sets, int own, 
     o.max_iter = max_iter;
     o.stall_window = 0;
     CX_TRY(cx_session_set_method(s, m, &pv, &o, d));
-    CX_TRY(cx_solver_solve(s, NULL, NULL, d));
+    CX_TRY(bench_solve(s, d));
     const cx_iterate *it = cx_session_iterate(s);
     r->iter = it->iter;
     r->reason = it->reason;
@@ -352,13 +347,7 @@ static double p2_solve_time(const cx_problem *p, cx_diag *d)
         cx_fact_solve(F, p->f, x, d);
         t[k] = cx_clock_now() - t0;
     }
-    for (int a = 0; a < 21; a++)   /* insertion sort, 21 values */
-        for (int b = a; b > 0 && t[b] < t[b - 1]; b--) {
-            double w = t[b];
-            t[b] = t[b - 1];
-            t[b - 1] = w;
-        }
-    med = t[10];
+    med = bench_median(t, 21);
 done:
     cx_fact_destroy(&F);
     cx_csc_clear(&A);
@@ -449,6 +438,6 @@ int bench_paper_002(int argc, char **argv)
     if (!st && (tables & 128))
         st = p2_perf(nlev == 5, &d);
     if (st)
-        return bench_fail("bench paper 002", d.msg);
+        return bench_interrupted() ? CX_EXIT_INTERRUPTED : bench_fail("bench paper 002", d.msg);
     return CX_EXIT_OK;
 }

@@ -95,23 +95,6 @@ static double p003_peak_mb(void)
     return ru.ru_maxrss / 1024.0;
 }
 
-static int p003_cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* median of three baselines of the problem */
-static int p003_baseline(const cx_problem *p, double *sec, cx_diag *d)
-{
-    double t[3];
-    for (int k = 0; k < 3; k++)
-        CX_TRY(cx_problem_baseline(p, &t[k], d));
-    qsort(t, 3, sizeof t[0], p003_cmp);
-    *sec = t[1];
-    return CX_OK;
-}
-
 typedef struct {
     int ok;                 /* solved */
     double time, base;
@@ -127,7 +110,7 @@ static void p003_solve(const cx_scene *sc, int level, const p003_table *tb, doub
     cx_problem *p = NULL;
     cx_session *s = NULL;
     memset(r, 0, sizeof *r);
-    if (cx_scene_build(sc, level, &p, &d) || p003_baseline(p, &r->base, &d)) {
+    if (cx_scene_build(sc, level, &p, &d) || bench_baseline(p, 3, &r->base, &d)) {
         snprintf(r->why, sizeof r->why, "%s", d.msg);
         cx_problem_destroy(&p);
         return;
@@ -147,7 +130,7 @@ static void p003_solve(const cx_scene *sc, int level, const p003_table *tb, doub
     o.stall_window = 100000;   /* the methods end on their own criteria */
     o.tol = 1e-15;
     if ((tb->set && cx_param_set_pair(&pv, tb->set, tb->method, &d)) ||
-        cx_session_set_method(s, m, &pv, &o, &d) || cx_solver_solve(s, NULL, NULL, &d)) {
+        cx_session_set_method(s, m, &pv, &o, &d) || bench_solve(s, &d)) {
         snprintf(r->why, sizeof r->why, "%s", d.msg);
         cx_session_destroy(&s);
         return;
@@ -260,7 +243,7 @@ int bench_paper_003(int argc, char **argv)
         if ((!only || strcmp(only, p003_geo[g]) == 0) && p003_sizes(&sc[g], g, max_level))
             return CX_EXIT_ERROR;
 
-    for (int t = 0; t < P003_NTABLES; t++) {
+    for (int t = 0; t < P003_NTABLES && !bench_interrupted(); t++) {
         const p003_table *tb = &p003_tables[t];
         if (!p003_in_list(tables, tb->table))
             continue;
@@ -269,11 +252,11 @@ int bench_paper_003(int argc, char **argv)
                tb->set ? tb->set : "");
         printf("  %-12s %-6s %10s %8s %7s %9s %10s %9s %8s\n", "geometry", "h", "ours (s)",
                "ratio", "iters", "kkt", "paper (s)", "own", "peak MB");
-        for (int g = 0; g < 3; g++) {
+        for (int g = 0; g < 3 && !bench_interrupted(); g++) {
             if (only && strcmp(only, p003_geo[g]) != 0)
                 continue;
             int failed = 0;
-            for (int l = 0; l < P003_NLEVELS && p003_levels[l] <= top; l++) {
+            for (int l = 0; l < P003_NLEVELS && p003_levels[l] <= top && !bench_interrupted(); l++) {
                 int N = p003_levels[l];
                 double paper = tb->paper[g][l];
                 char ptxt[16];

@@ -11,10 +11,6 @@
 int cli_list(int argc, char **argv);
 int cli_solve(int argc, char **argv);
 
-/* The explorer (src/tui/loop.c, a peer program layer: declared here rather
- * than included, so that cli/ and tui/ stay independent). argv[0] is the
- * command name; returns the exit status. */
-int tui_main(int argc, char **argv);
 int cli_render(int argc, char **argv);  /* cli/render.c */
 /* 'solve' under another command name (render: the same options and more). */
 int cli_solve_as(const char *cmd, int argc, char **argv);

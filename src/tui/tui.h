@@ -262,9 +262,8 @@ int tui_export(const tui_state *st, const char *dir, char *csv, char *json, size
  * renderer. Returns CX_EUNSUPPORTED while rendering is not in this build. */
 int tui_render_png(const tui_state *st, char *file, size_t len, cx_diag *d);
 
-/* ---- the program (loop.c) ------------------------------------------------ */
+/* ---- the program (loop.c): tui_main, declared in its own header ---------- */
 
-/* signorini [tui [SCENE] [options]]: run the explorer; exit status. */
-int tui_main(int argc, char **argv);
+#include "tui/tui_main.h"
 
 #endif

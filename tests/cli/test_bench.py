@@ -1,21 +1,26 @@
 #!/usr/bin/env python3
 """'signorini bench' machinery on tiny cases: CSV columns and one row per
 run, the reference solution reused from the disk cache (checked through the
-counters), a stress case forced to fail gives a row and no crash, unit
-scaling keeps kkt and iteration counts, Ctrl-C keeps what finished, and
-one-line errors for bad options. No timings are asserted."""
+counters), where that cache lives ($XDG_CACHE_HOME/signorini, --cache, a
+warning when it cannot be written), its key from the parsed scene (two
+scenes through /dev/stdin), a stress case forced to fail gives a row and no
+crash, unit scaling keeps kkt and iteration counts, Ctrl-C keeps what
+finished and exits 130 without temporary files, and one-line errors for bad
+options. No timings are asserted."""
 import csv
 import io
 import json
 import os
 import pty
+import select
+import shutil
 import signal
 import subprocess
 import sys
 import tempfile
 import time
 
-exe = sys.argv[1]
+exe = os.path.abspath(sys.argv[1])
 failures = 0
 checks = 0
 
@@ -28,8 +33,16 @@ def check(cond, what):
         print(f"FAIL: {what}")
 
 
-def run(*args, cwd=None):
-    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=120, cwd=cwd)
+# Every run's default reference cache ($XDG_CACHE_HOME/signorini) goes to
+# a temporary directory, never to the home directory of whoever runs the tests.
+xdg_default = tempfile.mkdtemp(prefix="signorini-test-xdg-")
+os.environ["XDG_CACHE_HOME"] = xdg_default
+scenes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scenes")
+
+
+def run(*args, cwd=None, env=None, stdin=None):
+    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=120, cwd=cwd,
+                       env=None if env is None else {**os.environ, **env}, stdin=stdin)
     return r.returncode, r.stdout, r.stderr
 
 
@@ -207,6 +220,131 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0 and b"] 1/6 ssn-tresca rho=0.0001 tol 1e-04" in bar and b"s left" in bar,
           f"a progress bar with the case and the time left: {bar[:200]!r}")
 
+    # ---- where the reference cache lives ----
+    small = ["bench", "wp", "--level", "4", "--tols", "1e-8", "--methods", "ssn-tresca"]
+
+    def refs_in(d):
+        return sorted(f for f in os.listdir(d) if f.endswith(".ref")) if os.path.isdir(d) else []
+
+    # $XDG_CACHE_HOME/signorini by default, nothing in the working directory
+    xdg, work = os.path.join(tmp, "xdg"), os.path.join(tmp, "work")
+    os.makedirs(work)
+    code, out, err = run(*small, "hertz", cwd=work, env={"XDG_CACHE_HOME": xdg})
+    check(code == 0 and err == "", f"bench with the default cache ({code}, {err!r})")
+    check(len(refs_in(os.path.join(xdg, "signorini"))) == 1, f"the reference in $XDG_CACHE_HOME/signorini: "
+          f"{refs_in(os.path.join(xdg, 'signorini'))}")
+    check(os.listdir(work) == [], f"nothing written in the working directory: {os.listdir(work)}")
+    # without $XDG_CACHE_HOME: ~/.cache/signorini
+    home = os.path.join(tmp, "home")
+    code, out, err = run(*small, "hertz", cwd=work, env={"XDG_CACHE_HOME": "", "HOME": home})
+    check(code == 0 and len(refs_in(os.path.join(home, ".cache", "signorini"))) == 1,
+          f"the reference in ~/.cache/signorini ({code}, {err!r})")
+    # --cache DIR overrides both
+    mine, xdg2 = os.path.join(tmp, "mine"), os.path.join(tmp, "xdg2")
+    code, out, err = run(*small, "hertz", "--cache", mine, cwd=work, env={"XDG_CACHE_HOME": xdg2})
+    check(code == 0 and len(refs_in(mine)) == 1 and not os.path.exists(xdg2),
+          f"--cache DIR overrides $XDG_CACHE_HOME ({code}, {err!r}, {refs_in(mine)})")
+    check(os.listdir(work) == [], "still nothing in the working directory")
+    # a cache that cannot be a directory (a file in the way; root ignores
+    # permissions): one warning, the run goes on uncached, exit 0 and the table
+    blocker = os.path.join(tmp, "a-file")
+    open(blocker, "w").close()
+    for how in (["--cache", blocker], ["--cache", os.path.join(blocker, "sub")]):
+        code, out, err = run(*small, "hertz", *how, cwd=work)
+        lines = err.strip().splitlines()
+        check(code == 0, f"an unwritable cache is no error ({how}: {code}, {err!r})")
+        check(len(lines) == 1 and "warning" in lines[0] and blocker in lines[0],
+              f"one warning line naming the cache: {lines!r}")
+        check("ssn-tresca" in out and "err_u" in out and "# reference: ssn-tresca" in out
+              and "computed, not kept" in out,
+              f"the table, with a reference computed for this run: {out[-300:]!r}")
+    check(os.path.getsize(blocker) == 0, "the file in the way is untouched")
+
+    # ---- the key is the parsed scene's, not the file's path ----
+    with open(os.path.join(scenes, "hertz.ini")) as f:
+        hertz_ini = f.read()
+    stiffer = hertz_ini.replace("\nE = 2000\n", "\nE = 4000\n")
+    check(stiffer != hertz_ini, "the second scene differs (E)")
+    piped = os.path.join(tmp, "piped")
+    keys, hashes = [], []
+    for text in (hertz_ini, stiffer, hertz_ini):
+        path = os.path.join(tmp, "scene.ini")
+        with open(path, "w") as f:
+            f.write(text)
+        with open(path) as f:
+            code, out, err = run(*small, "/dev/stdin", "--json", "--cache", piped, stdin=f)
+        check(code == 0, f"bench wp on a scene from a pipe ({code}, {err!r})")
+        j = json.loads(out) if code == 0 else {"meta": {}, "rows": []}
+        keys.append(j["meta"].get("reference", "").split("key ")[-1].split(",")[0])
+        hashes.append(j["meta"].get("scene hash", "").split(" ")[0])
+        check(j["rows"] and all(r["err_u"] is not None and r["err_u"] <= 1e-8 for r in j["rows"]),
+              f"errors against this scene's own reference: {[r['err_u'] for r in j['rows']]}")
+    check(keys[0] != keys[1] and hashes[0] != hashes[1] and len(refs_in(piped)) == 2,
+          f"two scenes through /dev/stdin, two keys: {keys} {hashes} {refs_in(piped)}")
+    check(keys[0] == keys[2] and hashes[0] == hashes[2] and len(set(hashes[0])) > 1,
+          f"the same scene again, the same key and a real hash: {keys} {hashes}")
+    # and the scene read by its id has that same content hash
+    code, out, err = run(*small, "hertz", "--json", "--cache", piped)
+    check(code == 0 and json.loads(out)["meta"]["scene hash"].startswith(hashes[0] + " "),
+          f"'hertz' by id hashes as its content through a pipe: {out[:300]!r}")
+
+    # ---- Ctrl-C once a case has started: exit 130, no temporary file ----
+    # (stderr on a terminal, so the progress bar says when the first case runs)
+    ctrlc = os.path.join(tmp, "ctrlc")
+    os.makedirs(ctrlc)
+    ctrlc_csv = os.path.join(ctrlc, "wp.csv")
+    master, slave = pty.openpty()
+    p = subprocess.Popen([exe, "bench", "wp", "hertz", "--level", "16", "--repeat", "1000", "--methods",
+                          "ssn-tresca", "--csv", ctrlc_csv, "--cache", os.path.join(ctrlc, "refs")],
+                         stdout=subprocess.PIPE, stderr=slave, cwd=ctrlc)
+    os.close(slave)
+    bar, deadline = b"", time.time() + 60
+    while b"] 1/" not in bar and time.time() < deadline:
+        ready, _, _ = select.select([master], [], [], 1)
+        if ready:
+            try:
+                bar += os.read(master, 4096)
+            except OSError:
+                break
+    check(b"] 1/" in bar, f"the first case started: {bar[:200]!r}")
+    p.send_signal(signal.SIGINT)
+    out, _ = p.communicate(timeout=60)
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:
+            break
+        if not chunk:
+            break
+        bar += chunk
+    os.close(master)
+    check(p.returncode == 130, f"exit 130 after Ctrl-C in a case, got {p.returncode} ({bar[-300:]!r})")
+    check(b"interrupted" in bar, "the note on stderr")
+    check(b"# interrupted: yes" in out, f"the table printed, marked interrupted: {out[-200:]!r}")
+    meta, rows = read_csv(ctrlc_csv) if os.path.exists(ctrlc_csv) else ({}, [])
+    check("interrupted" in meta, "the CSV written whole, marked interrupted")
+    left = [os.path.join(r, f) for r, _, fs in os.walk(ctrlc) for f in fs if ".tmp" in f]
+    check(left == [], f"no temporary file after Ctrl-C: {left}")
+
+    # a paper driver too: Ctrl-C after its first level, the table of the
+    # levels that finished, exit 130
+    p = subprocess.Popen([exe, "bench", "paper", "001"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    err, deadline = b"", time.time() + 60
+    while b"level 2 done" not in err and time.time() < deadline:
+        ready, _, _ = select.select([p.stderr], [], [], 1)
+        if ready:
+            chunk = os.read(p.stderr.fileno(), 4096)
+            if not chunk:
+                break
+            err += chunk
+    p.send_signal(signal.SIGINT)
+    out, rest = p.communicate(timeout=60)
+    err += rest
+    check(p.returncode == 130, f"paper 001: exit 130 after Ctrl-C, got {p.returncode} ({err[-300:]!r})")
+    levels = [l.split()[0] for l in out.decode().splitlines() if l[:5].strip().isdigit()]
+    check(levels[:2] == ["1", "2"] and b"interrupted" in err,
+          f"paper 001: the levels that finished are printed: {levels}, {err[-200:]!r}")
+
     # ---- errors: one line, nothing written ----
     code, out, err = run("bench", "wp")
     one_line_error(code, err, "missing SCENE")
@@ -231,5 +369,6 @@ with tempfile.TemporaryDirectory() as tmp:
                          "--cache", cache)
     one_line_error(code, err, "cannot write")
 
+shutil.rmtree(xdg_default, ignore_errors=True)
 print(f"{checks - failures} of {checks} checks passed")
 sys.exit(1 if failures else 0)

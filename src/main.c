@@ -1,6 +1,9 @@
-/* signorini: elastic contact problems with and without friction. */
+/* signorini: elastic contact problems with and without friction. The
+ * program above its three parts, which never call one another: the
+ * command line (cli/), the benchmarks (bench/) and the explorer (tui/). */
 #include "bench/bench.h"
 #include "cli/cli.h"
+#include "tui/tui_main.h"
 #include "cx_config.h"
 
 #include <stdio.h>
