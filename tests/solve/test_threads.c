@@ -13,8 +13,13 @@
 #include "check.h"
 
 #include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+#if CX_TEST_RENDER
+#include "render/render.h"
+#endif
 
 /* ---- one run: load, build, solve, keep the numbers --------------------------- */
 
@@ -415,10 +420,106 @@ static void test_alloc(void)
     CX_CHECK(cx_alloc_live() == live);
 }
 
+/* ---- two images at once (built with the renderer) ----------------------------- */
+
+#if CX_TEST_RENDER
+/* OSMesa is not made for two threads drawing at once: render/glctx.c lets
+ * one context exist at a time. Two threads render the same solution at
+ * once, twice each; every file equals the one rendered alone. */
+typedef struct {
+    const cx_render_state *st;
+    const cx_render_opts *o;
+    char path[2][600];
+    int status[2];
+    pthread_barrier_t *start;
+} painter;
+
+static void *paint_main(void *arg)
+{
+    painter *pt = arg;
+    pthread_barrier_wait(pt->start);
+    for (int r = 0; r < 2; r++) {
+        cx_diag d;
+        pt->status[r] = cx_render_png(pt->st, pt->o, pt->path[r], NULL, &d);
+        if (pt->status[r])
+            fprintf(stderr, "render %s: %s\n", pt->path[r], d.msg);
+    }
+    return NULL;
+}
+
+static int same_file(const char *a, const char *b)
+{
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    int same = fa && fb, ca, cb;
+    while (same && ((ca = fgetc(fa)) != EOF) + ((cb = fgetc(fb)) != EOF) > 0)
+        same = ca == cb;
+    if (fa)
+        fclose(fa);
+    if (fb)
+        fclose(fb);
+    return same;
+}
+
+static void test_render(void)
+{
+    char dir[] = "/tmp/cx-threads-XXXXXX", path[600], params[128];
+    cx_diag d;
+    cx_scene sc;
+    cx_problem *p = NULL;
+    cx_session *s = NULL;
+    if (!mkdtemp(dir)) {
+        CX_CHECK(0);
+        return;
+    }
+    CX_CHECK_OK(cx_scene_resolve("hertz", path, sizeof path, &d));
+    CX_CHECK_OK(cx_scene_load(&sc, path, &d));
+    CX_CHECK_OK(cx_scene_build(&sc, 16, &p, &d));
+    CX_CHECK_OK(cx_session_create(&s, &p, &d));
+    CX_CHECK_OK(cx_session_set_method(s, cx_method_find("ssn-tresca"), NULL, NULL, &d));
+    CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
+    cx_render_state st;
+    cx_render_state_init(&st, &sc, s, 16, params, sizeof params);
+    cx_render_opts o;
+    cx_render_opts_default(&o);
+    o.width = 320, o.height = 240;
+    snprintf(path, sizeof path, "%s/alone.png", dir);
+    int alone = cx_render_png(&st, &o, path, NULL, &d);
+    if (alone)
+        fprintf(stderr, "render alone: %s\n", d.msg);
+    CX_CHECK(alone == CX_OK);
+
+    pthread_barrier_t start;
+    pthread_barrier_init(&start, NULL, 2);
+    painter pt[2];
+    pthread_t th[2];
+    for (int t = 0; t < 2; t++) {
+        pt[t] = (painter){&st, &o, {"", ""}, {0, 0}, &start};
+        for (int r = 0; r < 2; r++)
+            snprintf(pt[t].path[r], sizeof pt[t].path[r], "%s/t%d-%d.png", dir, t, r);
+        CX_CHECK(pthread_create(&th[t], NULL, paint_main, &pt[t]) == 0);
+    }
+    for (int t = 0; t < 2; t++)
+        pthread_join(th[t], NULL);
+    pthread_barrier_destroy(&start);
+    for (int t = 0; t < 2; t++)
+        for (int r = 0; r < 2; r++) {
+            CX_CHECK(pt[t].status[r] == CX_OK);
+            CX_CHECK(same_file(pt[t].path[r], path));
+            remove(pt[t].path[r]);
+        }
+    remove(path);
+    rmdir(dir);
+    cx_session_destroy(&s);
+}
+#endif
+
 int main(void)
 {
     test_loading();
     test_alloc();
     test_sessions();
+#if CX_TEST_RENDER
+    test_render();
+#endif
     return check_finish("threads");
 }
