@@ -1,5 +1,6 @@
 /* base/: what every layer needs — status codes, the one-line diagnostic,
- * the allocator, parameter tables, strict parsing and the clock. */
+ * the allocator, parameter tables, strict parsing, the clock and sorting
+ * by keys. */
 #ifndef CX_BASE_H
 #define CX_BASE_H
 
@@ -9,6 +10,7 @@
 #include "base/param.h"
 #include "base/parse.h"
 #include "base/clock.h"
+#include "base/sort.h"
 
 #define CX_PI 3.14159265358979323846
 

@@ -14,9 +14,6 @@ typedef struct {
     double w;        /* lumped length */
 } cm_pair;
 
-static const double *cm_x_;      /* qsort context: node coordinates */
-static const cx_boundary *cm_b_; /* qsort context: the joints */
-
 static void cm_facet_normal(const double *x, const int *f, double *n)
 {
     double ex = x[2 * f[1]] - x[2 * f[0]], ey = x[2 * f[1] + 1] - x[2 * f[0] + 1];
@@ -24,16 +21,15 @@ static void cm_facet_normal(const double *x, const int *f, double *n)
     n[0] = ey / len, n[1] = -ex / len;   /* body on the left: normal to the right */
 }
 
-/* joint facets by their middle node's position (y, then x) */
-static int cm_cmp_facet(const void *a, const void *b)
+/* The joint facets by their middle node's position (y, then x): the two
+ * coincident facets of a joint edge come next to each other. */
+static void cm_sort_facets(const double *x, const cx_boundary *jb, cx_sort_key *ks)
 {
-    const double *xa = cm_x_ + 2 * cm_b_->facets[3 * *(const int *)a + 2];
-    const double *xb = cm_x_ + 2 * cm_b_->facets[3 * *(const int *)b + 2];
-    if (xa[1] != xb[1])
-        return xa[1] < xb[1] ? -1 : 1;
-    if (xa[0] != xb[0])
-        return xa[0] < xb[0] ? -1 : 1;
-    return 0;
+    for (int f = 0; f < jb->nfacets; f++) {
+        const double *xm = x + 2 * jb->facets[3 * f + 2];
+        ks[f] = (cx_sort_key){{xm[1], xm[0], 0}, f};
+    }
+    cx_sort_keys(ks, (size_t)jb->nfacets);
 }
 
 static int cm_cmp_pair(const void *a, const void *b)
@@ -42,12 +38,6 @@ static int cm_cmp_pair(const void *a, const void *b)
     if (p->k != q->k)
         return p->k < q->k ? -1 : 1;
     return (p->l > q->l) - (p->l < q->l);
-}
-
-static int cm_cmp_x(const void *a, const void *b)
-{
-    double xa = cm_x_[2 * *(const int *)a], xb = cm_x_[2 * *(const int *)b];
-    return (xa > xb) - (xa < xb);
 }
 
 static int cm_same_point(const double *x, int a, int b)
@@ -59,7 +49,7 @@ static int cm_same_point(const double *x, int a, int b)
 static int cm_pairs(const cx_mesh *m, const cx_boundary *jb, cm_pair **out, int *count, cx_diag *d)
 {
     int nf = jb->nfacets, np = 0;
-    int *idx = CX_NEW(int, nf);
+    cx_sort_key *idx = CX_NEW(cx_sort_key, nf);
     cm_pair *pairs = CX_NEW(cm_pair, 3 * (size_t)nf / 2 + 1);
     *out = NULL;
     *count = 0;
@@ -68,13 +58,9 @@ static int cm_pairs(const cx_mesh *m, const cx_boundary *jb, cm_pair **out, int 
         cx_free(pairs);
         return cx_diag_set(d, CX_ENOMEM, "out of memory building joint rows");
     }
-    for (int f = 0; f < nf; f++)
-        idx[f] = f;
-    cm_x_ = m->x;
-    cm_b_ = jb;
-    qsort(idx, (size_t)nf, sizeof(int), cm_cmp_facet);
+    cm_sort_facets(m->x, jb, idx);
     for (int q = 0; q < nf; q += 2) {
-        const int *fa = jb->facets + 3 * idx[q], *fb = q + 1 < nf ? jb->facets + 3 * idx[q + 1] : NULL;
+        const int *fa = jb->facets + 3 * idx[q].id, *fb = q + 1 < nf ? jb->facets + 3 * idx[q + 1].id : NULL;
         double na[2], nb[2];
         if (fb)
             cm_facet_normal(m->x, fa, na), cm_facet_normal(m->x, fb, nb);
@@ -153,23 +139,20 @@ static int cm_signorini(const cx_mesh *m, const cx_boundary *settle, const cx_bo
                     w[q] += wf[a];
         }
     }
-    cm_x_ = m->x;
-    /* the weights follow their nodes through the sort */
-    int *order = CX_NEW(int, keep);
+    /* by x; the weights follow their nodes through the sort: the key's id
+     * is the position in sn (ascending node ids, so ties stay in node order) */
+    cx_sort_key *order = CX_NEW(cx_sort_key, keep);
     double *ws = CX_NEW(double, keep);
     int *ns2 = CX_NEW(int, keep);
     if (!order || !ws || !ns2) {
         cx_free(order), cx_free(ws), cx_free(ns2), cx_free(w), cx_free(sn);
         return CX_ENOMEM;
     }
-    memcpy(order, sn, sizeof(int) * (size_t)keep);
-    qsort(order, (size_t)keep, sizeof(int), cm_cmp_x);
-    for (int q = 0; q < keep; q++) {
-        int r = 0;
-        while (sn[r] != order[q])
-            r++;
-        ns2[q] = order[q], ws[q] = w[r];
-    }
+    for (int q = 0; q < keep; q++)
+        order[q] = (cx_sort_key){{m->x[2 * sn[q]], 0, 0}, q};
+    cx_sort_keys(order, (size_t)keep);
+    for (int q = 0; q < keep; q++)
+        ns2[q] = sn[order[q].id], ws[q] = w[order[q].id];
     cx_free(order), cx_free(w), cx_free(sn);
     *nodes = ns2, *weight = ws, *count = keep;
     return CX_OK;

@@ -4,7 +4,6 @@
 #include "fem/fem.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 void cx_contact_clear(cx_contact_set *cs)
@@ -54,18 +53,17 @@ static int order_2d_chain(const cx_boundary *b, int nnodes, int *order, int *fac
     return placed;
 }
 
-static const double *sort_x_;
-static int sort_dim_;
-
-/* 3D contact faces: sort by z, then y, then x (rows of a grid). */
-static int cmp_coords(const void *a, const void *b)
+/* 3D contact faces: the nodes by z, then y, then x (rows of a grid).
+ * ks: count elements of workspace. */
+static void sort_by_coords(int *order, int count, const double *x, cx_sort_key *ks)
 {
-    const double *xa = sort_x_ + sort_dim_ * *(const int *)a;
-    const double *xb = sort_x_ + sort_dim_ * *(const int *)b;
-    for (int k = sort_dim_ - 1; k >= 0; k--)
-        if (xa[k] != xb[k])
-            return xa[k] < xb[k] ? -1 : 1;
-    return 0;
+    for (int i = 0; i < count; i++) {
+        const double *xi = x + 3 * order[i];
+        ks[i] = (cx_sort_key){{xi[2], xi[1], xi[0]}, order[i]};
+    }
+    cx_sort_keys(ks, (size_t)count);
+    for (int i = 0; i < count; i++)
+        order[i] = ks[i].id;
 }
 
 static double mesh_size(const cx_mesh *m)
@@ -104,9 +102,13 @@ int cx_contact_from_obstacle(cx_contact_set *cs, const cx_mesh *m, const cx_boun
     } else {
         memcpy(order, nodes, sizeof(int) * (size_t)count);
         if (dim == 3) {
-            sort_x_ = m->x;
-            sort_dim_ = dim;
-            qsort(order, (size_t)count, sizeof(int), cmp_coords);
+            cx_sort_key *ks = CX_NEW(cx_sort_key, count);
+            if (!ks) {
+                status = CX_ENOMEM;
+                goto fail;
+            }
+            sort_by_coords(order, count, m->x, ks);
+            cx_free(ks);
         }
     }
 

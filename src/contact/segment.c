@@ -15,18 +15,21 @@
 #include "fem/fem.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
-static const double *seg_sort_x_;
-
 /* Slave nodes by x, then y: along a straight or gently curved interface. */
-static int seg_cmp(const void *a, const void *b)
+static int seg_sort(int *nodes, int count, const double *x)
 {
-    const double *xa = seg_sort_x_ + 2 * *(const int *)a, *xb = seg_sort_x_ + 2 * *(const int *)b;
-    if (xa[0] != xb[0])
-        return xa[0] < xb[0] ? -1 : 1;
-    return (xa[1] > xb[1]) - (xa[1] < xb[1]);
+    cx_sort_key *ks = CX_NEW(cx_sort_key, count);
+    if (!ks)
+        return CX_ENOMEM;
+    for (int i = 0; i < count; i++)
+        ks[i] = (cx_sort_key){{x[2 * nodes[i]], x[2 * nodes[i] + 1], 0}, nodes[i]};
+    cx_sort_keys(ks, (size_t)count);
+    for (int i = 0; i < count; i++)
+        nodes[i] = ks[i].id;
+    cx_free(ks);
+    return CX_OK;
 }
 
 /* The outward unit normal of the slave boundary at node k: the mean of the
@@ -91,8 +94,8 @@ int cx_contact_node_to_segment(cx_contact_set *cs, const cx_mesh *m, const cx_bo
         if (!map || map->free_of[2 * k] >= 0 || map->free_of[2 * k + 1] >= 0)
             nodes[mc++] = k;
     }
-    seg_sort_x_ = m->x;
-    qsort(nodes, (size_t)mc, sizeof(int), seg_cmp);
+    if ((status = seg_sort(nodes, mc, m->x)))
+        goto fail;
 
     cs->dim = 2;
     cs->m = mc;

@@ -4,6 +4,14 @@
 #include "render/glctx.h"
 
 #include <GL/osmesa.h>
+#include <pthread.h>
+
+/* One context at a time in the process: Mesa's OSMesa state (the current
+ * context, the shader compiler's caches) is not made for two threads
+ * drawing at once, so a second thread's cx_gl_create waits until the first
+ * thread's cx_gl_destroy. A cx_gl is used and destroyed by the thread that
+ * made it, and a thread holds one at a time. */
+static pthread_mutex_t glctx_lock = PTHREAD_MUTEX_INITIALIZER;
 
 struct cx_gl {
     OSMesaContext ctx;
@@ -35,6 +43,7 @@ int cx_gl_create(cx_gl **g, int w, int h, cx_diag *d)
         cx_free(c);
         return CX_ENOMEM;
     }
+    pthread_mutex_lock(&glctx_lock);
     c->w = w;
     c->h = h;
     c->version = "4.5";
@@ -44,12 +53,14 @@ int cx_gl_create(cx_gl **g, int w, int h, cx_diag *d)
         c->ctx = glctx_try(3, 3);
     }
     if (!c->ctx) {
+        pthread_mutex_unlock(&glctx_lock);
         cx_free(c->buf);
         cx_free(c);
         return cx_diag_set(d, CX_EEXTERNAL, "OSMesa: cannot create an OpenGL 3.3 core context");
     }
     if (!OSMesaMakeCurrent(c->ctx, c->buf, GL_UNSIGNED_BYTE, w, h)) {
         OSMesaDestroyContext(c->ctx);
+        pthread_mutex_unlock(&glctx_lock);
         cx_free(c->buf);
         cx_free(c);
         return cx_diag_set(d, CX_EEXTERNAL, "OSMesa: cannot make the context current");
@@ -64,6 +75,7 @@ void cx_gl_destroy(cx_gl **g)
         return;
     OSMesaMakeCurrent(NULL, NULL, GL_UNSIGNED_BYTE, 0, 0);
     OSMesaDestroyContext((*g)->ctx);
+    pthread_mutex_unlock(&glctx_lock);
     cx_free((*g)->buf);
     cx_free(*g);
     *g = NULL;

@@ -10,7 +10,9 @@ typedef struct cx_gl cx_gl;
 
 /* A core-profile context (4.5, else 3.3) drawing into a w x h RGBA buffer
  * with a 24-bit depth buffer, made current. CX_EEXTERNAL if none can be
- * made. */
+ * made. One exists at a time in the process: a second thread's create
+ * waits for the first's destroy; the thread that creates it uses and
+ * destroys it, and never creates a second one meanwhile. */
 int cx_gl_create(cx_gl **g, int w, int h, cx_diag *d);
 void cx_gl_destroy(cx_gl **g);
 /* The default framebuffer's pixels: RGBA bytes, rows bottom-up; valid after

@@ -21,6 +21,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -877,10 +878,14 @@ int cx_scene_load(cx_scene *s, const char *path, cx_diag *d)
     if (!L.f)
         return cx_diag_set(d, CX_EIO, "%s: cannot open: %s", path, strerror(errno));
 
-    /* Debian's inih: its compile-time options are globals (toolchain.md, 8) */
+    /* Debian's inih: its compile-time options are globals (toolchain.md, 8),
+     * so two scenes loaded on two threads take turns */
+    static pthread_mutex_t ini_lock = PTHREAD_MUTEX_INITIALIZER;
+    pthread_mutex_lock(&ini_lock);
     ini_max_line = LD_MAXLINE;
     ini_allow_multiline = false;   /* an indented line is not a continuation */
     int syntax = ini_parse_stream(ld_read, &L, ld_handler, &L);
+    pthread_mutex_unlock(&ini_lock);
     fclose(L.f);
     if (syntax < 0)
         return cx_diag_set(d, CX_ENOMEM, "%s: out of memory", path);

@@ -74,7 +74,8 @@ static int cffp_parse_inner_set(cffp_state *st, const char *text, cx_diag *d)
     if (strcmp(text, "default") == 0)
         return CX_OK;
     snprintf(buf, sizeof buf, "%s", text);
-    for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ","))
+    char *save = NULL;   /* strtok_r: strtok's hidden state is shared by every thread */
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save))
         CX_TRY(cx_param_set_pair(&st->iparams, tok, owner, d));
     return CX_OK;
 }
