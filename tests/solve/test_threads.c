@@ -18,6 +18,7 @@
 #include <string.h>
 #include <unistd.h>
 #if CX_TEST_RENDER
+#include "out/result.h"
 #include "render/render.h"
 #endif
 
@@ -29,7 +30,7 @@ typedef struct {
     cx_friction law;
     double value;             /* slip bound or F (the scene's if < 0) */
     const char *method;
-    const char *sets[4];      /* "key=value", NULL-terminated */
+    const char *sets[6];      /* "key=value", NULL-terminated */
 } job;
 
 typedef struct {
@@ -46,7 +47,7 @@ typedef struct {
 static const job jobs[] = {
     {"hertz", 16, CX_FRICTION_TRESCA, -1, "ssn-tresca", {NULL}},
     {"twoblocks", 6, CX_FRICTION_COULOMB, 0.3, "ssn-coulomb", {NULL}},
-    {"slider", 4, CX_FRICTION_COULOMB, 0.3, "cf-fp", {"inner=ssn-tresca-dual", "inner_set=rho=0.5,eps=1e-12", NULL}},
+    {"slider", 4, CX_FRICTION_COULOMB, 0.3, "cf-fp", {"inner=ssn-tresca-dual", "inner_set=rho=0.5,eps=1e-12", "eps_fp=1e-12", "eps_min=1e-12", NULL}},
     {"stackbond", 4, CX_FRICTION_NONE, 0, "pdas", {NULL}},
     {"block3d", 2, CX_FRICTION_NONE, 0, "ssn-tresca", {NULL}},
     {"twoblocks", 5, CX_FRICTION_TRESCA, -1, "mprgp", {"eps=1e-12", NULL}},
@@ -427,7 +428,7 @@ static void test_alloc(void)
  * one context exist at a time. Two threads render the same solution at
  * once, twice each; every file equals the one rendered alone. */
 typedef struct {
-    const cx_render_state *st;
+    cx_result *r;                 /* its own: a result's stress cache is not shared */
     const cx_render_opts *o;
     char path[2][600];
     int status[2];
@@ -440,7 +441,7 @@ static void *paint_main(void *arg)
     pthread_barrier_wait(pt->start);
     for (int r = 0; r < 2; r++) {
         cx_diag d;
-        pt->status[r] = cx_render_png(pt->st, pt->o, pt->path[r], NULL, &d);
+        pt->status[r] = cx_render_png(pt->r, pt->o, pt->path[r], NULL, &d);
         if (pt->status[r])
             fprintf(stderr, "render %s: %s\n", pt->path[r], d.msg);
     }
@@ -462,7 +463,7 @@ static int same_file(const char *a, const char *b)
 
 static void test_render(void)
 {
-    char dir[] = "/tmp/cx-threads-XXXXXX", path[600], params[128];
+    char dir[] = "/tmp/cx-threads-XXXXXX", path[600];
     cx_diag d;
     cx_scene sc;
     cx_problem *p = NULL;
@@ -477,13 +478,14 @@ static void test_render(void)
     CX_CHECK_OK(cx_session_create(&s, &p, &d));
     CX_CHECK_OK(cx_session_set_method(s, cx_method_find("ssn-tresca"), NULL, NULL, &d));
     CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
-    cx_render_state st;
-    cx_render_state_init(&st, &sc, s, 16, params, sizeof params);
+    cx_result *res[3] = {NULL, NULL, NULL};   /* alone, thread 0, thread 1 */
+    for (int k = 0; k < 3; k++)
+        CX_CHECK_OK(cx_result_from_session(&res[k], s, &sc, 16, &d));
     cx_render_opts o;
     cx_render_opts_default(&o);
     o.width = 320, o.height = 240;
     snprintf(path, sizeof path, "%s/alone.png", dir);
-    int alone = cx_render_png(&st, &o, path, NULL, &d);
+    int alone = cx_render_png(res[0], &o, path, NULL, &d);
     if (alone)
         fprintf(stderr, "render alone: %s\n", d.msg);
     CX_CHECK(alone == CX_OK);
@@ -493,7 +495,7 @@ static void test_render(void)
     painter pt[2];
     pthread_t th[2];
     for (int t = 0; t < 2; t++) {
-        pt[t] = (painter){&st, &o, {"", ""}, {0, 0}, &start};
+        pt[t] = (painter){res[t + 1], &o, {"", ""}, {0, 0}, &start};
         for (int r = 0; r < 2; r++)
             snprintf(pt[t].path[r], sizeof pt[t].path[r], "%s/t%d-%d.png", dir, t, r);
         CX_CHECK(pthread_create(&th[t], NULL, paint_main, &pt[t]) == 0);
@@ -509,6 +511,8 @@ static void test_render(void)
         }
     remove(path);
     rmdir(dir);
+    for (int k = 0; k < 3; k++)
+        cx_result_destroy(&res[k]);
     cx_session_destroy(&s);
 }
 #endif
