@@ -188,6 +188,7 @@ static void solve_write_json(const solve_args *a, const cx_scene *sc, const cx_s
     cx_json_end_object(&j);
     cx_json_object(&j, "counts");
     cx_json_int(&j, "factorizations", it->counters.factorizations);
+    cx_json_int(&j, "dense_factorizations", it->counters.dense_factorizations);
     cx_json_int(&j, "solves", it->counters.solves);
     cx_json_int(&j, "matvecs", it->counters.matvecs);
     cx_json_int(&j, "dual_products", it->counters.dual_products);

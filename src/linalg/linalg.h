@@ -17,11 +17,14 @@
 /* ---- counters ------------------------------------------------------- */
 
 typedef struct cx_counters {
-    long factorizations;   /* numeric factorisations (sparse or dense of size > 0) */
+    long factorizations;   /* sparse numeric factorisations (CHOLMOD, UMFPACK) */
     long solves;           /* solves with a factor (forward + backward = 1) */
     long matvecs;          /* products with the stiffness matrix K */
     long dual_products;    /* products with a dual operator B K^-1 B' */
     long updates;          /* factor rows added or deleted (cx_ldlmod) */
+    long dense_factorizations;   /* dense (LAPACK) factorisations of size > 0, counted
+                                    apart: a method on the condensed contact system
+                                    factorises a small dense matrix per step */
 } cx_counters;
 
 /* ---- triplet / CSC --------------------------------------------------- */
