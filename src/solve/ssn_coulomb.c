@@ -257,8 +257,8 @@ static int coul_pin(coul_state *st, const cx_problem *p, int na)
     return CX_OK;
 }
 
-/* Row k of S u - f_c with the pinned values in u and the free ones left
- * out: -(the right-hand side of row k of the free system). */
+/* f_c - S u_p in row k, u_p the pinned values (0 on the free dofs): the
+ * right-hand side of row k of the free system. */
 static double coul_pinned_rhs(const coul_state *st, const double *S, int k, int nf)
 {
     int nc = st->nc;
