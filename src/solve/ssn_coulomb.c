@@ -330,8 +330,8 @@ static int coul_solve(coul_state *st, const cx_problem *p, cx_iterate *it, cx_co
     else
         status = coul_solve_full(st, p, na, cnt, st->lam);
     if (status != CX_OK)
-        return cx_diag_set(d, status, "ssn-coulomb: the Newton system at iteration %d cannot be solved: "
-                           "the sets (%d active rows) do not hold the body", it->iter + 1, na);
+        return cx_diag_set(d, status, "ssn-coulomb: the Newton system at iteration %d is singular: its %d "
+                           "active rows do not hold the bodies, or repeat a constraint", it->iter + 1, na);
     memset(it->lN, 0, sizeof(double) * (size_t)m);
     memset(it->lT, 0, sizeof(double) * (size_t)p->nt);
     for (int a = 0; a < na; a++) {
