@@ -76,8 +76,8 @@ static int ssnc_init(void *state, cx_session *s, const cx_param_values *params, 
     const cx_csc *rows = &p->N;
     if (!status)
         status = cx_csc_aug_build(&st->A, &p->K, &rows, 1);
-    if (status == CX_ENOMEM)
-        cx_diag_set(d, status, "out of memory");
+    if (status)
+        cx_diag_set(d, status, status == CX_ENOMEM ? "out of memory" : "ssn-c: the sizes of K and N do not fit");
     if (!status && !(status = cx_fact_create(&st->F, CX_FACT_CHOLESKY, cx_session_counters(s), d)))
         status = cx_fact_analyze(st->F, &st->A.A, d);
     if (status) {

@@ -80,8 +80,8 @@ static int ubr_factor_build(void **obj, const cx_problem *p, const void *argp, c
         cx_csc_aug_fill(&A, &p->K, w);
     }
     cx_free(w);
-    if (st == CX_ENOMEM)
-        cx_diag_set(d, st, "out of memory");
+    if (st)
+        cx_diag_set(d, st, st == CX_ENOMEM ? "out of memory" : "ubr: the sizes of K, N and T do not fit");
     if (!st && !(st = cx_fact_create(&o->F, CX_FACT_CHOLESKY, cnt, d)) &&
         !(st = cx_fact_analyze(o->F, &A.A, d)))
         st = cx_fact_factorize(o->F, &A.A, d);
