@@ -17,12 +17,12 @@ extern void dgemv_(const char *trans, const int *m, const int *n, const double *
                    const int *lda, const double *x, const int *incx, const double *beta, double *y,
                    const int *incy);
 
-/* Count a factorisation and turn LAPACK's info into a status: info > 0 is a
+/* Count a dense factorisation (apart from the sparse ones) and turn LAPACK's info into a status: info > 0 is a
  * singular (or not definite) matrix, info < 0 a bad argument. */
 static int dense_outcome(int info, cx_counters *cnt)
 {
     if (cnt)
-        cnt->factorizations++;
+        cnt->dense_factorizations++;
     if (info > 0)
         return CX_ENUMERIC;
     return info < 0 ? CX_EEXTERNAL : CX_OK;

@@ -17,11 +17,14 @@
 /* ---- counters ------------------------------------------------------- */
 
 typedef struct cx_counters {
-    long factorizations;   /* numeric factorisations (sparse or dense of size > 0) */
+    long factorizations;   /* sparse numeric factorisations (CHOLMOD, UMFPACK) */
     long solves;           /* solves with a factor (forward + backward = 1) */
     long matvecs;          /* products with the stiffness matrix K */
     long dual_products;    /* products with a dual operator B K^-1 B' */
     long updates;          /* factor rows added or deleted (cx_ldlmod) */
+    long dense_factorizations;   /* dense (LAPACK) factorisations of size > 0, counted
+                                    apart: a method on the condensed contact system
+                                    factorises a small dense matrix per step */
 } cx_counters;
 
 /* ---- triplet / CSC --------------------------------------------------- */
@@ -67,8 +70,35 @@ void cx_csc_gemv_t(const cx_csc *A, double alpha, const double *x, double beta, 
 int cx_csc_multiply(cx_csc *C, const cx_csc *A, const cx_csc *B);
 /* A(i, j), 0 if not stored (binary search). */
 double cx_csc_get(const cx_csc *A, int i, int j);
+/* The place of (i, j) in A->i / A->x, -1 if not stored (binary search). */
+int cx_csc_find(const cx_csc *A, int i, int j);
 /* Largest |A(i,j) - A(j,i)| over the stored entries. */
 double cx_csc_asymmetry(const cx_csc *A);
+
+/* ---- K + B'WB on a fixed pattern ------------------------------------- */
+
+/* K + sum_r w_r b_r' b_r over the rows b_r of B (a penalty or an augmented
+ * Lagrangian on the constraints B u), held on the pattern of K + B'B with
+ * the place of every term, so that it can be refilled for other weights
+ * (w_r = 0 leaves a row out, its entries stay as explicit zeros) and
+ * refactorised without a new symbolic analysis. */
+typedef struct cx_csc_aug {
+    cx_csc A;        /* n x n: the pattern, and the values of the last fill */
+    int *kpos;       /* nnz(K): the place in A.x of each entry of K */
+    size_t nprod;    /* entries of the row products */
+    int *prow;       /* nprod: the row r of each */
+    int *ppos;       /* nprod: its place in A.x */
+    double *pval;    /* nprod: b_ra b_rb */
+} cx_csc_aug;
+
+/* The pattern for K (n x n) and the rows of nb <= 4 blocks B[b] (each
+ * with n columns), numbered block after block. Values are left at 0 until
+ * cx_csc_aug_fill. CX_EINVAL for sizes that do not fit, CX_ENOMEM (S left
+ * empty either way). */
+int cx_csc_aug_build(cx_csc_aug *S, const cx_csc *K, const cx_csc *const *B, int nb);
+/* A = K + sum_r w[r] b_r' b_r (w: one weight per row of the blocks). */
+void cx_csc_aug_fill(cx_csc_aug *S, const cx_csc *K, const double *w);
+void cx_csc_aug_clear(cx_csc_aug *S);
 
 /* ---- sparse factorisation ------------------------------------------- */
 

@@ -197,19 +197,25 @@ void cx_csc_gemv_t(const cx_csc *A, double alpha, const double *x, double beta, 
     }
 }
 
-double cx_csc_get(const cx_csc *A, int i, int j)
+int cx_csc_find(const cx_csc *A, int i, int j)
 {
     int lo = A->p[j], hi = A->p[j + 1] - 1;
     while (lo <= hi) {
         int mid = (lo + hi) / 2;
         if (A->i[mid] == i)
-            return A->x[mid];
+            return mid;
         if (A->i[mid] < i)
             lo = mid + 1;
         else
             hi = mid - 1;
     }
-    return 0;
+    return -1;
+}
+
+double cx_csc_get(const cx_csc *A, int i, int j)
+{
+    int q = cx_csc_find(A, i, j);
+    return q >= 0 ? A->x[q] : 0;
 }
 
 double cx_csc_asymmetry(const cx_csc *A)
@@ -225,4 +231,97 @@ double cx_csc_asymmetry(const cx_csc *A)
             worst = fmax(worst, e);
         }
     return worst;
+}
+
+/* ---- K + B'WB on a fixed pattern ---------------------------------------- */
+
+void cx_csc_aug_clear(cx_csc_aug *S)
+{
+    cx_csc_clear(&S->A);
+    cx_free(S->kpos);
+    cx_free(S->prow);
+    cx_free(S->ppos);
+    cx_free(S->pval);
+    memset(S, 0, sizeof *S);
+}
+
+/* The row products of the blocks Bt[0..nb) (rows as columns): their count,
+ * or, with t, their entries added to t (value 0: the pattern only). */
+static int aug_products(const cx_csc *Bt, int nb, cx_triplet *t, size_t *count)
+{
+    size_t c = 0;
+    for (int b = 0; b < nb; b++)
+        for (int r = 0; r < Bt[b].ncol; r++)
+            for (int qa = Bt[b].p[r]; qa < Bt[b].p[r + 1]; qa++)
+                for (int qb = Bt[b].p[r]; qb < Bt[b].p[r + 1]; qb++, c++)
+                    if (t)
+                        CX_TRY(cx_triplet_add(t, Bt[b].i[qa], Bt[b].i[qb], 0.0));
+    *count = c;
+    return CX_OK;
+}
+
+/* Where K's entries and the row products go in the pattern S->A. */
+static void aug_places(cx_csc_aug *S, const cx_csc *K, const cx_csc *Bt, int nb)
+{
+    size_t e = 0;
+    for (int j = 0; j < K->ncol; j++)
+        for (int q = K->p[j]; q < K->p[j + 1]; q++)
+            S->kpos[q] = cx_csc_find(&S->A, K->i[q], j);
+    for (int b = 0, row = 0; b < nb; row += Bt[b].ncol, b++)
+        for (int r = 0; r < Bt[b].ncol; r++)
+            for (int qa = Bt[b].p[r]; qa < Bt[b].p[r + 1]; qa++)
+                for (int qb = Bt[b].p[r]; qb < Bt[b].p[r + 1]; qb++, e++) {
+                    S->prow[e] = row + r;
+                    S->ppos[e] = cx_csc_find(&S->A, Bt[b].i[qa], Bt[b].i[qb]);
+                    S->pval[e] = Bt[b].x[qa] * Bt[b].x[qb];
+                }
+}
+
+int cx_csc_aug_build(cx_csc_aug *S, const cx_csc *K, const cx_csc *const *B, int nb)
+{
+    enum { AUG_MAX_BLOCKS = 4 };
+    cx_csc Bt[AUG_MAX_BLOCKS] = {{0}};
+    cx_triplet t = {0};
+    memset(S, 0, sizeof *S);
+    if (nb < 0 || nb > AUG_MAX_BLOCKS || K->nrow != K->ncol)
+        return CX_EINVAL;
+    int st = CX_OK;
+    for (int b = 0; b < nb && !st; b++)
+        st = B[b]->ncol != K->ncol ? CX_EINVAL : cx_csc_transpose(&Bt[b], B[b]);
+    if (!st)
+        st = aug_products(Bt, nb, NULL, &S->nprod);
+    if (!st)
+        st = cx_triplet_init(&t, K->nrow, K->ncol, cx_csc_nnz(K) + S->nprod);
+    for (int j = 0; !st && j < K->ncol; j++)
+        for (int q = K->p[j]; !st && q < K->p[j + 1]; q++)
+            st = cx_triplet_add(&t, K->i[q], j, 0.0);
+    if (!st)
+        st = aug_products(Bt, nb, &t, &S->nprod);
+    if (!st)
+        st = cx_csc_from_triplet(&S->A, &t);
+    if (!st) {
+        S->kpos = CX_NEW(int, cx_csc_nnz(K) + 1);
+        S->prow = CX_NEW(int, S->nprod + 1);
+        S->ppos = CX_NEW(int, S->nprod + 1);
+        S->pval = CX_NEW(double, S->nprod + 1);
+        st = S->kpos && S->prow && S->ppos && S->pval ? CX_OK : CX_ENOMEM;
+    }
+    if (!st)
+        aug_places(S, K, Bt, nb);
+    cx_triplet_clear(&t);
+    for (int b = 0; b < nb; b++)
+        cx_csc_clear(&Bt[b]);
+    if (st)
+        cx_csc_aug_clear(S);
+    return st;
+}
+
+void cx_csc_aug_fill(cx_csc_aug *S, const cx_csc *K, const double *w)
+{
+    memset(S->A.x, 0, sizeof(double) * cx_csc_nnz(&S->A));
+    for (size_t q = 0; q < cx_csc_nnz(K); q++)
+        S->A.x[S->kpos[q]] += K->x[q];
+    for (size_t e = 0; e < S->nprod; e++)
+        if (w[S->prow[e]] != 0)
+            S->A.x[S->ppos[e]] += w[S->prow[e]] * S->pval[e];
 }

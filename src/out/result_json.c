@@ -48,6 +48,7 @@ int cx_result_write_json(const cx_result *r, FILE *out)
     cx_json_end_object(&j);
     cx_json_object(&j, "counts");
     cx_json_int(&j, "factorizations", run->counters.factorizations);
+    cx_json_int(&j, "dense_factorizations", run->counters.dense_factorizations);
     cx_json_int(&j, "solves", run->counters.solves);
     cx_json_int(&j, "matvecs", run->counters.matvecs);
     cx_json_int(&j, "dual_products", run->counters.dual_products);

@@ -68,6 +68,7 @@ static inline void cx_session_sync_counters_(cx_session *s)
     s->it.counters.solves = c->solves - s->base.solves;
     s->it.counters.matvecs = c->matvecs - s->base.matvecs;
     s->it.counters.dual_products = c->dual_products - s->base.dual_products;
+    s->it.counters.dense_factorizations = c->dense_factorizations - s->base.dense_factorizations;
 }
 
 /* The time limit's clock. */

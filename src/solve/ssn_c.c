@@ -23,13 +23,8 @@
 
 typedef struct {
     cx_fact *F;           /* owned: analysed once, factorised per iteration */
-    cx_csc A;             /* n x n: K + r N_A'W N_A on the pattern of K + N'WN */
-    int nk;               /* entries of K */
-    int *kpos;            /* nk: position in A.x of each entry of K */
-    int nr;               /* entries of the row products */
-    int *rpos;            /* nr: position in A.x of each row-product entry */
-    int *rrow;            /* nr: its contact point */
-    double *rval;         /* nr: w_i n_ij n_ik */
+    cx_csc_aug A;         /* n x n: K + r N_A'W N_A on the pattern of K + N'N */
+    double *wr;           /* m: the rows' weights r w_i on A, 0 elsewhere */
     double r;             /* absolute r */
     double u0;            /* the start's normal displacement */
     unsigned char *act;   /* m: active set of this iteration */
@@ -50,80 +45,14 @@ static void ssnc_destroy(void *state)
 {
     ssnc_state *st = state;
     cx_fact_destroy(&st->F);
-    cx_csc_clear(&st->A);
-    cx_free(st->kpos);
-    cx_free(st->rpos);
-    cx_free(st->rrow);
-    cx_free(st->rval);
+    cx_csc_aug_clear(&st->A);
+    cx_free(st->wr);
     cx_free(st->act);
     cx_free(st->prev);
     cx_free(st->Nu);
     cx_free(st->rhs);
     cx_free(st->tmp);
     memset(st, 0, sizeof *st);
-}
-
-/* Position of (i, j) in A (present by construction). */
-static int ssnc_find(const cx_csc *A, int i, int j)
-{
-    int lo = A->p[j], hi = A->p[j + 1] - 1;
-    while (lo <= hi) {
-        int mid = (lo + hi) / 2;
-        if (A->i[mid] == i)
-            return mid;
-        if (A->i[mid] < i)
-            lo = mid + 1;
-        else
-            hi = mid - 1;
-    }
-    return -1;
-}
-
-/* The pattern of K + N'WN, and where K's entries and the row products go. */
-static int ssnc_build_pattern(ssnc_state *st, const cx_problem *p)
-{
-    cx_csc Nt = {0};
-    cx_triplet t = {0};
-    CX_TRY(cx_csc_transpose(&Nt, &p->N));
-    st->nk = (int)cx_csc_nnz(&p->K);
-    st->nr = 0;
-    for (int i = 0; i < p->m; i++) {
-        int c = Nt.p[i + 1] - Nt.p[i];
-        st->nr += c * c;
-    }
-    st->kpos = CX_NEW(int, st->nk);
-    st->rpos = CX_NEW(int, st->nr);
-    st->rrow = CX_NEW(int, st->nr);
-    st->rval = CX_NEW(double, st->nr);
-    int status = st->kpos && st->rpos && st->rrow && st->rval ? CX_OK : CX_ENOMEM;
-    if (!status)
-        status = cx_triplet_init(&t, p->n, p->n, (size_t)(st->nk + st->nr));
-    for (int j = 0; !status && j < p->n; j++)
-        for (int q = p->K.p[j]; !status && q < p->K.p[j + 1]; q++)
-            status = cx_triplet_add(&t, p->K.i[q], j, 0.0);
-    int e = 0;
-    for (int i = 0; !status && i < p->m; i++)
-        for (int a = Nt.p[i]; !status && a < Nt.p[i + 1]; a++)
-            for (int b = Nt.p[i]; !status && b < Nt.p[i + 1]; b++, e++) {
-                st->rrow[e] = i;
-                st->rval[e] = p->contact.weight[i] * Nt.x[a] * Nt.x[b];
-                status = cx_triplet_add(&t, Nt.i[a], Nt.i[b], 0.0);
-            }
-    if (!status)
-        status = cx_csc_from_triplet(&st->A, &t);
-    if (!status) {
-        for (int j = 0, k = 0; j < p->n; j++)
-            for (int q = p->K.p[j]; q < p->K.p[j + 1]; q++)
-                st->kpos[k++] = ssnc_find(&st->A, p->K.i[q], j);
-        e = 0;
-        for (int i = 0; i < p->m; i++)
-            for (int a = Nt.p[i]; a < Nt.p[i + 1]; a++)
-                for (int b = Nt.p[i]; b < Nt.p[i + 1]; b++)
-                    st->rpos[e++] = ssnc_find(&st->A, Nt.i[a], Nt.i[b]);
-    }
-    cx_triplet_clear(&t);
-    cx_csc_clear(&Nt);
-    return status;
 }
 
 static int ssnc_init(void *state, cx_session *s, const cx_param_values *params, cx_diag *d)
@@ -142,13 +71,15 @@ static int ssnc_init(void *state, cx_session *s, const cx_param_values *params, 
     st->Nu = CX_NEW(double, p->m);
     st->tmp = CX_NEW(double, p->m);
     st->rhs = CX_NEW(double, p->n);
-    int status = st->act && st->prev && st->Nu && st->tmp && st->rhs ? CX_OK : CX_ENOMEM;
+    st->wr = CX_NEW(double, p->m + 1);
+    int status = st->act && st->prev && st->Nu && st->tmp && st->rhs && st->wr ? CX_OK : CX_ENOMEM;
+    const cx_csc *rows = &p->N;
     if (!status)
-        status = ssnc_build_pattern(st, p);
-    if (status == CX_ENOMEM)
-        cx_diag_set(d, status, "out of memory");
+        status = cx_csc_aug_build(&st->A, &p->K, &rows, 1);
+    if (status)
+        cx_diag_set(d, status, status == CX_ENOMEM ? "out of memory" : "ssn-c: the sizes of K and N do not fit");
     if (!status && !(status = cx_fact_create(&st->F, CX_FACT_CHOLESKY, cx_session_counters(s), d)))
-        status = cx_fact_analyze(st->F, &st->A, d);
+        status = cx_fact_analyze(st->F, &st->A.A, d);
     if (status) {
         ssnc_destroy(st);
         return status;
@@ -183,17 +114,14 @@ static int ssnc_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     memcpy(st->prev, st->act, (size_t)m);
 
     /* (K + r N_A'W N_A) u = f + r N_A'W g */
-    memset(st->A.x, 0, sizeof(double) * cx_csc_nnz(&st->A));
-    for (int k = 0; k < st->nk; k++)
-        st->A.x[st->kpos[k]] += p->K.x[k];
-    for (int e = 0; e < st->nr; e++)
-        if (st->act[st->rrow[e]])
-            st->A.x[st->rpos[e]] += st->r * st->rval[e];
-    for (int i = 0; i < m; i++)
-        st->tmp[i] = st->act[i] ? st->r * w[i] * p->g[i] : 0;
+    for (int i = 0; i < m; i++) {
+        st->wr[i] = st->act[i] ? st->r * w[i] : 0;
+        st->tmp[i] = st->wr[i] * p->g[i];
+    }
+    cx_csc_aug_fill(&st->A, &p->K, st->wr);
     memcpy(st->rhs, p->f, sizeof(double) * (size_t)p->n);
     cx_csc_gemv_t(&p->N, 1.0, st->tmp, 1.0, st->rhs);
-    int status = cx_fact_factorize(st->F, &st->A, d);
+    int status = cx_fact_factorize(st->F, &st->A.A, d);
     if (status)
         return cx_diag_set(d, status, "ssn-c: the active set of iteration %d (%d points) does not "
                            "hold the body: %s", it->iter + 1, m, cx_diag_msg(d, status));

@@ -60,52 +60,32 @@ static void ubr_factor_destroy(void *obj)
     cx_free(o);
 }
 
-/* Append r w_i b_i' b_i for every row b_i of B (given transposed: the rows
- * are the columns of Bt). */
-static int ubr_add_rows(cx_triplet *t, const cx_csc *Bt, const double *w, int per_point, double r)
-{
-    for (int i = 0; i < Bt->ncol; i++) {
-        double wi = r * w[i / per_point];
-        for (int a = Bt->p[i]; a < Bt->p[i + 1]; a++)
-            for (int b = Bt->p[i]; b < Bt->p[i + 1]; b++)
-                CX_TRY(cx_triplet_add(t, Bt->i[a], Bt->i[b], wi * Bt->x[a] * Bt->x[b]));
-    }
-    return CX_OK;
-}
-
+/* K + r (N'WN + T'WT): the weights of the rows are r w_i, a point's
+ * weight on each of its tangential rows. */
 static int ubr_factor_build(void **obj, const cx_problem *p, const void *argp, cx_counters *cnt,
                             cx_diag *d)
 {
     const ubr_factor_arg *arg = argp;
-    cx_triplet t = {0};
-    cx_csc Nt = {0}, Tt = {0}, A = {0};
+    int dt = p->dim - 1, nb = arg->tangential && p->nt > 0 ? 2 : 1, nrow = p->m + (nb > 1 ? p->nt : 0);
+    const cx_csc *rows[2] = {&p->N, &p->T};
+    cx_csc_aug A = {0};
     ubr_factor_obj *o = CX_NEW(ubr_factor_obj, 1);
-    int st = o ? CX_OK : CX_ENOMEM;
+    double *w = CX_NEW(double, nrow + 1);
+    int st = o && w ? CX_OK : CX_ENOMEM;
     if (!st)
-        st = cx_triplet_init(&t, p->n, p->n, cx_csc_nnz(&p->K) + 16 * (size_t)p->m);
-    for (int j = 0; !st && j < p->n; j++)
-        for (int q = p->K.p[j]; !st && q < p->K.p[j + 1]; q++)
-            st = cx_triplet_add(&t, p->K.i[q], j, p->K.x[q]);
-    if (!st)
-        st = cx_csc_transpose(&Nt, &p->N);
-    if (!st)
-        st = ubr_add_rows(&t, &Nt, p->contact.weight, 1, arg->r);
-    if (!st && arg->tangential && p->nt > 0) {
-        st = cx_csc_transpose(&Tt, &p->T);
-        if (!st)
-            st = ubr_add_rows(&t, &Tt, p->contact.weight, p->dim - 1, arg->r);
+        st = cx_csc_aug_build(&A, &p->K, rows, nb);
+    if (!st) {
+        for (int r = 0; r < nrow; r++)
+            w[r] = arg->r * p->contact.weight[r < p->m ? r : (r - p->m) / dt];
+        cx_csc_aug_fill(&A, &p->K, w);
     }
-    if (!st)
-        st = cx_csc_from_triplet(&A, &t);
-    cx_triplet_clear(&t);
-    cx_csc_clear(&Nt);
-    cx_csc_clear(&Tt);
-    if (st == CX_ENOMEM)
-        cx_diag_set(d, st, "out of memory");
+    cx_free(w);
+    if (st)
+        cx_diag_set(d, st, st == CX_ENOMEM ? "out of memory" : "ubr: the sizes of K, N and T do not fit");
     if (!st && !(st = cx_fact_create(&o->F, CX_FACT_CHOLESKY, cnt, d)) &&
-        !(st = cx_fact_analyze(o->F, &A, d)))
-        st = cx_fact_factorize(o->F, &A, d);
-    cx_csc_clear(&A);
+        !(st = cx_fact_analyze(o->F, &A.A, d)))
+        st = cx_fact_factorize(o->F, &A.A, d);
+    cx_csc_aug_clear(&A);
     if (st) {
         ubr_factor_destroy(o);
         return st;

@@ -17,7 +17,7 @@ static void test_sym_solve(void)
     CX_CHECK_NEAR(b[0], 0, 0, 1e-15);
     CX_CHECK_NEAR(b[1], 1, 1e-15, 0);
     CX_CHECK_NEAR(b[2], 1, 1e-15, 0);
-    CX_CHECK(cnt.factorizations == 1);
+    CX_CHECK(cnt.dense_factorizations == 1);
     /* minimal workspace lwork = n */
     double A2[9] = {0, 1, 0, 1, 0, 2, 0, 2, 1}, b2[3] = {1, 2, 3};
     CX_CHECK_OK(cx_dense_sym_solve(3, A2, b2, ipiv, work, 3, &cnt));
@@ -25,13 +25,13 @@ static void test_sym_solve(void)
     /* singular [1 2; 2 4] */
     double Z[4] = {1, 2, 2, 4}, z[2] = {1, 1};
     CX_CHECK(cx_dense_sym_solve(2, Z, z, ipiv, work, 128, &cnt) == CX_ENUMERIC);
-    CX_CHECK(cnt.factorizations == 3);
+    CX_CHECK(cnt.dense_factorizations == 3);
     /* NaN in the data: refused, not passed on */
     double Q[4] = {1, NAN, NAN, 2}, q[2] = {1, 1};
     CX_CHECK(cx_dense_sym_solve(2, Q, q, ipiv, work, 128, NULL) == CX_ENUMERIC);
     /* n = 0: nothing to do, nothing counted */
     CX_CHECK_OK(cx_dense_sym_solve(0, NULL, NULL, ipiv, work, 1, &cnt));
-    CX_CHECK(cnt.factorizations == 3);
+    CX_CHECK(cnt.dense_factorizations == 3);
 }
 
 static void test_cholesky(void)
@@ -53,7 +53,7 @@ static void test_cholesky(void)
     CX_CHECK_NEAR(B[2], 2, 1e-14, 0);
     CX_CHECK_NEAR(B[3], 2, 1e-14, 0);
     CX_CHECK_NEAR(B[5], 4, 1e-14, 0);
-    CX_CHECK(cnt.factorizations == 1);
+    CX_CHECK(cnt.dense_factorizations == 1);
     double N[4] = {1, 2, 2, 1};   /* indefinite */
     CX_CHECK(cx_dense_cholesky(2, N, &cnt) == CX_ENUMERIC);
     double S[4] = {1, 1, 1, 1};   /* singular semi-definite */
@@ -78,7 +78,7 @@ static void test_lu(void)
         CX_CHECK_NEAR(b[i], 1, 1e-15, 0);
     double Z[4] = {1, 2, 2, 4}, z[2] = {1, 1};
     CX_CHECK(cx_dense_lu_solve(2, Z, z, ipiv, &cnt) == CX_ENUMERIC);
-    CX_CHECK(cnt.factorizations == 3);
+    CX_CHECK(cnt.dense_factorizations == 3);
 }
 
 static void test_gemv(void)
