@@ -115,4 +115,34 @@ int cx_mesh_masonry(cx_mesh **m, cx_bond bond, int N, cx_diag *d);
 /* Number of bodies of a wall: N^2, N(N+1)/2, N. */
 long cx_masonry_bodies(cx_bond bond, int N);
 
+/* ---- facets and the surface (surface.c) ---------------------------------- */
+
+/* The facets of an element type in local node numbers, -1 padded: 2D the
+ * edges (end, end, and for TRI6 the mid node), 3D the faces (3 or 4
+ * corners, outward by the right-hand rule for a right-handed element).
+ * Returns their count; *npf is the corners per facet (2, 3 or 4). */
+int cx_elem_facets(cx_elem_type t, const int (**local)[4], int *npf);
+
+/* Facets of a mesh, each once (matched by their corner nodes, so two bodies
+ * that repeat their interface nodes keep both sides). */
+typedef struct cx_facets {
+    int n;
+    int npf;         /* corners per facet: 2 (2D), 3 (TET4), 4 (HEX8) */
+    int *nodes;      /* npf n corners, ordered as in the first element that has the facet */
+    int *mid;        /* n mid-edge nodes of TRI6 edges, NULL for other types */
+    int *uses;       /* n: elements that share the facet (1 on the surface) */
+} cx_facets;
+
+/* Every facet of m (surface = 0) or only those of one element, the
+ * surface (surface = 1): 2D the boundary edges, 3D the boundary faces. In
+ * the order of the elements, so the result depends only on the mesh.
+ * Fills *f (cx_facets_clear frees it); CX_ENOMEM. */
+int cx_mesh_facets(const cx_mesh *m, int surface, cx_facets *f);
+void cx_facets_clear(cx_facets *f);
+
+/* The outline: the distinct edges of the surface facets as node pairs
+ * (smaller id first, sorted); 2D TRI6 edges split at their mid node.
+ * *pairs (2 count ints) is allocated (cx_free). CX_ENOMEM. */
+int cx_mesh_outline(const cx_mesh *m, int **pairs, int *count);
+
 #endif

@@ -1,6 +1,5 @@
 /* Vertex arrays of an image: the body's triangles (2D: all elements; 3D:
- * the boundary faces, found as the faces used by one element only), its
- * edges, the contact faces, and the 3D obstacle. Every body of the mesh
+ * the boundary faces, from mesh/surface.c), its edges, the contact faces, and the 3D obstacle. Every body of the mesh
  * goes into the same arrays (one draw call per field). */
 #include "render/render_impl.h"
 
@@ -83,92 +82,6 @@ static int geom_face(cx_render_scene *sc, cx_render_array *a, const int *f, int 
 
 /* ---- 2D ------------------------------------------------------------------ */
 
-/* Corner edges of a 2D element: (a, mid, b) with mid = -1 when none. */
-static int geom_edges2d(const cx_mesh *m, int e, int out[4][3])
-{
-    const int *c = m->conn + (size_t)m->npe * e;
-    if (m->etype == CX_EL_QUAD4) {
-        for (int i = 0; i < 4; i++) {
-            out[i][0] = c[i];
-            out[i][1] = -1;
-            out[i][2] = c[(i + 1) % 4];
-        }
-        return 4;
-    }
-    for (int i = 0; i < 3; i++) {
-        out[i][0] = c[i];
-        out[i][1] = m->etype == CX_EL_TRI6 ? c[3 + i] : -1;
-        out[i][2] = c[(i + 1) % 3];
-    }
-    return 3;
-}
-
-/* Open-addressing table of sorted node tuples with a use count. */
-typedef struct geom_hash {
-    long cap;
-    int width;
-    int *key;        /* width per slot, key[0] = -1 when empty */
-    int *count;
-    long *first;     /* the first (element, local) that used it */
-} geom_hash;
-
-static int geom_hash_init(geom_hash *h, long n, int width)
-{
-    h->cap = 16;
-    while (h->cap < 2 * n)
-        h->cap *= 2;
-    h->width = width;
-    h->key = cx_malloc(sizeof(int) * (size_t)(h->cap * width));
-    h->count = CX_NEW(int, h->cap);
-    h->first = CX_NEW(long, h->cap);
-    if (!h->key || !h->count || !h->first)
-        return CX_ENOMEM;
-    for (long s = 0; s < h->cap; s++)
-        h->key[s * width] = -1;
-    return CX_OK;
-}
-
-static void geom_hash_clear(geom_hash *h)
-{
-    cx_free(h->key);
-    cx_free(h->count);
-    cx_free(h->first);
-}
-
-static void geom_sort(int *k, int n)
-{
-    for (int i = 1; i < n; i++)
-        for (int j = i; j > 0 && k[j - 1] > k[j]; j--) {
-            int t = k[j];
-            k[j] = k[j - 1];
-            k[j - 1] = t;
-        }
-}
-
-static void geom_hash_add(geom_hash *h, const int *nodes, int n, long tag)
-{
-    int k[4] = {-1, -1, -1, -1};
-    memcpy(k, nodes, sizeof(int) * (size_t)n);
-    geom_sort(k, n);
-    unsigned long hv = 1469598103934665603ul;
-    for (int i = 0; i < h->width; i++)
-        hv = (hv ^ (unsigned)k[i]) * 1099511628211ul;
-    long s = (long)(hv & (unsigned long)(h->cap - 1));
-    for (;; s = (s + 1) & (h->cap - 1)) {
-        int *q = h->key + s * h->width;
-        if (q[0] == -1) {
-            memcpy(q, k, sizeof(int) * (size_t)h->width);
-            h->count[s] = 1;
-            h->first[s] = tag;
-            return;
-        }
-        if (memcmp(q, k, sizeof(int) * (size_t)h->width) == 0) {
-            h->count[s]++;
-            return;
-        }
-    }
-}
-
 static int geom_2d(cx_render_scene *sc)
 {
     const cx_mesh *m = sc->r->mesh;
@@ -188,66 +101,33 @@ static int geom_2d(cx_render_scene *sc)
         }
     }
     /* edges once each, and the boundary edges (used by one element) */
-    geom_hash h;
-    int rc = geom_hash_init(&h, 4L * m->nelems, 2);
-    if (rc == CX_OK) {
-        int ed[4][3];
-        for (int e = 0; e < m->nelems; e++) {
-            int ne = geom_edges2d(m, e, ed);
-            for (int i = 0; i < ne; i++) {
-                int ab[2] = {ed[i][0], ed[i][2]};
-                geom_hash_add(&h, ab, 2, 4L * e + i);
+    cx_facets f;
+    CX_TRY(cx_mesh_facets(m, 0, &f));
+    int nb = 0, rc = CX_OK;
+    for (int i = 0; i < f.n; i++)
+        nb += f.uses[i] == 1;
+    sc->bedges = cx_malloc(sizeof(int) * 3 * (size_t)(nb + 1));
+    if (!sc->bedges)
+        rc = CX_ENOMEM;
+    for (int i = 0; i < f.n && rc == CX_OK; i++) {
+        int ed[3] = {f.nodes[2 * i], f.mid ? f.mid[i] : -1, f.nodes[2 * i + 1]};
+        if (sc->o->edges) {
+            if (ed[1] >= 0) {
+                rc = geom_line(sc, ed[0], ed[1]);
+                if (rc == CX_OK)
+                    rc = geom_line(sc, ed[1], ed[2]);
+            } else {
+                rc = geom_line(sc, ed[0], ed[2]);
             }
         }
-        int nb = 0;
-        for (long s = 0; s < h.cap; s++)
-            nb += h.key[2 * s] >= 0 && h.count[s] == 1;
-        sc->bedges = cx_malloc(sizeof(int) * 3 * (size_t)(nb + 1));
-        if (!sc->bedges)
-            rc = CX_ENOMEM;
-        for (long s = 0; s < h.cap && rc == CX_OK; s++) {
-            if (h.key[2 * s] < 0)
-                continue;
-            int e = (int)(h.first[s] / 4), i = (int)(h.first[s] % 4);
-            geom_edges2d(m, e, ed);
-            if (sc->o->edges) {
-                if (ed[i][1] >= 0) {
-                    rc = geom_line(sc, ed[i][0], ed[i][1]);
-                    if (rc == CX_OK)
-                        rc = geom_line(sc, ed[i][1], ed[i][2]);
-                } else {
-                    rc = geom_line(sc, ed[i][0], ed[i][2]);
-                }
-            }
-            if (h.count[s] == 1)
-                memcpy(sc->bedges + 3 * sc->nbedges++, ed[i], sizeof ed[i]);
-        }
+        if (f.uses[i] == 1)
+            memcpy(sc->bedges + 3 * sc->nbedges++, ed, sizeof ed);
     }
-    geom_hash_clear(&h);
+    cx_facets_clear(&f);
     return rc;
 }
 
 /* ---- 3D ------------------------------------------------------------------ */
-
-static int geom_faces3d(const cx_mesh *m, int e, int out[6][4])
-{
-    static const int hex[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-    static const int tet[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-    const int *c = m->conn + (size_t)m->npe * e;
-    if (m->etype == CX_EL_HEX8) {
-        for (int f = 0; f < 6; f++)
-            for (int i = 0; i < 4; i++)
-                out[f][i] = c[hex[f][i]];
-        return 6;
-    }
-    for (int f = 0; f < 4; f++) {
-        for (int i = 0; i < 3; i++)
-            out[f][i] = c[tet[f][i]];
-        out[f][3] = -1;
-    }
-    return 4;
-}
 
 /* The contact facets: boundary facets whose nodes are all contact nodes. */
 static int geom_contact_faces(cx_render_scene *sc, cx_render_array *a, int edges)
@@ -280,26 +160,13 @@ static int geom_3d(cx_render_scene *sc)
     const cx_mesh *m = sc->r->mesh;
     if (sc->o->view == CX_VIEW_CONTACT)
         return geom_contact_faces(sc, &sc->tris, sc->o->edges);
-    int nf = m->etype == CX_EL_HEX8 ? 6 : 4;
-    geom_hash h;
-    int rc = geom_hash_init(&h, (long)nf * m->nelems, m->etype == CX_EL_HEX8 ? 4 : 3);
-    if (rc == CX_OK) {
-        int fc[6][4];
-        for (int e = 0; e < m->nelems; e++) {
-            geom_faces3d(m, e, fc);
-            for (int f = 0; f < nf; f++)
-                geom_hash_add(&h, fc[f], h.width, (long)nf * e + f);
-        }
-        /* in slot order, which depends only on the mesh: deterministic */
-        for (long s = 0; s < h.cap && rc == CX_OK; s++) {
-            if (h.key[h.width * s] < 0 || h.count[s] != 1)
-                continue;
-            int e = (int)(h.first[s] / nf), f = (int)(h.first[s] % nf);
-            geom_faces3d(m, e, fc);
-            rc = geom_face(sc, &sc->tris, fc[f], h.width, sc->o->edges);
-        }
-    }
-    geom_hash_clear(&h);
+    /* the boundary faces (used by one element), in element order */
+    cx_facets f;
+    CX_TRY(cx_mesh_facets(m, 1, &f));
+    int rc = CX_OK;
+    for (int i = 0; i < f.n && rc == CX_OK; i++)
+        rc = geom_face(sc, &sc->tris, f.nodes + (size_t)f.npf * i, f.npf, sc->o->edges);
+    cx_facets_clear(&f);
     if (rc == CX_OK && sc->o->field == CX_FIELD_PRESSURE)
         rc = geom_contact_faces(sc, &sc->overlay, 0);
     return rc;

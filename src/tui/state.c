@@ -235,85 +235,16 @@ static void state_snapshot(tui_state *st)
 
 /* ---- the outline of the mesh --------------------------------------------- */
 
-/* Facets of each element type as local node lists (2D: edges, tri6 split
- * at the mid nodes; 3D: faces), padded with -1 to 4 nodes. */
-static int outline_facets(cx_elem_type t, const int (**f)[4])
-{
-    static const int tri3[][4] = {{0, 1, -1, -1}, {1, 2, -1, -1}, {2, 0, -1, -1}};
-    static const int tri6[][4] = {{0, 3, -1, -1}, {3, 1, -1, -1}, {1, 4, -1, -1},
-                                  {4, 2, -1, -1}, {2, 5, -1, -1}, {5, 0, -1, -1}};
-    static const int quad4[][4] = {{0, 1, -1, -1}, {1, 2, -1, -1}, {2, 3, -1, -1}, {3, 0, -1, -1}};
-    static const int hex8[][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                  {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-    static const int tet4[][4] = {{0, 2, 1, -1}, {0, 1, 3, -1}, {1, 2, 3, -1}, {2, 0, 3, -1}};
-    switch (t) {
-    case CX_EL_TRI3: *f = tri3; return 3;
-    case CX_EL_TRI6: *f = tri6; return 6;
-    case CX_EL_QUAD4: *f = quad4; return 4;
-    case CX_EL_HEX8: *f = hex8; return 6;
-    default: *f = tet4; return 4;
-    }
-}
-
-typedef struct {
-    int key[4];   /* sorted node ids (-1 padded at the end as INT_MAX) */
-    int nodes[4]; /* in element order */
-} outline_facet;
-
-static int outline_cmp(const void *a, const void *b)
-{
-    const int *x = ((const outline_facet *)a)->key, *y = ((const outline_facet *)b)->key;
-    for (int k = 0; k < 4; k++)
-        if (x[k] != y[k])
-            return x[k] < y[k] ? -1 : 1;
-    return 0;
-}
-
-/* The edges of the facets that belong to one element only: what the mesh
- * view draws when the mesh is too fine to show every edge. */
+/* The edges of the mesh's surface (mesh/surface.c): what the mesh view
+ * draws when the mesh is too fine to show every edge. */
 static void state_outline(tui_state *st)
 {
     const cx_mesh *mesh = st->info.mesh;
+    cx_free(st->outline);
+    st->outline = NULL;
     st->noutline = 0;
-    if (!mesh)
-        return;
-    const int (*lf)[4];
-    int nf = outline_facets(mesh->etype, &lf);
-    size_t n = (size_t)nf * (size_t)mesh->nelems;
-    outline_facet *fs = tui_xalloc(NULL, sizeof *fs * (n + 1));
-    for (int e = 0; e < mesh->nelems; e++)
-        for (int k = 0; k < nf; k++) {
-            outline_facet *f = &fs[(size_t)e * nf + k];
-            for (int c = 0; c < 4; c++) {
-                f->nodes[c] = lf[k][c] < 0 ? -1 : mesh->conn[(size_t)mesh->npe * e + lf[k][c]];
-                f->key[c] = f->nodes[c] < 0 ? 0x7fffffff : f->nodes[c];
-            }
-            /* sort the key (4 entries) */
-            for (int i = 1; i < 4; i++)
-                for (int j = i; j > 0 && f->key[j - 1] > f->key[j]; j--) {
-                    int t = f->key[j];
-                    f->key[j] = f->key[j - 1];
-                    f->key[j - 1] = t;
-                }
-        }
-    qsort(fs, n, sizeof *fs, outline_cmp);
-    st->outline = tui_xalloc(st->outline, sizeof(int) * (8 * n + 2));
-    for (size_t i = 0; i < n;) {
-        size_t j = i + 1;
-        while (j < n && outline_cmp(&fs[i], &fs[j]) == 0)
-            j++;
-        if (j == i + 1) {
-            /* a facet of one element: its edges */
-            int nn = fs[i].nodes[2] < 0 ? 2 : fs[i].nodes[3] < 0 ? 3 : 4;
-            for (int c = 0; c < (nn == 2 ? 1 : nn); c++) {
-                st->outline[2 * st->noutline] = fs[i].nodes[c];
-                st->outline[2 * st->noutline + 1] = fs[i].nodes[(c + 1) % nn];
-                st->noutline++;
-            }
-        }
-        i = j;
-    }
-    free(fs);
+    if (mesh && cx_mesh_outline(mesh, &st->outline, &st->noutline) != CX_OK)
+        tui_fatal("out of memory");
 }
 
 /* After a job: what the session now is. */
@@ -767,7 +698,7 @@ void tui_state_clear(tui_state *st)
     free(st->hertz);
     free(st->slip_dir);
     free(st->flips);
-    free(st->outline);
+    cx_free(st->outline);
     free(st->uall);
     memset(st, 0, sizeof *st);
 }
