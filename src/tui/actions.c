@@ -15,46 +15,11 @@
 #include <stdio.h>
 #include <string.h>
 
-/* ---- the picker rows ------------------------------------------------------ */
-
-const char *tui_field_label(const tui_state *st, int f)
-{
-    switch (f) {
-    case TUI_F_SCENE: return "scene";
-    case TUI_F_LEVEL: return "level";
-    case TUI_F_FRICTION: return "friction";
-    case TUI_F_COEF:
-        return st->sel_law == CX_FRICTION_COULOMB ? "F" : st->sel_law == CX_FRICTION_TRESCA ? "slip s" : "F / s";
-    case TUI_F_METHOD: return "method";
-    case TUI_F_TOL: return "tol";
-    case TUI_F_MAXIT: return "max iter";
-    default:
-        if (f - TUI_F_PARAM0 < st->sel_params.n)
-            return st->sel_params.table[f - TUI_F_PARAM0].key;
-        return "?";
-    }
-}
-
-void tui_field_value(const tui_state *st, int f, char *buf, size_t len)
-{
-    switch (f) {
-    case TUI_F_SCENE: snprintf(buf, len, "%s", st->scene_ids[st->sel_scene]); break;
-    case TUI_F_LEVEL: snprintf(buf, len, "%d", st->sel_level); break;
-    case TUI_F_FRICTION: snprintf(buf, len, "%s", cx_friction_name(st->sel_law)); break;
-    case TUI_F_COEF:
-        if (st->sel_law == CX_FRICTION_NONE)
-            snprintf(buf, len, "-");
-        else
-            snprintf(buf, len, "%.4g", st->sel_law == CX_FRICTION_COULOMB ? st->sel_F : st->sel_slip);
-        break;
-    case TUI_F_METHOD: snprintf(buf, len, "%s", tui_state_sel_method(st)->id); break;
-    case TUI_F_TOL: snprintf(buf, len, "%.0e", st->sel_opt.tol); break;
-    case TUI_F_MAXIT: snprintf(buf, len, "%d", st->sel_opt.max_iter); break;
-    default: cx_param_format(&st->sel_params, f - TUI_F_PARAM0, buf, len); break;
-    }
-}
-
-/* ---- changing a row --------------------------------------------------------- */
+/* ---- the picker rows ------------------------------------------------------
+ * One descriptor per row (tui_row, tui_impl.h): its label, how its value
+ * is shown, stepped with left/right, entered as text, and why it is grey.
+ * Drawing (draw.c), the keys and the text entry all go through the table
+ * at the end of this section. */
 
 static int select_method(tui_state *st, int index)
 {
@@ -70,7 +35,291 @@ static int select_method(tui_state *st, int index)
     return TUI_REDRAW | TUI_RESOLVE;
 }
 
-static int change_param(tui_state *st, int i, int dir)
+/* scene */
+
+static void scene_format(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    snprintf(buf, len, "%s", st->scene_ids[st->sel_scene]);
+}
+
+static int scene_step(tui_state *st, int i, int dir)
+{
+    (void)i;
+    st->sel_scene = ((st->sel_scene + dir) % st->nscenes + st->nscenes) % st->nscenes;
+    return TUI_REDRAW | TUI_REASSEMBLE;
+}
+
+static int scene_enter(tui_state *st, int i, const char *text)
+{
+    (void)i;
+    for (int k = 0; k < st->nscenes; k++)
+        if (strcmp(st->scene_ids[k], text) == 0) {
+            st->sel_scene = k;
+            return TUI_REDRAW | TUI_REASSEMBLE;
+        }
+    tui_msg(st, 1, "unknown scene '%s' (see 'signorini list')", text);
+    return TUI_REDRAW;
+}
+
+static void scene_describe(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    snprintf(buf, len, "%s", st->scene.title);
+}
+
+static int scene_count(const tui_state *st) { return st->nscenes; }
+static int scene_current(const tui_state *st) { return st->sel_scene; }
+
+static const char *scene_item(const tui_state *st, int k, char *why, size_t len)
+{
+    if (len)
+        why[0] = '\0';
+    return st->scene_ids[k];
+}
+
+/* level */
+
+static void level_format(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    snprintf(buf, len, "%d", st->sel_level);
+}
+
+static int level_step(tui_state *st, int i, int dir)
+{
+    (void)i;
+    int l = dir > 0 ? st->sel_level * 2 : st->sel_level / 2;
+    l = l < 1 ? 1 : l > st->scene.level_max ? st->scene.level_max : l;
+    if (l == st->sel_level)
+        return TUI_REDRAW;
+    st->sel_level = l;
+    return TUI_REDRAW | TUI_REASSEMBLE;
+}
+
+static int level_enter(tui_state *st, int i, const char *text)
+{
+    (void)i;
+    long n;
+    if (cx_parse_int(text, 1, st->scene.level_max, &n)) {
+        tui_msg(st, 1, "level '%s': expected an integer in [1, %d]", text, st->scene.level_max);
+        return TUI_REDRAW;
+    }
+    st->sel_level = (int)n;
+    return TUI_REDRAW | TUI_REASSEMBLE;
+}
+
+static void level_describe(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    snprintf(buf, len, "1 to %d; rebuilds", st->scene.level_max);
+}
+
+/* friction law */
+
+static void friction_format(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    snprintf(buf, len, "%s", cx_friction_name(st->sel_law));
+}
+
+static int friction_step(tui_state *st, int i, int dir)
+{
+    (void)i;
+    st->sel_law = (cx_friction)(((int)st->sel_law + dir + 3) % 3);
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+static int friction_enter(tui_state *st, int i, const char *text)
+{
+    (void)i;
+    int law = cx_friction_from_name(text);
+    if (law < 0) {
+        tui_msg(st, 1, "friction '%s': expected none, tresca or coulomb", text);
+        return TUI_REDRAW;
+    }
+    st->sel_law = (cx_friction)law;
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+/* the friction coefficient: Tresca slip bound or Coulomb F */
+
+static const char *coef_label(const tui_state *st, int i)
+{
+    (void)i;
+    return st->sel_law == CX_FRICTION_COULOMB ? "F" : st->sel_law == CX_FRICTION_TRESCA ? "slip s" : "F / s";
+}
+
+static void coef_format(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    if (st->sel_law == CX_FRICTION_NONE)
+        snprintf(buf, len, "-");
+    else
+        snprintf(buf, len, "%.4g", st->sel_law == CX_FRICTION_COULOMB ? st->sel_F : st->sel_slip);
+}
+
+static const char *coef_greyed(const tui_state *st, int i, char *why, size_t len)
+{
+    (void)i;
+    snprintf(why, len, "%s", st->sel_law == CX_FRICTION_NONE ? "no friction: choose Tresca or Coulomb first" : "");
+    return why;
+}
+
+static int coef_step(tui_state *st, int i, int dir)
+{
+    char why[CX_DIAG_LEN];
+    if (coef_greyed(st, i, why, sizeof why)[0]) {
+        tui_msg(st, 1, "%s", why);
+        return TUI_REDRAW;
+    }
+    if (st->sel_law == CX_FRICTION_COULOMB)
+        st->sel_F = fmax(0, round((st->sel_F + 0.05 * dir) * 100) / 100);
+    else
+        st->sel_slip = dir > 0 ? st->sel_slip * 1.25 : st->sel_slip / 1.25;
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+static int coef_enter(tui_state *st, int i, const char *text)
+{
+    (void)i;
+    double x;
+    if (cx_parse_double(text, &x) || !(x >= 0) || !isfinite(x)) {
+        tui_msg(st, 1, "'%s': expected a number >= 0", text);
+        return TUI_REDRAW;
+    }
+    if (st->sel_law == CX_FRICTION_COULOMB)
+        st->sel_F = x;
+    else
+        st->sel_slip = x;
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+static void coef_describe(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    snprintf(buf, len, "%s", st->sel_law == CX_FRICTION_COULOMB ? "Coulomb coefficient F"
+                             : st->sel_law == CX_FRICTION_TRESCA ? "Tresca bound (traction)"
+                                                                  : "no friction");
+}
+
+/* method */
+
+static void method_format(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    snprintf(buf, len, "%s", tui_state_sel_method(st)->id);
+}
+
+static int method_step(tui_state *st, int i, int dir)
+{
+    (void)i;
+    int n = cx_method_count();
+    return select_method(st, ((st->sel_method + dir) % n + n) % n);
+}
+
+static int method_enter(tui_state *st, int i, const char *text)
+{
+    (void)i;
+    const cx_method *m = cx_method_find(text);
+    if (!m) {
+        tui_msg(st, 1, "unknown method '%s' (see 'signorini list')", text);
+        return TUI_REDRAW;
+    }
+    for (int k = 0; k < cx_method_count(); k++)
+        if (cx_method_at(k) == m)
+            return select_method(st, k);
+    return TUI_REDRAW;
+}
+
+static const char *method_greyed(const tui_state *st, int i, char *why, size_t len)
+{
+    (void)i;
+    return tui_state_method_reason(st, st->sel_method, why, len);
+}
+
+static void method_describe(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    const cx_method *m = tui_state_sel_method(st);
+    snprintf(buf, len, "%s (%s)", m->name, m->source);
+}
+
+static int method_count(const tui_state *st) { (void)st; return cx_method_count(); }
+static int method_current(const tui_state *st) { return st->sel_method; }
+
+static const char *method_item(const tui_state *st, int k, char *why, size_t len)
+{
+    tui_state_method_reason(st, k, why, len);
+    return cx_method_at(k)->id;
+}
+
+/* tolerance and iteration limit */
+
+static void tol_format(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    snprintf(buf, len, "%.0e", st->sel_opt.tol);
+}
+
+static int tol_step(tui_state *st, int i, int dir)
+{
+    (void)i;
+    st->sel_opt.tol = fmax(1e-16, fmin(1, dir > 0 ? st->sel_opt.tol * 10 : st->sel_opt.tol / 10));
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+static int tol_enter(tui_state *st, int i, const char *text)
+{
+    (void)i;
+    double x;
+    if (cx_parse_double(text, &x) || !(x > 0) || !(x < 1)) {
+        tui_msg(st, 1, "tol '%s': expected a number in (0, 1)", text);
+        return TUI_REDRAW;
+    }
+    st->sel_opt.tol = x;
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+static void maxit_format(const tui_state *st, int i, char *buf, size_t len)
+{
+    (void)i;
+    snprintf(buf, len, "%d", st->sel_opt.max_iter);
+}
+
+static int maxit_step(tui_state *st, int i, int dir)
+{
+    (void)i;
+    int n = dir > 0 ? st->sel_opt.max_iter * 2 : st->sel_opt.max_iter / 2;
+    st->sel_opt.max_iter = n < 1 ? 1 : n > 1000000 ? 1000000 : n;
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+static int maxit_enter(tui_state *st, int i, const char *text)
+{
+    (void)i;
+    long n;
+    if (cx_parse_int(text, 1, 100000000, &n)) {
+        tui_msg(st, 1, "max iter '%s': expected a positive integer", text);
+        return TUI_REDRAW;
+    }
+    st->sel_opt.max_iter = (int)n;
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+/* a parameter of the selected method */
+
+static const char *param_label(const tui_state *st, int i)
+{
+    return i < st->sel_params.n ? st->sel_params.table[i].key : "?";
+}
+
+static void param_format(const tui_state *st, int i, char *buf, size_t len)
+{
+    cx_param_format(&st->sel_params, i, buf, len);
+}
+
+static int param_step(tui_state *st, int i, int dir)
 {
     cx_param_values *v = &st->sel_params;
     const cx_param *p = &v->table[i];
@@ -126,129 +375,84 @@ static int change_param(tui_state *st, int i, int dir)
     return TUI_REDRAW | TUI_RESOLVE;
 }
 
+static int param_enter(tui_state *st, int i, const char *text)
+{
+    cx_diag d;
+    cx_diag_clear(&d);
+    char owner[64];
+    snprintf(owner, sizeof owner, "method '%s'", tui_state_sel_method(st)->id);
+    const cx_param *p = &st->sel_params.table[i];
+    if (cx_param_set(&st->sel_params, p->key, text, owner, &d) != CX_OK) {
+        tui_msg(st, 1, "%s", d.msg);
+        return TUI_REDRAW;
+    }
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
+/* "range R", then the help */
+static void param_describe(const tui_state *st, int i, char *buf, size_t len)
+{
+    const cx_param *p = &st->sel_params.table[i];
+    char range[96];
+    cx_param_range(p, range, sizeof range);
+    snprintf(buf, len, "range %s\n%s", range, p->help ? p->help : "");
+}
+
+static const tui_row tui_rows[] = {
+    [TUI_F_SCENE] = {"scene", TUI_ROW_LIST, NULL, scene_format, scene_step, scene_enter, NULL, scene_describe,
+                     scene_count, scene_current, scene_item},
+    [TUI_F_LEVEL] = {"level", TUI_ROW_NUMBER, NULL, level_format, level_step, level_enter, NULL, level_describe,
+                     NULL, NULL, NULL},
+    [TUI_F_FRICTION] = {"friction", TUI_ROW_CHOICE, NULL, friction_format, friction_step, friction_enter, NULL,
+                        NULL, NULL, NULL, NULL},
+    [TUI_F_COEF] = {NULL, TUI_ROW_NUMBER, coef_label, coef_format, coef_step, coef_enter, coef_greyed,
+                    coef_describe, NULL, NULL, NULL},
+    [TUI_F_METHOD] = {"method", TUI_ROW_LIST, NULL, method_format, method_step, method_enter, method_greyed,
+                      method_describe, method_count, method_current, method_item},
+    [TUI_F_TOL] = {"tol", TUI_ROW_NUMBER, NULL, tol_format, tol_step, tol_enter, NULL, NULL, NULL, NULL, NULL},
+    [TUI_F_MAXIT] = {"max iter", TUI_ROW_NUMBER, NULL, maxit_format, maxit_step, maxit_enter, NULL, NULL, NULL,
+                     NULL, NULL},
+    [TUI_F_PARAM0] = {NULL, TUI_ROW_NUMBER, param_label, param_format, param_step, param_enter, NULL,
+                      param_describe, NULL, NULL, NULL},
+};
+
+int tui_state_nfields(const tui_state *st)
+{
+    return TUI_F_PARAM0 + st->sel_params.n;
+}
+
+const tui_row *tui_row_at(const tui_state *st, int f, int *i)
+{
+    (void)st;
+    *i = f >= TUI_F_PARAM0 ? f - TUI_F_PARAM0 : 0;
+    return &tui_rows[f >= TUI_F_PARAM0 ? TUI_F_PARAM0 : f];
+}
+
+const char *tui_field_label(const tui_state *st, int f)
+{
+    int i;
+    const tui_row *r = tui_row_at(st, f, &i);
+    return r->label ? r->label : r->label_of(st, i);
+}
+
+void tui_field_value(const tui_state *st, int f, char *buf, size_t len)
+{
+    int i;
+    tui_row_at(st, f, &i)->format(st, i, buf, len);
+}
+
 /* Left (-1) or right (+1) on the row under the cursor. */
 static int change_field(tui_state *st, int dir)
 {
-    switch (st->field) {
-    case TUI_F_SCENE:
-        st->sel_scene = ((st->sel_scene + dir) % st->nscenes + st->nscenes) % st->nscenes;
-        return TUI_REDRAW | TUI_REASSEMBLE;
-    case TUI_F_LEVEL: {
-        int l = dir > 0 ? st->sel_level * 2 : st->sel_level / 2;
-        l = l < 1 ? 1 : l > st->scene.level_max ? st->scene.level_max : l;
-        if (l == st->sel_level)
-            return TUI_REDRAW;
-        st->sel_level = l;
-        return TUI_REDRAW | TUI_REASSEMBLE;
-    }
-    case TUI_F_FRICTION:
-        st->sel_law = (cx_friction)(((int)st->sel_law + dir + 3) % 3);
-        return TUI_REDRAW | TUI_RESOLVE;
-    case TUI_F_COEF:
-        if (st->sel_law == CX_FRICTION_NONE) {
-            tui_msg(st, 1, "no friction: choose Tresca or Coulomb first");
-            return TUI_REDRAW;
-        }
-        if (st->sel_law == CX_FRICTION_COULOMB)
-            st->sel_F = fmax(0, round((st->sel_F + 0.05 * dir) * 100) / 100);
-        else
-            st->sel_slip = dir > 0 ? st->sel_slip * 1.25 : st->sel_slip / 1.25;
-        return TUI_REDRAW | TUI_RESOLVE;
-    case TUI_F_METHOD: {
-        int n = cx_method_count();
-        return select_method(st, ((st->sel_method + dir) % n + n) % n);
-    }
-    case TUI_F_TOL:
-        st->sel_opt.tol = fmax(1e-16, fmin(1, dir > 0 ? st->sel_opt.tol * 10 : st->sel_opt.tol / 10));
-        return TUI_REDRAW | TUI_RESOLVE;
-    case TUI_F_MAXIT: {
-        int n = dir > 0 ? st->sel_opt.max_iter * 2 : st->sel_opt.max_iter / 2;
-        st->sel_opt.max_iter = n < 1 ? 1 : n > 1000000 ? 1000000 : n;
-        return TUI_REDRAW | TUI_RESOLVE;
-    }
-    default:
-        return change_param(st, st->field - TUI_F_PARAM0, dir);
-    }
+    int i;
+    return tui_row_at(st, st->field, &i)->step(st, i, dir);
 }
 
 /* Enter on a row: the typed text. */
 static int commit_edit(tui_state *st, const char *text)
 {
-    cx_diag d;
-    cx_diag_clear(&d);
-    long n;
-    double x;
-    switch (st->field) {
-    case TUI_F_SCENE:
-        for (int i = 0; i < st->nscenes; i++)
-            if (strcmp(st->scene_ids[i], text) == 0) {
-                st->sel_scene = i;
-                return TUI_REDRAW | TUI_REASSEMBLE;
-            }
-        tui_msg(st, 1, "unknown scene '%s' (see 'signorini list')", text);
-        return TUI_REDRAW;
-    case TUI_F_LEVEL:
-        if (cx_parse_int(text, 1, st->scene.level_max, &n)) {
-            tui_msg(st, 1, "level '%s': expected an integer in [1, %d]", text, st->scene.level_max);
-            return TUI_REDRAW;
-        }
-        st->sel_level = (int)n;
-        return TUI_REDRAW | TUI_REASSEMBLE;
-    case TUI_F_FRICTION: {
-        int law = cx_friction_from_name(text);
-        if (law < 0) {
-            tui_msg(st, 1, "friction '%s': expected none, tresca or coulomb", text);
-            return TUI_REDRAW;
-        }
-        st->sel_law = (cx_friction)law;
-        return TUI_REDRAW | TUI_RESOLVE;
-    }
-    case TUI_F_COEF:
-        if (cx_parse_double(text, &x) || !(x >= 0) || !isfinite(x)) {
-            tui_msg(st, 1, "'%s': expected a number >= 0", text);
-            return TUI_REDRAW;
-        }
-        if (st->sel_law == CX_FRICTION_COULOMB)
-            st->sel_F = x;
-        else
-            st->sel_slip = x;
-        return TUI_REDRAW | TUI_RESOLVE;
-    case TUI_F_METHOD: {
-        const cx_method *m = cx_method_find(text);
-        if (!m) {
-            tui_msg(st, 1, "unknown method '%s' (see 'signorini list')", text);
-            return TUI_REDRAW;
-        }
-        for (int i = 0; i < cx_method_count(); i++)
-            if (cx_method_at(i) == m)
-                return select_method(st, i);
-        return TUI_REDRAW;
-    }
-    case TUI_F_TOL:
-        if (cx_parse_double(text, &x) || !(x > 0) || !(x < 1)) {
-            tui_msg(st, 1, "tol '%s': expected a number in (0, 1)", text);
-            return TUI_REDRAW;
-        }
-        st->sel_opt.tol = x;
-        return TUI_REDRAW | TUI_RESOLVE;
-    case TUI_F_MAXIT:
-        if (cx_parse_int(text, 1, 100000000, &n)) {
-            tui_msg(st, 1, "max iter '%s': expected a positive integer", text);
-            return TUI_REDRAW;
-        }
-        st->sel_opt.max_iter = (int)n;
-        return TUI_REDRAW | TUI_RESOLVE;
-    default: {
-        char owner[64];
-        snprintf(owner, sizeof owner, "method '%s'", tui_state_sel_method(st)->id);
-        const cx_param *p = &st->sel_params.table[st->field - TUI_F_PARAM0];
-        if (cx_param_set(&st->sel_params, p->key, text, owner, &d) != CX_OK) {
-            tui_msg(st, 1, "%s", d.msg);
-            return TUI_REDRAW;
-        }
-        return TUI_REDRAW | TUI_RESOLVE;
-    }
-    }
+    int i;
+    return tui_row_at(st, st->field, &i)->enter(st, i, text);
 }
 
 static int edit_key(tui_state *st, int key)
@@ -401,13 +605,7 @@ static int act_scale_auto(tui_state *st)
 static int act_clear_runs(tui_state *st)
 {
     /* keep the current run, forget the earlier ones */
-    if (st->nruns > 1) {
-        for (int i = 0; i < st->nruns - 1; i++)
-            free(st->runs[i].steps);
-        st->runs[0] = st->runs[st->nruns - 1];
-        memset(&st->runs[st->nruns - 1], 0, sizeof st->runs[0]);
-        st->nruns = 1;
-    }
+    tui_history_keep_current(st->history);
     tui_msg(st, 0, "earlier runs cleared");
     return TUI_REDRAW;
 }

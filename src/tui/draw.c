@@ -124,12 +124,11 @@ static void draw_pickers(const tui_state *st, tui_box b)
     for (int f = first; f < nf && y < b.y + 1 + room; f++, y++) {
         char val[64];
         tui_field_value(st, f, val, sizeof val);
-        int sel = f == st->field;
+        int sel = f == st->field, i;
         int role = sel ? TUI_C_SELECT : TUI_C_NORMAL;
+        const tui_row *row = tui_row_at(st, f, &i);
         char reason[CX_DIAG_LEN];
-        if (f == TUI_F_METHOD && tui_state_method_reason(st, st->sel_method, reason, sizeof reason)[0])
-            role = sel ? TUI_C_SELECT : TUI_C_GREY;
-        if (f == TUI_F_COEF && st->sel_law == CX_FRICTION_NONE)
+        if (row->greyed && row->greyed(st, i, reason, sizeof reason)[0])
             role = sel ? TUI_C_SELECT : TUI_C_GREY;
         if (sel && st->editing)
             snprintf(val, sizeof val, "%.*s_", st->edit_len, st->edit);
@@ -142,40 +141,34 @@ static void draw_pickers(const tui_state *st, tui_box b)
     if (y >= b.y + b.h)
         return;
     /* detail of the row under the cursor */
-    int bottom = b.y + b.h - 5;
-    if (st->field == TUI_F_METHOD || st->field == TUI_F_SCENE) {
-        int is_m = st->field == TUI_F_METHOD;
-        int n = is_m ? cx_method_count() : st->nscenes;
-        int cur = is_m ? st->sel_method : st->sel_scene;
+    int bottom = b.y + b.h - 5, i;
+    const tui_row *row = tui_row_at(st, st->field, &i);
+    char detail[1024] = "", reason[CX_DIAG_LEN];
+    if (row->describe)
+        row->describe(st, i, detail, sizeof detail);
+    if (row->kind == TUI_ROW_LIST) {
+        int n = row->count(st);
+        int cur = row->current(st);
         int first = cur - (bottom - y - 2) / 2;
         if (first + (bottom - y - 2) > n)
             first = n - (bottom - y - 2);
         if (first < 0)
             first = 0;
-        for (int i = first; i < n && y < bottom - 1; i++, y++) {
-            char reason[CX_DIAG_LEN];
-            const char *id = is_m ? cx_method_at(i)->id : st->scene_ids[i];
-            int grey = is_m && tui_state_method_reason(st, i, reason, sizeof reason)[0];
-            tui_put(y, b.x, i == cur ? (grey ? TUI_C_GREY : TUI_C_STICK) : grey ? TUI_C_GREY : TUI_C_NORMAL, b.w,
-                "%s%s", i == cur ? tui_sym("▸ ", "> ") : "  ", id);
+        for (int k = first; k < n && y < bottom - 1; k++, y++) {
+            const char *id = row->item(st, k, reason, sizeof reason);
+            int grey = reason[0] != '\0';
+            tui_put(y, b.x, k == cur ? (grey ? TUI_C_GREY : TUI_C_STICK) : grey ? TUI_C_GREY : TUI_C_NORMAL, b.w,
+                "%s%s", k == cur ? tui_sym("▸ ", "> ") : "  ", id);
         }
-        if (is_m) {
-            char reason[CX_DIAG_LEN];
-            const cx_method *m = tui_state_sel_method(st);
-            if (tui_state_method_reason(st, st->sel_method, reason, sizeof reason)[0])
-                tui_put(y++, b.x, TUI_C_WARN, b.w, "%s", reason + (strncmp(reason, "method ", 7) == 0 ? 7 : 0));
-            else if (y < bottom)
-                tui_put(y++, b.x, TUI_C_FAINT, b.w, "%s (%s)", m->name, m->source);
-        } else if (y < bottom) {
-            tui_put(y++, b.x, TUI_C_FAINT, b.w, "%s", st->scene.title);
-        }
-    } else if (st->field >= TUI_F_PARAM0) {
-        const cx_param *p = &st->sel_params.table[st->field - TUI_F_PARAM0];
-        char range[96];
-        cx_param_range(p, range, sizeof range);
-        tui_put(y++, b.x, TUI_C_FAINT, b.w, "range %s", range);
-        /* the help, wrapped */
-        const char *h = p->help ? p->help : "";
+        if (row->greyed && row->greyed(st, i, reason, sizeof reason)[0])
+            tui_put(y++, b.x, TUI_C_WARN, b.w, "%s", reason + (strncmp(reason, "method ", 7) == 0 ? 7 : 0));
+        else if (y < bottom)
+            tui_put(y++, b.x, TUI_C_FAINT, b.w, "%s", detail);
+    } else if (detail[0]) {
+        /* the first line as it is, the rest wrapped */
+        size_t first = strcspn(detail, "\n");
+        tui_put(y++, b.x, TUI_C_FAINT, b.w, "%.*s", (int)first, detail);
+        const char *h = detail[first] ? detail + first + 1 : "";
         while (*h && y < bottom) {
             int len = (int)strlen(h);
             int cut = len <= b.w ? len : b.w;
@@ -189,12 +182,6 @@ static void draw_pickers(const tui_state *st, tui_box b)
             while (*h == ' ')
                 h++;
         }
-    } else if (st->field == TUI_F_COEF) {
-        tui_put(y++, b.x, TUI_C_FAINT, b.w, "%s", st->sel_law == CX_FRICTION_COULOMB ? "Coulomb coefficient F"
-                                              : st->sel_law == CX_FRICTION_TRESCA ? "Tresca bound (traction)"
-                                                                                   : "no friction");
-    } else if (st->field == TUI_F_LEVEL) {
-        tui_put(y++, b.x, TUI_C_FAINT, b.w, "1 to %d; rebuilds", st->scene.level_max);
     }
     /* the session */
     y = b.y + b.h - 4;

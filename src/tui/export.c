@@ -18,8 +18,8 @@ static void export_csv(const tui_state *st, FILE *f)
     for (int k = 0; cols[k]; k++)
         cx_csv_str(&c, cols[k]);
     cx_csv_end_row(&c);
-    for (int r = 0; r < st->nruns; r++) {
-        const tui_run *run = &st->runs[r];
+    for (int r = 0; r < tui_state_nruns(st); r++) {
+        const tui_run *run = tui_state_run_at(st, r);
         for (int k = 0; k < run->nsteps; k++) {
             const tui_step *s = &run->steps[k];
             cx_csv_int(&c, r + 1);
@@ -56,8 +56,8 @@ static void export_json(const tui_state *st, FILE *f)
     cx_json_int(&j, "dofs", st->info.n);
     cx_json_int(&j, "contact_points", st->info.m);
     cx_json_array(&j, "runs");
-    for (int r = 0; r < st->nruns; r++) {
-        const tui_run *run = &st->runs[r];
+    for (int r = 0; r < tui_state_nruns(st); r++) {
+        const tui_run *run = tui_state_run_at(st, r);
         cx_json_object(&j, NULL);
         cx_json_str(&j, "method", run->method);
         cx_json_str(&j, "params", run->params);
@@ -102,7 +102,7 @@ static int export_file(const tui_state *st, const char *path, void (*write)(cons
 
 int tui_export(const tui_state *st, const char *dir, char *csv, char *json, size_t len, cx_diag *d)
 {
-    if (st->nruns == 0 || (st->nruns == 1 && st->runs[0].nsteps == 0))
+    if (tui_state_nruns(st) == 0 || (tui_state_nruns(st) == 1 && tui_state_run_at(st, 0)->nsteps == 0))
         return cx_diag_set(d, CX_EINVAL, "no steps to export yet");
     snprintf(csv, len, "%s/signorini-%s-L%d-runs.csv", dir, st->scene.id, st->level);
     snprintf(json, len, "%s/signorini-%s-L%d-runs.json", dir, st->scene.id, st->level);

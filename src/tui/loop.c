@@ -34,7 +34,9 @@ static void loop_on_signal(int sig)
     loop_quit = 1;
 }
 
-void tui_fatal(const char *msg)
+/* Out of memory in the explorer (the core's hook, tui_on_oom): restore the
+ * terminal, say why, exit 1. */
+static void loop_fatal(const char *msg)
 {
     tui_term_close();
     fprintf(stderr, "signorini: %s\n", msg);
@@ -122,18 +124,19 @@ int tui_main(int argc, char **argv)
         fprintf(stderr, "signorini tui: --friction '%s': expected none, tresca or coulomb\n", a.friction);
         return 1;
     }
-    static tui_state st;
+    tui_state *st = NULL;
     cx_diag d;
     cx_diag_clear(&d);
-    if (tui_state_init(&st, a.scene ? a.scene : "hertz", a.level, a.method, law, 0, &d) != CX_OK) {
+    tui_on_oom(loop_fatal);
+    if (tui_state_create(&st, a.scene ? a.scene : "hertz", a.level, a.method, law, 0, &d) != CX_OK) {
         fprintf(stderr, "signorini tui: %s\n", d.msg);
         return 1;
     }
     if (a.export_dir)
-        snprintf(st.export_dir, sizeof st.export_dir, "%s", a.export_dir);
+        tui_state_set_export_dir(st, a.export_dir);
 
     if (tui_term_open(a.mono, a.ascii) != 0) {
-        tui_state_clear(&st);
+        tui_state_destroy(&st);
         fprintf(stderr, "signorini tui: cannot open the terminal\n");
         return 1;
     }
@@ -148,9 +151,9 @@ int tui_main(int argc, char **argv)
     int dirty = 1;
     double last_draw = 0;
     while (!loop_quit) {
-        if (tui_state_poll(&st))
+        if (tui_state_poll(st))
             dirty = 1;
-        int busy = tui_state_busy(&st);
+        int busy = tui_state_busy(st);
         double now = cx_clock_now();
         /* while a job runs, the progress line moves ten times a second */
         /* with --frames every tick draws, so that N frames end the run */
@@ -158,7 +161,7 @@ int tui_main(int argc, char **argv)
             int rows, cols;
             tui_term_size(&rows, &cols);
             double t0 = cx_clock_now();
-            tui_draw(&st, rows, cols, tui_term_utf8());
+            tui_draw(st, rows, cols, tui_term_utf8());
             tui_term_show();
             last_draw = cx_clock_now();
             if (ndraw < LOOP_SAMPLES)
@@ -168,40 +171,41 @@ int tui_main(int argc, char **argv)
                 break;
         }
         int key;
-        if (keys && *keys && !busy && !st.running && !st.pending) {
+        if (keys && *keys && tui_state_idle(st)) {
             key = (unsigned char)*keys++;
             if (key == '\r')
                 key = TUI_KEY_ENTER;
         } else {
             /* while a step runs, look often: most take well under a millisecond */
-            int stepping = busy && st.job.kind == TUI_JOB_STEP && now - st.job.t0 < 0.05;
-            key = tui_term_key(stepping ? 1 : st.running && !busy ? 0 : busy ? 50 : 200);
+            double age = tui_state_step_age(st, now);
+            int stepping = busy && age >= 0 && age < 0.05;
+            key = tui_term_key(stepping ? 1 : tui_state_running(st) && !busy ? 0 : busy ? 50 : 200);
         }
         if (key != TUI_KEY_NONE) {
-            int react = tui_key(&st, key);
+            int react = tui_key(st, key);
             if (react & TUI_QUIT)
                 break;
-            tui_state_apply(&st, react);
+            tui_state_apply(st, react);
             dirty = 1;
         }
-        if (st.running && !tui_state_busy(&st)) {
-            tui_state_step(&st);
+        if (tui_state_running(st) && !tui_state_busy(st)) {
+            tui_state_step(st);
             dirty = 1;
         }
     }
     tui_term_close();
-    if (tui_state_busy(&st)) {
+    if (tui_state_busy(st)) {
         /* a build cannot be interrupted: leave it to the exit */
         fflush(stdout);
         _exit(0);
     }
     /* the steps' own times (the method's step and the bookkeeping) */
-    for (int r = 0; r < st.nruns; r++)
-        for (int k = 0; k < st.runs[r].nsteps && nstep < LOOP_SAMPLES; k++)
-            step_t[nstep++] = st.runs[r].steps[k].step_time;
+    for (int r = 0; r < tui_state_nruns(st); r++)
+        for (int k = 0; k < tui_state_nsteps(st, r) && nstep < LOOP_SAMPLES; k++)
+            step_t[nstep++] = tui_state_step_time(st, r, k);
     if (a.stats)
         fprintf(stderr, "explorer: %d redraws, median %.3f ms; %d steps, median %.3f ms\n", ndraw,
                1e3 * median(draw_t, ndraw), nstep, 1e3 * median(step_t, nstep));
-    tui_state_clear(&st);
+    tui_state_destroy(&st);
     return 0;
 }

@@ -246,9 +246,9 @@ void tui_panel_plot(const tui_state *st, tui_box b)
         return;
     int itmax = 10;
     double lo = -12, hi = 0;
-    for (int r = 0; r < st->nruns; r++)
-        for (int k = 0; k < st->runs[r].nsteps; k++) {
-            const tui_step *s = &st->runs[r].steps[k];
+    for (int r = 0; r < tui_state_nruns(st); r++)
+        for (int k = 0; k < tui_state_run_at(st, r)->nsteps; k++) {
+            const tui_step *s = &tui_state_run_at(st, r)->steps[k];
             itmax = s->iter > itmax ? s->iter : itmax;
             if (s->kkt > 0 && isfinite(s->kkt)) {
                 lo = fmin(lo, floor(log10(s->kkt)));
@@ -266,9 +266,9 @@ void tui_panel_plot(const tui_state *st, tui_box b)
     if (lt >= lo && lt <= hi)
         for (int xd = 0; xd < 2 * w; xd += 3)
             tui_canvas_dot(&c, xd, (int)lround(PY(lt)), TUI_C_FAINT);
-    for (int r = 0; r < st->nruns; r++) {
-        const tui_run *run = &st->runs[r];
-        int role = r == st->nruns - 1 ? TUI_C_CURRENT : TUI_C_FAINT;
+    for (int r = 0; r < tui_state_nruns(st); r++) {
+        const tui_run *run = tui_state_run_at(st, r);
+        int role = r == tui_state_nruns(st) - 1 ? TUI_C_CURRENT : TUI_C_FAINT;
         double px = NAN, py = NAN;
         for (int k = 0; k < run->nsteps; k++) {
             double v = run->steps[k].kkt > 0 ? log10(run->steps[k].kkt) : lo;
@@ -295,7 +295,7 @@ void tui_panel_plot(const tui_state *st, tui_box b)
             break;
     }
     tui_put(b.y + b.h - 1, b.x + lw, TUI_C_LABEL, w, "0%*d", w - 1, itmax);
-    if (st->nruns > 1)
+    if (tui_state_nruns(st) > 1)
         tui_put(b.y + b.h - 1, b.x + lw + 3, TUI_C_FAINT, w - 8, "earlier runs faint");
 }
 
@@ -340,42 +340,31 @@ void tui_panel_mesh(const tui_state *st, tui_box b)
     double s = fmin((2.0 * w - 2) / fmax(x1 - x0, 1e-300), (4.0 * h - 2) / fmax(y1 - y0, 1e-300));
     tui_canvas c;
     tui_canvas_init(&c, w, h);
-    static const int tri[] = {0, 1, 1, 2, 2, 0};
-    static const int quad[] = {0, 1, 1, 2, 2, 3, 3, 0};
-    static const int tri6[] = {0, 3, 3, 1, 1, 4, 4, 2, 2, 5, 5, 0};
-    static const int tet[] = {0, 1, 1, 2, 2, 0, 0, 3, 1, 3, 2, 3};
-    static const int hex[] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 5, 6, 6, 7, 7, 4, 0, 4, 1, 5, 2, 6, 3, 7};
-    const int *edges;
-    int ne;
-    switch (mesh->etype) {
-    case CX_EL_TRI3: edges = tri, ne = 3; break;
-    case CX_EL_QUAD4: edges = quad, ne = 4; break;
-    case CX_EL_TRI6: edges = tri6, ne = 6; break;
-    case CX_EL_TET4: edges = tet, ne = 6; break;
-    default: edges = hex, ne = 12; break;
-    }
     /* 2D: every edge while they are at least 3 dots long on average, else
      * the outline (the edges of the surface facets); 3D: the surface */
     double len = 0;
-    int sampled = 0;
-    for (int e = 0; e < mesh->nelems && sampled < 4000; e += 1 + mesh->nelems / 2000)
+    int sampled = 0, seg[6][2];
+    for (int e = 0; dim == 2 && e < mesh->nelems && sampled < 4000; e += 1 + mesh->nelems / 2000) {
+        int ne = tui_meshview_elem_edges(mesh, e, seg);
         for (int k = 0; k < ne; k++, sampled++) {
-            const int *nd = mesh->conn + (size_t)mesh->npe * e;
-            int a = nd[edges[2 * k]], bb = nd[edges[2 * k + 1]];
+            int a = seg[k][0], bb = seg[k][1];
             len += s * hypot(P[2 * a] - P[2 * bb], P[2 * a + 1] - P[2 * bb + 1]);
         }
+    }
     if (dim == 2 && sampled && len / sampled >= 3) {
         for (int e = 0; e < mesh->nelems; e++) {
-            const int *nd = mesh->conn + (size_t)mesh->npe * e;
+            int ne = tui_meshview_elem_edges(mesh, e, seg);
             for (int k = 0; k < ne; k++) {
-                int a = nd[edges[2 * k]], bb = nd[edges[2 * k + 1]];
+                int a = seg[k][0], bb = seg[k][1];
                 tui_canvas_line(&c, (P[2 * a] - x0) * s, (y1 - P[2 * a + 1]) * s, (P[2 * bb] - x0) * s,
                                 (y1 - P[2 * bb + 1]) * s, TUI_C_FAINT);
             }
         }
     } else {
-        for (int k = 0; k < st->noutline; k++) {
-            int a = st->outline[2 * k], bb = st->outline[2 * k + 1];
+        int nout;
+        const int *out = tui_state_outline(st, &nout);
+        for (int k = 0; k < nout; k++) {
+            int a = out[2 * k], bb = out[2 * k + 1];
             tui_canvas_line(&c, (P[2 * a] - x0) * s, (y1 - P[2 * a + 1]) * s, (P[2 * bb] - x0) * s,
                             (y1 - P[2 * bb + 1]) * s, TUI_C_NORMAL);
         }
@@ -399,19 +388,19 @@ void tui_panel_runs(const tui_state *st, tui_box b)
     tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-14s %-7s %5s %9s %8s %6s  %s", "method", "law", "iter", "kkt", "time ms",
         "nK", "outcome");
     int rows = b.h - 2;
-    int first = st->nruns - rows;
+    int first = tui_state_nruns(st) - rows;
     if (first < 0)
         first = 0;
-    for (int r = first, y = b.y + 2; r < st->nruns; r++, y++) {
-        const tui_run *run = &st->runs[r];
+    for (int r = first, y = b.y + 2; r < tui_state_nruns(st); r++, y++) {
+        const tui_run *run = tui_state_run_at(st, r);
         const tui_step *s = run->nsteps ? &run->steps[run->nsteps - 1] : NULL;
         char kkt[24];
         fmt_num(kkt, sizeof kkt, s ? s->kkt : NAN, 9);
         int role = run->reason > 0 ? TUI_C_OK : run->reason < 0 ? TUI_C_ERROR : TUI_C_NORMAL;
-        if (r == st->nruns - 1 && run->reason == 0)
+        if (r == tui_state_nruns(st) - 1 && run->reason == 0)
             role = TUI_C_CURRENT;
         tui_put(y, b.x, role, b.w, "%-14.14s %-7s %5d %s %8.1f %6ld  %s", run->method, cx_friction_name(run->law),
             s ? s->iter : 0, kkt, s ? 1e3 * s->time : 0, s ? s->solves : 0,
-            run->reason ? cx_reason_str(run->reason) : r == st->nruns - 1 ? "current" : "stopped");
+            run->reason ? cx_reason_str(run->reason) : r == tui_state_nruns(st) - 1 ? "current" : "stopped");
     }
 }

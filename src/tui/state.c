@@ -1,10 +1,10 @@
-/* The explorer's state: scenes, the session, jobs (build a level, switch
- * method) on a worker thread, the snapshot panels draw from, and the
- * history of runs. No curses here. */
+/* The explorer's state: scenes, selections, the session, taking a job's
+ * result, and the snapshot panels draw from. The jobs are in job.c, the
+ * runs in history.c, the mesh view's geometry in meshview.c. No curses
+ * here. */
 #include "tui/tui_impl.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,23 +19,32 @@ void tui_msg(tui_state *st, int error, const char *fmt, ...)
     st->msg_error = error;
 }
 
-/* Fail fast on OOM in the program layer (STYLE.md C5): the loop's atexit
- * handler restores the terminal first. */
+/* Fail fast on OOM in the explorer (STYLE.md C5) through the program's
+ * hook, which restores the terminal first: the core never calls the loop. */
+static void (*_Atomic state_oom_hook)(const char *msg);
+
+void tui_on_oom(void (*hook)(const char *msg))
+{
+    state_oom_hook = hook;
+}
+
+_Noreturn void tui_oom(const char *msg)
+{
+    void (*hook)(const char *) = state_oom_hook;
+    if (hook)
+        hook(msg);
+    abort();
+}
+
 void *tui_xalloc(void *p, size_t size)
 {
     void *q = realloc(p, size ? size : 1);
-    if (!q) {
-        tui_fatal("out of memory");
-    }
+    if (!q)
+        tui_oom("out of memory");
     return q;
 }
 
 /* ---- selections ---------------------------------------------------------- */
-
-int tui_state_nfields(const tui_state *st)
-{
-    return TUI_F_PARAM0 + st->sel_params.n;
-}
 
 const cx_method *tui_state_sel_method(const tui_state *st)
 {
@@ -55,12 +64,12 @@ const char *tui_state_method_reason(const tui_state *st, int index, char *buf, s
     cx_diag_clear(&d);
     if (cx_method_check(m, &info, &d) != CX_OK)
         snprintf(buf, len, "%s", d.msg);
-    else if (index < TUI_MAX_METHODS && st->refused[index][st->sel_law][0])
+    else if (st->refused && st->refused[index][st->sel_law][0])
         snprintf(buf, len, "%s", st->refused[index][st->sel_law]);
     return buf;
 }
 
-static int state_method_index(const char *id)
+int tui_method_index(const char *id)
 {
     for (int i = 0; i < cx_method_count(); i++)
         if (strcmp(cx_method_at(i)->id, id) == 0)
@@ -73,7 +82,7 @@ static int state_method_index(const char *id)
 static void state_select_auto(tui_state *st)
 {
     const char *sets;
-    int i = state_method_index(cx_scene_auto_method(&st->scene, st->sel_level, NULL, st->sel_law, &sets));
+    int i = tui_method_index(cx_scene_auto_method(&st->scene, st->sel_level, NULL, st->sel_law, &sets));
     if (i < 0)
         return;
     st->sel_method = i;
@@ -93,7 +102,7 @@ static void state_select_scene_defaults(tui_state *st)
     st->sel_F = st->scene.F;
     st->sel_method = 0;
     for (int k = 0; k < st->scene.nmethods; k++) {
-        int i = state_method_index(st->scene.methods[k]);
+        int i = tui_method_index(st->scene.methods[k]);
         if (i >= 0) {
             st->sel_method = i;
             break;
@@ -110,38 +119,10 @@ static double state_sel_coef(const tui_state *st)
 
 /* ---- runs ---------------------------------------------------------------- */
 
-const tui_run *tui_state_run(const tui_state *st)
-{
-    return st->nruns ? &st->runs[st->nruns - 1] : NULL;
-}
-
-static void run_free(tui_run *r)
-{
-    free(r->steps);
-    memset(r, 0, sizeof *r);
-}
-
-static void state_clear_runs(tui_state *st)
-{
-    for (int i = 0; i < st->nruns; i++)
-        run_free(&st->runs[i]);
-    st->nruns = 0;
-}
-
-/* A new run for the session's current method; an empty current run is
- * replaced, the oldest run dropped when the table is full. */
+/* A new run for the session's current method (history.c keeps the runs). */
 static void state_new_run(tui_state *st)
 {
-    if (st->nruns && st->runs[st->nruns - 1].nsteps == 0)
-        run_free(&st->runs[--st->nruns]);
-    if (st->nruns == TUI_MAX_RUNS) {
-        run_free(&st->runs[0]);
-        memmove(st->runs, st->runs + 1, sizeof st->runs[0] * (TUI_MAX_RUNS - 1));
-        memset(&st->runs[TUI_MAX_RUNS - 1], 0, sizeof st->runs[0]);
-        st->nruns--;
-    }
-    tui_run *r = &st->runs[st->nruns++];
-    memset(r, 0, sizeof *r);
+    tui_run *r = tui_history_new_run(st->history);
     const cx_method *m = st->cur_method;
     snprintf(r->method, sizeof r->method, "%s", m ? m->id : "-");
     size_t at = 0;
@@ -160,29 +141,6 @@ static void state_new_run(tui_state *st)
         memset(st->flips, 0, sizeof(int) * (size_t)st->m);
     memset(st->status_hash, 0, sizeof st->status_hash);
     st->cycle_iter = 0;
-}
-
-static void run_append(tui_run *r, const cx_iterate *it)
-{
-    if (r->nsteps == r->cap) {
-        r->cap = r->cap ? 2 * r->cap : 64;
-        r->steps = tui_xalloc(r->steps, sizeof *r->steps * (size_t)r->cap);
-    }
-    tui_step *s = &r->steps[r->nsteps++];
-    s->iter = it->iter;
-    s->kkt = it->kkt;
-    s->own = it->own;
-    s->nfree = it->nfree;
-    s->ncontact = it->ncontact;
-    s->nstick = it->nstick;
-    s->nslip = it->nslip;
-    s->nchanged = it->nchanged;
-    s->inner = it->inner;
-    s->solves = it->counters.solves;
-    s->time = it->time;
-    s->step_time = it->step_time;
-    r->reason = it->reason;
-    r->factorizations = it->counters.factorizations;
 }
 
 /* ---- snapshot ------------------------------------------------------------ */
@@ -233,20 +191,6 @@ static void state_snapshot(tui_state *st)
     st->cache_size = cx_session_cache_size(s);
 }
 
-/* ---- the outline of the mesh --------------------------------------------- */
-
-/* The edges of the mesh's surface (mesh/surface.c): what the mesh view
- * draws when the mesh is too fine to show every edge. */
-static void state_outline(tui_state *st)
-{
-    const cx_mesh *mesh = st->info.mesh;
-    cx_free(st->outline);
-    st->outline = NULL;
-    st->noutline = 0;
-    if (mesh && cx_mesh_outline(mesh, &st->outline, &st->noutline) != CX_OK)
-        tui_fatal("out of memory");
-}
-
 /* After a job: what the session now is. */
 static void state_take_session(tui_state *st)
 {
@@ -260,90 +204,9 @@ static void state_take_session(tui_state *st)
     st->cur_coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
 }
 
-static void state_after_step(tui_state *st, int status, const cx_diag *d);
-
-/* ---- jobs ---------------------------------------------------------------- */
-
-/* Runs on the worker (or inline): touches only the job, the scene (read)
- * and, for a resolve, the session, which the main thread leaves alone. */
-static void job_run(tui_state *st)
-{
-    tui_job *j = &st->job;
-    cx_diag_clear(&j->diag);
-    j->status = CX_OK;
-    if (j->kind == TUI_JOB_BUILD) {
-        cx_problem *p = NULL;
-        atomic_store(&j->phase, TUI_PHASE_ASSEMBLE);
-        j->status = cx_scene_build(&st->scene, j->level, &p, &j->diag);
-        if (j->status == CX_OK)
-            j->status = cx_problem_set_friction(p, j->law, j->coef, &j->diag);
-        if (j->status == CX_OK)
-            j->status = cx_session_create(&j->session, &p, &j->diag);
-        cx_problem_destroy(&p);
-        if (j->status == CX_OK) {
-            atomic_store(&j->phase, TUI_PHASE_FACTORISE);
-            j->status = cx_session_set_method(j->session, j->method, &j->params, &j->opt, &j->diag);
-        }
-    } else if (j->kind == TUI_JOB_STEP) {
-        atomic_store(&j->phase, TUI_PHASE_STEP);
-        j->status = cx_solver_step(st->session, &j->diag);
-        if (j->status == CX_OK)   /* the mesh view draws the whole u */
-            j->status = cx_session_complete_iterate(st->session, &j->diag);
-    } else if (j->kind == TUI_JOB_RESOLVE) {
-        cx_session *s = st->session;
-        const cx_problem *p = cx_session_problem(s);
-        double coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
-        atomic_store(&j->phase, TUI_PHASE_FACTORISE);
-        cx_friction law0 = p->friction;
-        if (j->law != p->friction || j->coef != coef)
-            j->status = cx_session_set_friction(s, j->law, j->coef, &j->diag);
-        if (j->status == CX_OK)
-            j->status = cx_session_set_method(s, j->method, &j->params, &j->opt, &j->diag);
-        if (j->status != CX_OK && st->cur_method) {
-            /* refused (e.g. at init): the session goes back to what it was,
-             * so the explorer always has a method to step */
-            cx_session_set_friction(s, law0, coef, NULL);
-            cx_session_set_method(s, st->cur_method, &st->cur_params, &st->cur_opt, NULL);
-        }
-    }
-    atomic_store(&j->phase, TUI_PHASE_DONE);
-}
-
-static void *job_thread(void *arg)
-{
-    job_run(arg);
-    return NULL;
-}
-
 int tui_state_busy(const tui_state *st)
 {
     return st->job.kind != TUI_JOB_NONE;
-}
-
-static void job_start(tui_state *st, int kind)
-{
-    tui_job *j = &st->job;
-    j->kind = kind;
-    j->t0 = cx_clock_now();
-    j->level = st->sel_level;
-    j->method = tui_state_sel_method(st);
-    j->params = st->sel_params;
-    j->opt = st->sel_opt;
-    j->law = st->sel_law;
-    j->coef = state_sel_coef(st);
-    j->session = NULL;
-    atomic_store(&j->phase, TUI_PHASE_IDLE);
-    /* 'running' is kept: a run asked for during the job starts after it */
-    if (!st->sync) {
-        pthread_t *t = malloc(sizeof *t);
-        if (t && pthread_create(t, NULL, job_thread, st) == 0) {
-            st->worker = t;
-            return;
-        }
-        free(t);
-    }
-    job_run(st);
-    tui_state_poll(st);
 }
 
 /* What arrived during a job: changes first, then typed-ahead steps. */
@@ -363,17 +226,12 @@ static void state_after_job(tui_state *st)
 int tui_state_poll(tui_state *st)
 {
     tui_job *j = &st->job;
-    if (j->kind == TUI_JOB_NONE || atomic_load(&j->phase) != TUI_PHASE_DONE)
+    if (!tui_job_ended(st))
         return 0;
-    if (st->worker) {
-        pthread_join(*(pthread_t *)st->worker, NULL);
-        free(st->worker);
-        st->worker = NULL;
-    }
     int kind = j->kind;
     j->kind = TUI_JOB_NONE;
     if (kind == TUI_JOB_STEP) {
-        state_after_step(st, j->status, &j->diag);
+        tui_state_after_step(st, j->status, &j->diag);
         state_after_job(st);
         return 1;
     }
@@ -384,11 +242,11 @@ int tui_state_poll(tui_state *st)
             j->session = NULL;
             st->level = j->level;
             st->build_time = cx_clock_now() - j->t0;
-            state_clear_runs(st);
-            memset(st->refused, 0, sizeof st->refused);
+            tui_history_clear(st->history);
+            memset(st->refused, 0, sizeof st->refused[0] * (size_t)cx_method_count());
             st->m = -1;
             st->info = *cx_session_problem(st->session);
-            state_outline(st);
+            tui_meshview_update(&st->mesh_view, st->info.mesh);
         } else if (st->session) {
             /* the build failed: the old session stays, and so does its scene */
             st->scene = st->prev_scene;
@@ -402,11 +260,11 @@ int tui_state_poll(tui_state *st)
         state_take_session(st);
         /* a refused switch leaves the session as it was: show that */
         int refused = j->status == CX_EUNSUPPORTED && kind == TUI_JOB_RESOLVE;
-        int mi = refused ? state_method_index(j->method->id) : -1;
-        if (mi >= 0 && mi < TUI_MAX_METHODS)
+        int mi = refused ? tui_method_index(j->method->id) : -1;
+        if (mi >= 0)
             snprintf(st->refused[mi][j->law], CX_DIAG_LEN, "%s", j->diag.msg);
         if (j->status != CX_OK && st->cur_method) {
-            st->sel_method = state_method_index(st->cur_method->id);
+            st->sel_method = tui_method_index(st->cur_method->id);
             st->sel_params = st->cur_params;
             st->sel_law = st->cur_law;
             if (st->cur_law == CX_FRICTION_COULOMB)
@@ -479,7 +337,7 @@ void tui_state_apply(tui_state *st, int r)
             }
             state_select_scene_defaults(st);
         }
-        job_start(st, TUI_JOB_BUILD);
+        tui_job_start(st, TUI_JOB_BUILD);
         return;
     }
     if (!st->session)
@@ -492,12 +350,12 @@ void tui_state_apply(tui_state *st, int r)
         /* only options: the run goes on under them */
         cx_session_set_options(st->session, &st->sel_opt);
         st->cur_opt = st->sel_opt;
-        if (st->nruns)
-            st->runs[st->nruns - 1].tol = st->sel_opt.tol;
+        if (tui_state_nruns(st))
+            st->history->runs[st->history->nruns - 1].tol = st->sel_opt.tol;
         tui_msg(st, 0, "tolerance %.3g, iteration limit %d (run kept)", st->sel_opt.tol, st->sel_opt.max_iter);
         return;
     }
-    job_start(st, TUI_JOB_RESOLVE);
+    tui_job_start(st, TUI_JOB_RESOLVE);
 }
 
 /* ---- stepping ------------------------------------------------------------ */
@@ -520,7 +378,7 @@ void tui_state_step(tui_state *st)
     }
     /* the step runs as a job: a slow method or a large level never
      * freezes the screen */
-    job_start(st, TUI_JOB_STEP);
+    tui_job_start(st, TUI_JOB_STEP);
 }
 
 /* Chattering (peers.md §4 item 4): count each point's status changes, and
@@ -546,11 +404,11 @@ static void state_watch_cycles(tui_state *st, const tui_run *run)
 }
 
 /* After a step (main thread): the history, the snapshot, the outcome. */
-static void state_after_step(tui_state *st, int status, const cx_diag *d)
+void tui_state_after_step(tui_state *st, int status, const cx_diag *d)
 {
     const cx_iterate *it = cx_session_iterate(st->session);
-    tui_run *run = &st->runs[st->nruns - 1];
-    run_append(run, it);
+    tui_run *run = &st->history->runs[st->history->nruns - 1];
+    tui_history_append(run, it);
     state_snapshot(st);
     int seen = st->cycle_iter;
     state_watch_cycles(st, run);
@@ -599,28 +457,6 @@ void tui_state_reset(tui_state *st)
     tui_msg(st, 0, "%s starts again (nothing rebuilt)", st->cur_method->id);
 }
 
-/* ---- mesh view scale ---- */
-
-double tui_mesh_auto_scale(const tui_state *st)
-{
-    const cx_mesh *mesh = st->info.mesh;
-    if (!mesh || !st->uall)
-        return 1;
-    int dim = mesh->dim;
-    double size = 0, umax = 0;
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int k = 0; k < mesh->nnodes; k++)
-        for (int c = 0; c < dim; c++) {
-            lo[c] = fmin(lo[c], mesh->x[dim * k + c]);
-            hi[c] = fmax(hi[c], mesh->x[dim * k + c]);
-            umax = fmax(umax, fabs(st->uall[dim * k + c]));
-        }
-    for (int c = 0; c < dim; c++)
-        size = fmax(size, hi[c] - lo[c]);
-    /* the largest displacement drawn as 10% of the body */
-    return umax > 0 ? 0.1 * size / umax : 1;
-}
-
 /* ---- life ---------------------------------------------------------------- */
 
 int tui_state_init(tui_state *st, const char *scene, int level, const char *method, int law,
@@ -628,6 +464,9 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
 {
     memset(st, 0, sizeof *st);
     st->sync = sync;
+    st->history = tui_history_create();
+    st->refused = tui_xalloc(NULL, sizeof st->refused[0] * (size_t)(cx_method_count() + 1));
+    memset(st->refused, 0, sizeof st->refused[0] * (size_t)(cx_method_count() + 1));
     st->m = -1;
     snprintf(st->export_dir, sizeof st->export_dir, ".");
     cx_options_default(&st->sel_opt);
@@ -665,7 +504,7 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
     if (law >= 0)
         st->sel_law = (cx_friction)law;
     if (method) {
-        int i = state_method_index(method);
+        int i = tui_method_index(method);
         if (i < 0) {
             tui_state_clear(st);
             return cx_diag_set(d, CX_EINVAL, "unknown method '%s' (see 'signorini list')", method);
@@ -676,21 +515,17 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
         state_select_auto(st);   /* for the level and law asked for */
     }
     st->field = TUI_F_METHOD;
-    job_start(st, TUI_JOB_BUILD);
+    tui_job_start(st, TUI_JOB_BUILD);
     return CX_OK;
 }
 
 void tui_state_clear(tui_state *st)
 {
-    if (st->worker) {
-        /* a build cannot be interrupted: wait for it */
-        pthread_join(*(pthread_t *)st->worker, NULL);
-        free(st->worker);
-        st->worker = NULL;
-    }
-    cx_session_destroy(&st->job.session);
+    tui_job_clear(st);
     cx_session_destroy(&st->session);
-    state_clear_runs(st);
+    tui_history_destroy(&st->history);
+    free(st->refused);
+    tui_meshview_clear(&st->mesh_view);
     cx_free(st->scene_ids);
     free(st->status);
     free(st->changed);
@@ -698,7 +533,49 @@ void tui_state_clear(tui_state *st)
     free(st->hertz);
     free(st->slip_dir);
     free(st->flips);
-    cx_free(st->outline);
     free(st->uall);
     memset(st, 0, sizeof *st);
+}
+
+int tui_state_create(tui_state **st, const char *scene, int level, const char *method, int law,
+                     int sync, cx_diag *d)
+{
+    *st = tui_xalloc(NULL, sizeof **st);
+    int status = tui_state_init(*st, scene, level, method, law, sync, d);
+    if (status != CX_OK) {
+        free(*st);
+        *st = NULL;
+    }
+    return status;
+}
+
+void tui_state_destroy(tui_state **st)
+{
+    if (!st || !*st)
+        return;
+    tui_state_clear(*st);
+    free(*st);
+    *st = NULL;
+}
+
+/* ---- what the loop asks ------------------------------------------------------ */
+
+void tui_state_set_export_dir(tui_state *st, const char *dir)
+{
+    snprintf(st->export_dir, sizeof st->export_dir, "%s", dir);
+}
+
+int tui_state_running(const tui_state *st)
+{
+    return st->running;
+}
+
+int tui_state_idle(const tui_state *st)
+{
+    return !tui_state_busy(st) && !st->running && !st->pending;
+}
+
+double tui_state_step_age(const tui_state *st, double now)
+{
+    return st->job.kind == TUI_JOB_STEP ? now - st->job.t0 : -1;
 }

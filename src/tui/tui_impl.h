@@ -1,11 +1,189 @@
-/* Private to tui/: colour roles, the braille canvas, the terminal wrapper
- * (term.c, the only file that includes curses) and the panels (draw.c). */
+/* Private to tui/: the state's fields, the picker rows (actions.c), colour
+ * roles, the braille canvas, the terminal wrapper (term.c, the only file
+ * that includes curses) and the panels (draw.c, panels.c). */
 #ifndef TUI_IMPL_H
 #define TUI_IMPL_H
 
 #include "tui/tui.h"
+#include "tui/history.h"
+#include "tui/job.h"
+#include "tui/meshview.h"
 
 #include <stddef.h>
+
+/* ---- the picker rows (actions.c) ------------------------------------------ */
+
+/* Row indices: the fixed rows, then one per parameter of the selected
+ * method (all described by the TUI_F_PARAM0 row). */
+enum {
+    TUI_F_SCENE,
+    TUI_F_LEVEL,
+    TUI_F_FRICTION,
+    TUI_F_COEF,        /* Tresca slip bound or Coulomb F */
+    TUI_F_METHOD,
+    TUI_F_TOL,
+    TUI_F_MAXIT,
+    TUI_F_PARAM0
+};
+
+enum {
+    TUI_ROW_LIST,      /* a choice among items listed under the pickers (scene, method) */
+    TUI_ROW_CHOICE,    /* a choice cycled with left/right (friction law) */
+    TUI_ROW_NUMBER     /* a number (level, coefficient, tol, max iter, parameters) */
+};
+
+/* One row of the pickers: drawing, keys and value entry all read it. i is
+ * the parameter index for the parameter row, else 0. */
+typedef struct tui_row {
+    const char *label;     /* NULL: label_of */
+    int kind;              /* TUI_ROW_* */
+    const char *(*label_of)(const tui_state *st, int i);
+    void (*format)(const tui_state *st, int i, char *buf, size_t len);
+    int (*step)(tui_state *st, int i, int dir);               /* left -1, right +1: reactions */
+    int (*enter)(tui_state *st, int i, const char *text);     /* Enter on typed text: reactions */
+    /* why the row's value cannot be used now ("" if it can): drawn grey */
+    const char *(*greyed)(const tui_state *st, int i, char *why, size_t len);
+    /* the detail shown under the pickers: one line, then text wrapped ("" none) */
+    void (*describe)(const tui_state *st, int i, char *buf, size_t len);
+    /* TUI_ROW_LIST: the items, the selected one, item k's id and why it is greyed */
+    int (*count)(const tui_state *st);
+    int (*current)(const tui_state *st);
+    const char *(*item)(const tui_state *st, int k, char *why, size_t len);
+} tui_row;
+
+/* The descriptor of picker row f (*i: its parameter index). */
+const tui_row *tui_row_at(const tui_state *st, int f, int *i);
+/* Rows of the picker: TUI_F_PARAM0 + parameters of the selected method. */
+int tui_state_nfields(const tui_state *st);
+/* The label and the value of row f as text ("32", "tresca", "1e-10"). */
+const char *tui_field_label(const tui_state *st, int f);
+void tui_field_value(const tui_state *st, int f, char *buf, size_t len);
+
+/* ---- the state ------------------------------------------------------------ */
+
+struct tui_state {
+    /* scenes */
+    char (*scene_ids)[CX_SCENE_NAMELEN];
+    int nscenes;
+    cx_scene scene;           /* the scene of the session (or being built) */
+    cx_scene prev_scene;      /* the scene before a build, kept if it fails */
+    int level;                /* of the session */
+
+    /* the session (NULL until the first build ends) */
+    cx_session *session;
+
+    /* selections (what the pickers show; applied by tui_state_apply) */
+    int field;                /* TUI_F_* row with the cursor */
+    int sel_scene;            /* index in scene_ids */
+    int sel_level;
+    cx_friction sel_law;
+    double sel_slip, sel_F;   /* Tresca bound (traction) and Coulomb F */
+    int sel_method;           /* index in the registry */
+    /* methods the session's problem refused at init (e.g. K singular for a
+     * dual method), per registry entry and friction law: greyed with the
+     * reason, skipped by 'm', so that a refusal (and its failed
+     * factorisation) is not repeated; cx_method_count() rows */
+    char (*refused)[3][CX_DIAG_LEN];
+    cx_param_values sel_params;
+    cx_options sel_opt;
+
+    /* what the session now runs (copied after each job) */
+    cx_problem info;          /* shallow copy: sizes, geometry (never changes) */
+    int have_info;
+    const cx_method *cur_method;
+    cx_param_values cur_params;
+    cx_options cur_opt;
+    cx_friction cur_law;
+    double cur_coef;
+
+    /* running */
+    int running;              /* run to convergence, one step per tick */
+    int sync;                 /* run jobs inline (tests) */
+    tui_job job;
+    int pending;              /* reactions that arrived during a job */
+    int queued_steps;         /* step keys that arrived during a job */
+
+    /* what panels draw (copies, safe while a job runs) */
+    int m;                    /* contact points of the snapshot */
+    unsigned char *status, *changed;   /* m */
+    double *pressure;         /* m: lN / weight */
+    double *hertz;            /* m: analytical pressure (NaN if none) */
+    double *slip_dir;         /* 2m: tangential force direction in 3D (x, y) */
+    double *uall;             /* dim * nnodes displacement of every node */
+    int *flips;               /* m: status changes of each point in this run */
+    unsigned long long status_hash[3];  /* of the last three steps, newest first */
+    int cycle_iter;           /* iteration at which a 2-cycle was seen, 0 if none */
+    cx_counters cache;        /* the session's cache counters */
+    int cache_size;
+    double build_time;        /* seconds of the last build */
+
+    /* runs on this scene and level (history.c) */
+    tui_history *history;
+    /* the mesh view's geometry (meshview.c) */
+    tui_meshview mesh_view;
+
+    /* view */
+    int view;                 /* 0 convergence plot, 1 mesh (small terminals) */
+    double disp_scale;        /* mesh view displacement scale, 0 = auto */
+    int help;                 /* help overlay shown */
+    int editing;              /* text entry for the field under the cursor */
+    char edit[64];
+    int edit_len;
+    char export_dir[256];     /* where exports are written ("." by default) */
+
+    /* status line */
+    char msg[CX_DIAG_LEN];
+    int msg_error;            /* 0 information, 1 error, 2 warning */
+};
+
+const cx_method *tui_state_sel_method(const tui_state *st);
+/* Why method index cannot run this scene ("" if it can), for greying out. */
+const char *tui_state_method_reason(const tui_state *st, int index, char *buf, size_t len);
+/* The registry index of method id, -1 if none. */
+int tui_method_index(const char *id);
+
+/* Status line. */
+void tui_msg(tui_state *st, int error, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* After a step ends (state.c, called by tui_state_poll). */
+void tui_state_after_step(tui_state *st, int status, const cx_diag *d);
+
+/* The outline the mesh view draws (2 *n node pairs). */
+const int *tui_state_outline(const tui_state *st, int *n);
+/* The mesh view's automatic displacement scale: the largest displacement
+ * drawn as a tenth of the body (meshview.c). */
+double tui_mesh_auto_scale(const tui_state *st);
+
+/* ---- actions (actions.c) ---------------------------------------------------- */
+
+typedef int (*tui_action)(tui_state *st);
+
+typedef struct tui_binding {
+    int key;
+    const char *keyname;   /* as shown in the help */
+    tui_action action;
+    const char *help;
+} tui_binding;
+
+/* The key table (terminated by key 0), for the help overlay. */
+const tui_binding *tui_bindings(void);
+
+/* ---- export (export.c) -------------------------------------------------- */
+
+/* Write every run's steps as CSV and JSON to dir/signorini-SCENE-LlEVEL
+ * .csv/.json (each through a temporary file renamed into place). The
+ * names written go to csv/json. CX_EIO with the file name. */
+int tui_export(const tui_state *st, const char *dir, char *csv, char *json, size_t len, cx_diag *d);
+
+/* ---- rendering hook (actions.c) ----------------------------------------- */
+
+/* Render the current state to a PNG; the one place the explorer calls the
+ * renderer. Returns CX_EUNSUPPORTED while rendering is not in this build. */
+int tui_render_png(const tui_state *st, char *file, size_t len, cx_diag *d);
 
 /* Colour roles (STYLE.md C12), mapped to a scheme in term.c with a
  * monochrome fallback. On a canvas a higher role wins a shared cell. */
@@ -32,11 +210,11 @@ enum {
 
 /* ---- program helpers ------------------------------------------------------ */
 
-/* realloc or end the program (the terminal restored first). */
+/* realloc, or out of memory: the hook of tui_on_oom (the program restores
+ * the terminal first), else abort(). */
 void *tui_xalloc(void *p, size_t size);
-/* Restore the terminal, print "signorini: msg" and exit 1 (loop.c; a test
- * that links the state without loop.c gives its own). */
-void tui_fatal(const char *msg);
+/* Out of memory: the hook, else abort(); does not return. */
+_Noreturn void tui_oom(const char *msg);
 
 /* ---- braille canvas (canvas.c) --------------------------------------------- */
 
@@ -81,10 +259,6 @@ void tui_term_put(int y, int x, int role, const char *s, int maxw);
 void tui_term_show(void);
 
 /* ---- drawing (draw.c) --------------------------------------------------------- */
-
-/* (state.c) The mesh view's automatic displacement scale: the largest displacement
- * drawn as a tenth of the body. */
-double tui_mesh_auto_scale(const tui_state *st);
 
 /* Draw every panel from the state (through term.c). */
 void tui_draw(const tui_state *st, int rows, int cols, int utf8);

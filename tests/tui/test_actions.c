@@ -14,12 +14,6 @@
 #include <string.h>
 #include <unistd.h>
 
-void tui_fatal(const char *msg)
-{
-    fprintf(stderr, "fatal: %s\n", msg);
-    exit(1);
-}
-
 static int count_status(const tui_state *st, int a, int b)
 {
     int n = 0;
@@ -53,7 +47,7 @@ static void test_hertz(void)
     CX_CHECK(!tui_state_busy(&st));
     CX_CHECK(st.cur_method && strcmp(st.cur_method->id, "ssn-tresca") == 0);
     CX_CHECK(st.cache.factorizations == 1);
-    CX_CHECK(st.nruns == 1 && tui_state_run(&st)->nsteps == 0);
+    CX_CHECK(tui_state_nruns(&st) == 1 && tui_state_run(&st)->nsteps == 0);
     CX_CHECK(st.m == st.info.m && st.m > 0);
     /* Hertz's pressure is there for the profile, zero beyond b ~ 2.72 */
     CX_CHECK_NEAR(st.hertz[0], cx_scene_hertz_pressure(&st.scene, st.info.contact.x[0]), 1e-12, 0);
@@ -88,8 +82,8 @@ static void test_hertz(void)
     CX_CHECK_NEAR(st.sel_params.num[0], 2e-3, 1e-12, 0);
     tui_state_apply(&st, r);
     CX_CHECK_NEAR(st.cur_params.num[0], 2e-3, 1e-12, 0);
-    CX_CHECK(st.nruns == 2 && tui_state_run(&st)->nsteps == 0);
-    CX_CHECK(strstr(st.runs[1].params, "rho=0.002") != NULL);
+    CX_CHECK(tui_state_nruns(&st) == 2 && tui_state_run(&st)->nsteps == 0);
+    CX_CHECK(strstr(tui_state_run_at(&st, 1)->params, "rho=0.002") != NULL);
     CX_CHECK(st.cache.factorizations == 1);
 
     /* a bad typed value names the key and its range; nothing changes */
@@ -126,11 +120,11 @@ static void test_hertz(void)
     r = tui_key(&st, 'f');
     CX_CHECK(st.sel_law == CX_FRICTION_COULOMB);
     CX_CHECK(strstr(tui_state_method_reason(&st, st.sel_method, reason, sizeof reason), "Coulomb") != NULL);
-    int runs_before = st.nruns;
+    int runs_before = tui_state_nruns(&st);
     tui_state_apply(&st, r);
     CX_CHECK(st.cur_law == CX_FRICTION_TRESCA && st.sel_law == CX_FRICTION_TRESCA);
     CX_CHECK(st.msg_error && strstr(st.msg, "Coulomb") != NULL);
-    CX_CHECK(st.nruns == runs_before);
+    CX_CHECK(tui_state_nruns(&st) == runs_before);
     CX_CHECK(st.cache.factorizations == 1);
 
     /* the method row: 'm' goes to the next method that fits. A method may
@@ -156,22 +150,22 @@ static void test_hertz(void)
 
     /* the tolerance: options only, the run goes on */
     tui_key(&st, 's');
-    runs_before = st.nruns;
+    runs_before = tui_state_nruns(&st);
     int steps_before = tui_state_run(&st)->nsteps;
     st.field = TUI_F_TOL;
     r = tui_key(&st, TUI_KEY_LEFT);
     CX_CHECK(r == (TUI_REDRAW | TUI_RESOLVE));
     tui_state_apply(&st, r);
     CX_CHECK_NEAR(st.cur_opt.tol, 1e-11, 1e-12, 0);
-    CX_CHECK(st.nruns == runs_before && tui_state_run(&st)->nsteps == steps_before);
+    CX_CHECK(tui_state_nruns(&st) == runs_before && tui_state_run(&st)->nsteps == steps_before);
 
     /* export: every step of every run, CSV and JSON, no NaN */
     char dir[] = "/tmp/tui_export_XXXXXX", csv[512], json[512];
     CX_CHECK(mkdtemp(dir) != NULL);
     CX_CHECK_OK(tui_export(&st, dir, csv, json, sizeof csv, &d));
     int total = 0;
-    for (int k = 0; k < st.nruns; k++)
-        total += st.runs[k].nsteps;
+    for (int k = 0; k < tui_state_nruns(&st); k++)
+        total += tui_state_run_at(&st, k)->nsteps;
     FILE *f = fopen(csv, "r");
     int lines = 0, ch;
     while (f && (ch = fgetc(f)) != EOF)
@@ -227,7 +221,7 @@ static void test_hertz(void)
     CX_CHECK(r == (TUI_REDRAW | TUI_REASSEMBLE));
     tui_state_apply(&st, r);
     CX_CHECK(st.level == 16 && st.info.n > dofs);
-    CX_CHECK(st.nruns == 1 && st.cache.factorizations == 1);
+    CX_CHECK(tui_state_nruns(&st) == 1 && st.cache.factorizations == 1);
 
     /* help, quit */
     CX_CHECK(tui_key(&st, '?') == TUI_REDRAW && st.help);
@@ -254,16 +248,18 @@ static void test_slider(void)
     CX_CHECK(strcmp(st.scene.id, "slider") == 0 && st.level == st.scene.level);
     CX_CHECK(st.cur_law == CX_FRICTION_TRESCA);
     /* the mesh view's outline of the 32 x 8 quad grid: its 2 (32 + 8) boundary edges */
-    CX_CHECK(st.noutline == 2 * (32 + 8));
+    int noutline;
+    tui_state_outline(&st, &noutline);
+    CX_CHECK(noutline == 2 * (32 + 8));
     run_to_end(&st, 60);
     CX_CHECK(tui_state_run(&st)->reason > 0);
     /* the slider sticks in the middle and slips at the edges */
     CX_CHECK(count_status(&st, CX_PT_STICK, CX_PT_STICK) > 0);
     CX_CHECK(count_status(&st, CX_PT_SLIP_POS, CX_PT_SLIP_NEG) > 0);
-    CX_CHECK(st.nruns == 1);
+    CX_CHECK(tui_state_nruns(&st) == 1);
     /* reset: a new run, nothing rebuilt */
     tui_key(&st, 'x');
-    CX_CHECK(st.nruns == 2 && tui_state_run(&st)->nsteps == 0 && st.cache.factorizations == 1);
+    CX_CHECK(tui_state_nruns(&st) == 2 && tui_state_run(&st)->nsteps == 0 && st.cache.factorizations == 1);
     tui_state_clear(&st);
 
     /* an unknown scene or method at start is an error with the reason */

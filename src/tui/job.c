@@ -1,0 +1,108 @@
+/* The explorer's jobs: a build, a switch of method or friction, or one
+ * step, on a worker thread (inline in the tests). No curses here. */
+#include "tui/tui_impl.h"
+
+#include <pthread.h>
+#include <stdlib.h>
+
+/* Runs on the worker (or inline): touches only the job, the scene (read)
+ * and, for a resolve, the session, which the main thread leaves alone. */
+static void job_run(tui_state *st)
+{
+    tui_job *j = &st->job;
+    cx_diag_clear(&j->diag);
+    j->status = CX_OK;
+    if (j->kind == TUI_JOB_BUILD) {
+        cx_problem *p = NULL;
+        atomic_store(&j->phase, TUI_PHASE_ASSEMBLE);
+        j->status = cx_scene_build(&st->scene, j->level, &p, &j->diag);
+        if (j->status == CX_OK)
+            j->status = cx_problem_set_friction(p, j->law, j->coef, &j->diag);
+        if (j->status == CX_OK)
+            j->status = cx_session_create(&j->session, &p, &j->diag);
+        cx_problem_destroy(&p);
+        if (j->status == CX_OK) {
+            atomic_store(&j->phase, TUI_PHASE_FACTORISE);
+            j->status = cx_session_set_method(j->session, j->method, &j->params, &j->opt, &j->diag);
+        }
+    } else if (j->kind == TUI_JOB_STEP) {
+        atomic_store(&j->phase, TUI_PHASE_STEP);
+        j->status = cx_solver_step(st->session, &j->diag);
+        if (j->status == CX_OK)   /* the mesh view draws the whole u */
+            j->status = cx_session_complete_iterate(st->session, &j->diag);
+    } else if (j->kind == TUI_JOB_RESOLVE) {
+        cx_session *s = st->session;
+        const cx_problem *p = cx_session_problem(s);
+        double coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
+        atomic_store(&j->phase, TUI_PHASE_FACTORISE);
+        cx_friction law0 = p->friction;
+        if (j->law != p->friction || j->coef != coef)
+            j->status = cx_session_set_friction(s, j->law, j->coef, &j->diag);
+        if (j->status == CX_OK)
+            j->status = cx_session_set_method(s, j->method, &j->params, &j->opt, &j->diag);
+        if (j->status != CX_OK && st->cur_method) {
+            /* refused (e.g. at init): the session goes back to what it was,
+             * so the explorer always has a method to step */
+            cx_session_set_friction(s, law0, coef, NULL);
+            cx_session_set_method(s, st->cur_method, &st->cur_params, &st->cur_opt, NULL);
+        }
+    }
+    atomic_store(&j->phase, TUI_PHASE_DONE);
+}
+
+static void *job_thread(void *arg)
+{
+    job_run(arg);
+    return NULL;
+}
+
+void tui_job_start(tui_state *st, int kind)
+{
+    tui_job *j = &st->job;
+    j->kind = kind;
+    j->t0 = cx_clock_now();
+    j->level = st->sel_level;
+    j->method = tui_state_sel_method(st);
+    j->params = st->sel_params;
+    j->opt = st->sel_opt;
+    j->law = st->sel_law;
+    j->coef = st->sel_law == CX_FRICTION_COULOMB ? st->sel_F : st->sel_slip;
+    j->session = NULL;
+    atomic_store(&j->phase, TUI_PHASE_IDLE);
+    /* 'running' is kept: a run asked for during the job starts after it */
+    if (!st->sync) {
+        pthread_t *t = malloc(sizeof *t);
+        if (t && pthread_create(t, NULL, job_thread, st) == 0) {
+            j->worker = t;
+            return;
+        }
+        free(t);
+    }
+    job_run(st);
+    tui_state_poll(st);
+}
+
+int tui_job_ended(tui_state *st)
+{
+    tui_job *j = &st->job;
+    if (j->kind == TUI_JOB_NONE || atomic_load(&j->phase) != TUI_PHASE_DONE)
+        return 0;
+    if (j->worker) {
+        pthread_join(*(pthread_t *)j->worker, NULL);
+        free(j->worker);
+        j->worker = NULL;
+    }
+    return 1;
+}
+
+void tui_job_clear(tui_state *st)
+{
+    tui_job *j = &st->job;
+    if (j->worker) {
+        /* a build cannot be interrupted: wait for it */
+        pthread_join(*(pthread_t *)j->worker, NULL);
+        free(j->worker);
+        j->worker = NULL;
+    }
+    cx_session_destroy(&j->session);
+}

@@ -1,0 +1,44 @@
+/* The explorer's jobs (job.c): building a level, switching method or
+ * friction, and one step run off the UI thread on a worker (inline in the
+ * tests). While a job runs the main thread leaves the session alone and
+ * draws from the state's copies. */
+#ifndef TUI_JOB_H
+#define TUI_JOB_H
+
+#include "tui/tui.h"
+
+#include <stdatomic.h>
+
+enum { TUI_JOB_NONE, TUI_JOB_BUILD, TUI_JOB_RESOLVE, TUI_JOB_STEP };
+enum { TUI_PHASE_IDLE, TUI_PHASE_ASSEMBLE, TUI_PHASE_FACTORISE, TUI_PHASE_STEP, TUI_PHASE_DONE };
+
+typedef struct tui_job {
+    int kind;
+    atomic_int phase;      /* TUI_PHASE_*, written by the worker */
+    double t0;             /* when it started */
+    int status;
+    cx_diag diag;
+    /* inputs */
+    int level;
+    const cx_method *method;
+    cx_param_values params;
+    cx_options opt;
+    cx_friction law;
+    double coef;
+    /* output of a build */
+    cx_session *session;
+    void *worker;          /* pthread_t *, when a worker thread runs */
+} tui_job;
+
+/* Start a job of kind on the selections (a worker thread, or inline when
+ * the state is sync or no thread can start; inline, the result is taken
+ * at once through tui_state_poll). */
+void tui_job_start(tui_state *st, int kind);
+/* If the job has ended: join its worker and return 1 (the result is in
+ * st->job). */
+int tui_job_ended(tui_state *st);
+/* Wait for the worker (a build cannot be interrupted) and drop a built
+ * session nobody took. */
+void tui_job_clear(tui_state *st);
+
+#endif

@@ -1,0 +1,21 @@
+/* The mesh view's geometry (meshview.c): the outline of the body (the
+ * edges of its surface, from mesh/surface.c), the edges of one element,
+ * and the automatic displacement scale. Drawing is in panels.c. */
+#ifndef TUI_MESHVIEW_H
+#define TUI_MESHVIEW_H
+
+#include "tui/tui.h"
+
+typedef struct tui_meshview {
+    int *outline;          /* 2 noutline node pairs */
+    int noutline;
+} tui_meshview;
+
+/* The outline of mesh (NULL: none). */
+void tui_meshview_update(tui_meshview *v, const cx_mesh *mesh);
+void tui_meshview_clear(tui_meshview *v);
+/* The segments of a 2D element's edges as node pairs (TRI6 edges split at
+ * their mid nodes); returns their count (at most 6; 0 in 3D). */
+int tui_meshview_elem_edges(const cx_mesh *mesh, int e, int seg[6][2]);
+
+#endif
