@@ -91,10 +91,18 @@ typedef struct cx_scene {
     double hertz_P, hertz_R;
 } cx_scene;
 
-/* Read and check a scene file. CX_EIO if it cannot be read, CX_EINVAL with
- * "file:line: ..." for any bad content (the first error only). Sets inih's
- * option globals (Debian): not to be called from two threads at once. */
+/* Read and check a scene file: a regular file or a pipe of at most 1 MiB
+ * (CX_EINVAL beyond), read whole. CX_EIO if it cannot be read (or is a
+ * device or a directory), CX_EINVAL with "file:line: ..." for any bad
+ * content (the first error only): NUL bytes and control characters but
+ * tabs, junk after a section header, unknown keys, values out of range
+ * (reals within +-1e30, positive scales from 1e-30). Sets inih's option
+ * globals (Debian): not to be called from two threads at once. */
 int cx_scene_load(cx_scene *s, const char *path, cx_diag *d);
+
+/* The same for a scene held in memory: len bytes of text (not
+ * NUL-terminated; a NUL among them is refused), named path in messages. */
+int cx_scene_parse(cx_scene *s, const char *path, const char *text, size_t len, cx_diag *d);
 
 /* Resolve a scene id (or a path to an .ini) to a path; CX_EINVAL
  * "unknown scene 'x' (see 'signorini list')". */
