@@ -792,18 +792,31 @@ static int ld_header(ld_state *L, const char *str)
 /* ---- inih's callbacks ------------------------------------------------------- */
 
 /* A line's bytes: a scene is text. Tabs, and a CR ending the line, are the
- * only control characters; a NUL anywhere is refused (see the top). */
+ * only control characters; a NUL anywhere is refused (see the top). The
+ * key is named when the bad byte follows "key =". */
 static int ld_check_bytes(ld_state *L, const char *line, size_t n)
 {
     for (size_t k = 0; k < n; k++) {
         unsigned char c = (unsigned char)line[k];
         if (c == '\t' || (c == '\r' && k + 1 == n) || (c >= 0x20 && c != 0x7f))
             continue;
+        char what[48], key[72] = "";
+        const char *eq = memchr(line, '=', k);
+        if (eq) {
+            const char *a = line, *b = eq;
+            while (a < b && isspace((unsigned char)*a))
+                a++;
+            while (b > a && isspace((unsigned char)b[-1]))
+                b--;
+            if (b > a)
+                snprintf(key, sizeof key, "key '%.*s': ", (int)(b - a < 48 ? b - a : 48), a);
+        }
         if (c == 0)
-            return ld_error(L, L->line, L->line, "NUL byte in column %zu (a scene file is text)",
-                            k + 1);
-        return ld_error(L, L->line, L->line,
-                        "control character 0x%02x in column %zu (a scene file is text)", c, k + 1);
+            snprintf(what, sizeof what, "NUL byte");
+        else
+            snprintf(what, sizeof what, "control character 0x%02x", c);
+        return ld_error(L, L->line, L->line, "%s%s in column %zu (a scene file is text)", key,
+                        what, k + 1);
     }
     return CX_OK;
 }
