@@ -338,8 +338,11 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     }
     const cx_problem *cp = cx_session_problem(s);
     if (!a.json && !a.quiet) {
-        printf("%s level %d: %dD, %d dofs, %d contact points; %s, friction %s\n", sc.id,
-               a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id,
+        char clamped[32] = "";   /* points of the contact boundary a support holds */
+        if (cp->contact.nclamped > 0)
+            snprintf(clamped, sizeof clamped, ", %d clamped", cp->contact.nclamped);
+        printf("%s level %d: %dD, %d dofs, %d contact points%s; %s, friction %s\n", sc.id,
+               a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, clamped, m->id,
                cx_friction_name(cp->friction));
         printf("  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
     }

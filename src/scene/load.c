@@ -439,6 +439,7 @@ static int ld_finish_mesh(ld_state *L)
     cx_scene *s = L->s;
     int dim = s->dim, g = 0, el = dim == 2 ? CX_EL_TRI3 : CX_EL_HEX8;
 
+    s->line_mesh = L->sec.line;
     CX_TRY(ld_choice(L, "generator", ld_generators, 0, 4, ld_generators, &g));
     if (ld_generator_dim[g] != dim)
         return ld_bad(L, "generator", "generator '%s' needs dim %d (the scene has dim %d)",
@@ -497,6 +498,7 @@ static int ld_finish_material(ld_state *L)
 {
     cx_scene *s = L->s;
     int dim = s->dim, model = dim == 2 ? CX_PLANE_STRAIN : CX_SOLID;
+    s->line_material = L->sec.line;
     CX_TRY(ld_choice(L, "model", ld_models, dim == 2 ? 0 : 2, dim == 2 ? 1 : 2,
                      dim == 2 ? "plane_strain|plane_stress (dim 2)" : "solid (dim 3)", &model));
     s->mat.model = (cx_model)model;
@@ -512,6 +514,8 @@ static int ld_finish_traction(ld_state *L)
     int dim = s->dim;
     char what[64];
     memset(t, 0, sizeof *t);
+    strcpy(t->name, L->sec.name);
+    t->line = L->sec.line;
     CX_TRY(ld_boundary(L, t->boundary));
     CX_TRY(ld_vector(L, "t", dim, NULL, t->t.t0));
     snprintf(what, sizeof what, " (the %dx%d matrix G, row by row)", dim, dim);
@@ -527,6 +531,8 @@ static int ld_finish_support(ld_state *L)
     int dim = s->dim, fix = 0;
     double value[3] = {0, 0, 0};
     memset(sp, 0, sizeof *sp);
+    strcpy(sp->name, L->sec.name);
+    sp->line = L->sec.line;
     CX_TRY(ld_boundary(L, sp->boundary));
     CX_TRY(ld_choice(L, "fix", ld_fixes, 0, 7, ld_fixes, &fix));
     unsigned comps = ld_fix_comps[fix] & ((1u << dim) - 1);
@@ -579,6 +585,7 @@ static int ld_finish_contact(ld_state *L)
     cx_obstacle *ob = &s->obstacle;
     int dim = s->dim, kind = 0;
 
+    s->line_contact = L->sec.line;
     CX_TRY(ld_boundary(L, s->contact_boundary));
     if (ld_value(L, "master"))
         return ld_finish_contact_bodies(L);
