@@ -1,8 +1,10 @@
 """The program on bad input bytes and out-of-range values (issue 20): each
 bad scene gives exit 1 and one printable line on stderr naming the file, the
 line and the key, and nothing on stdout (so no NaN or Inf); /dev/zero, an
-oversized file and an endless pipe end at once with one line. Runs in
+oversized file and an endless pipe end at once with one line; the prism
+counts 40 contact points and 5 clamped, and pdas solves it. Runs in
 tests/scene (the paths in the messages are relative to it)."""
+import json
 import os
 import re
 import subprocess
@@ -83,5 +85,16 @@ code, out, err = run_bytes(["solve", "slider", "--method", "\x1b[2J"])
 one_printable_line(code, out, err, "--method: ", "unknown method '\\x1b[2J'")
 code, out, err = run_bytes(["solve", "x\x1b]0;t\x07.ini"])
 one_printable_line(code, out, err, "x\\x1b]0;t\\x07.ini: ", "cannot open")
+
+# contact points are the points with a free dof (paper 001, Table 1: 40 at
+# level 2); pdas, which needs a free dof in every contact row, solves it
+code, out, err = run_bytes(["solve", "prism", "--level", "2"])
+check(code == 0 and b"600 dofs, 40 contact points, 5 clamped;" in out, f"prism summary: {out[:200]!r}")
+check(b"contact: 40 of 40 points" in out, f"prism contact line: {out!r}")
+code, out, err = run_bytes(["solve", "prism", "--level", "2", "--method", "pdas", "--friction", "none",
+                            "--json"])
+r = json.loads(out) if code == 0 else {}
+check(r.get("contact_points") == 40 and r.get("converged") is True and r.get("kkt_error", 1) <= 1e-10,
+      f"pdas on prism: {code} {err!r} {r.get('contact_points')} {r.get('kkt_error')}")
 
 finish("scene_input_cli")
