@@ -1,12 +1,15 @@
 #!/bin/sh
 # Install what signorini needs on Debian 12 (when missing), then configure
 # and build it in ./build. Safe to run again: it only does what is missing.
+# clang and libclang-rt-14-dev (libclang_rt.fuzzer, and the sanitizer
+# runtimes) are for CI's fuzzing (tests/fuzz/run.sh), not for the build.
 set -eu
 cd "$(dirname "$0")/.."
 
 packages="build-essential meson ninja-build pkg-config python3 \
 libsuitesparse-dev libopenblas0 liblapack-dev libinih-dev \
-libncurses-dev libosmesa6-dev libpng-dev libcairo2-dev fonts-dejavu-core tmux python3-vtk9"
+libncurses-dev libosmesa6-dev libpng-dev libcairo2-dev fonts-dejavu-core tmux \
+python3-vtk9 clang libclang-rt-14-dev"
 
 missing=""
 for p in $packages; do

@@ -50,6 +50,8 @@ int main(int argc, char **argv)
         printf("signorini %s\n", CX_VERSION);
         return CX_EXIT_OK;
     }
-    fprintf(stderr, "signorini: unknown command '%s' (see 'signorini --help')\n", cmd);
+    char safe[256];
+    fprintf(stderr, "signorini: unknown command '%s' (see 'signorini --help')\n",
+            cx_escape(safe, sizeof safe, cmd, strlen(cmd)));
     return CX_EXIT_ERROR;
 }

@@ -6,6 +6,7 @@
 
 #include "base/status.h"
 #include "base/diag.h"
+#include "base/escape.h"
 #include "base/alloc.h"
 #include "base/param.h"
 #include "base/parse.h"

@@ -1,4 +1,5 @@
 #include "base/diag.h"
+#include "base/escape.h"
 #include "base/status.h"
 
 #include <stdarg.h>
@@ -16,14 +17,17 @@ void cx_diag_clear(cx_diag *d)
 int cx_diag_set(cx_diag *d, int status, const char *fmt, ...)
 {
     if (d) {
+        char raw[CX_DIAG_LEN];
         va_list ap;
         va_start(ap, fmt);
-        vsnprintf(d->msg, sizeof d->msg, fmt, ap);
+        vsnprintf(raw, sizeof raw, fmt, ap);
         va_end(ap);
-        /* one line: a newline in a value must not break the contract */
-        for (char *c = d->msg; *c; c++)
+        /* one printable line: a newline (read as a space) or a terminal
+         * escape quoted from the input must not break the contract */
+        for (char *c = raw; *c; c++)
             if (*c == '\n' || *c == '\r')
                 *c = ' ';
+        cx_escape(d->msg, sizeof d->msg, raw, strlen(raw));
         d->status = status;
     }
     return status;
@@ -39,7 +43,9 @@ int cx_diag_prefix(cx_diag *d, const char *fmt, ...)
     vsnprintf(head, sizeof head, fmt, ap);
     va_end(ap);
     memcpy(old, d->msg, sizeof old);
-    snprintf(d->msg, sizeof d->msg, "%.200s: %.300s", head, old);   /* fits: no truncation */
+    char raw[CX_DIAG_LEN];
+    snprintf(raw, sizeof raw, "%.200s: %.300s", head, old);   /* fits: no truncation */
+    cx_escape(d->msg, sizeof d->msg, raw, strlen(raw));
     return d->status;
 }
 

@@ -17,7 +17,8 @@ typedef struct cx_diag {
 void cx_diag_clear(cx_diag *d);
 
 /* Format a message into d (if d is not NULL) and return status, so that a
- * failure reads: return cx_diag_set(d, CX_EINVAL, "...", ...); */
+ * failure reads: return cx_diag_set(d, CX_EINVAL, "...", ...); bytes a
+ * terminal would act on (newlines, ESC, ...) come out escaped (cx_escape). */
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif

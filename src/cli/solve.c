@@ -329,9 +329,12 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     const cx_problem *cp = cx_session_problem(s);
     solve_running = s;   /* from here Ctrl-C cancels the run (the header may be seen first) */
     if (!a.json && !a.quiet) {
-        fprintf(summary, "%s level %d: %dD, %d dofs, %d contact points; %s%s, friction %s\n", sc.id,
-                a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, m->id, is_auto ? " (auto)" : "",
-                cx_friction_name(cp->friction));
+        char clamped[32] = "";   /* points of the contact boundary a support holds */
+        if (cp->contact.nclamped > 0)
+            snprintf(clamped, sizeof clamped, ", %d clamped", cp->contact.nclamped);
+        fprintf(summary, "%s level %d: %dD, %d dofs, %d contact points%s; %s%s, friction %s\n", sc.id,
+                a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, clamped, m->id,
+                is_auto ? " (auto)" : "", cx_friction_name(cp->friction));
         fprintf(summary, "  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
         fflush(summary);   /* the run may be long: show where it is */
     }

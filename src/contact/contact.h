@@ -41,7 +41,9 @@ int cx_obstacle_from_name(const char *name);        /* -1 if unknown */
 
 typedef struct cx_contact_set {
     int dim;
-    int m;               /* contact points */
+    int m;               /* contact points: points with a free dof in the normal direction */
+    int nclamped;        /* points of the contact boundary left out: their normal
+                            displacement is prescribed (cx_contact_drop_clamped) */
     int nall;            /* columns of N and T */
     int *node;           /* m: mesh node of the point (the slave node) */
     double *x;           /* dim * m: its position */
@@ -61,6 +63,12 @@ typedef struct cx_contact_set {
 int cx_contact_from_obstacle(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *b,
                              const cx_obstacle *ob, cx_diag *d);
 void cx_contact_clear(cx_contact_set *cs);
+
+/* Remove the clamped points of cs: those whose row of N touches no free
+ * dof of map (a support prescribes their normal displacement, e.g. the
+ * clamped face's edge on the contact face of paper 001's prism). They are
+ * counted in cs->nclamped; the other points keep their order. CX_ENOMEM. */
+int cx_contact_drop_clamped(cx_contact_set *cs, const cx_dofmap *map);
 
 /* Two-body node-to-segment rows (paper 000 §3, 2D, 2-node edges): one
  * contact point per node of the slave boundary that has a free dof in map

@@ -1,7 +1,7 @@
 /* Contact rows of a masonry wall (paper 003 §2, §5): Signorini points on
  * the settlement part of the ground, and frictionless node-to-node rows
  * [u_N] <= 0 between the coincident nodes of neighbouring bodies. */
-#include "contact/contact.h"
+#include "contact/contact_impl.h"
 #include "fem/fem.h"
 
 #include <math.h>
@@ -103,12 +103,13 @@ static int cm_pairs(const cx_mesh *m, const cx_boundary *jb, cm_pair **out, int 
     return CX_OK;
 }
 
-/* Signorini nodes: on settle, not on fixed, ordered by x; lumped weights. */
+/* Signorini nodes: on settle, not on fixed, ordered by x; how many were
+ * left out for fixed. */
 static int cm_signorini(const cx_mesh *m, const cx_boundary *settle, const cx_boundary *fixed,
-                        int **nodes, double **weight, int *count)
+                        int **nodes, int *count, int *nfixed)
 {
     int *sn = NULL, *fn = NULL, ns = 0, nfix = 0;
-    *nodes = NULL, *weight = NULL, *count = 0;
+    *nodes = NULL, *count = 0, *nfixed = 0;
     CX_TRY(cx_boundary_nodes(settle, &sn, &ns));
     if (cx_boundary_nodes(fixed, &fn, &nfix)) {
         cx_free(sn);
@@ -122,39 +123,19 @@ static int cm_signorini(const cx_mesh *m, const cx_boundary *settle, const cx_bo
             sn[keep++] = sn[a];
     }
     cx_free(fn);
-    double *w = CX_NEW(double, keep);
-    if (!w) {
+    /* by x; ties keep node order (the key's id is the node) */
+    cx_sort_key *order = CX_NEW(cx_sort_key, keep > 0 ? keep : 1);
+    if (!order) {
         cx_free(sn);
         return CX_ENOMEM;
     }
-    for (int f = 0; f < settle->nfacets; f++) {
-        double xf[6], wf[3];
-        const int *fa = settle->facets + 3 * f;
-        for (int a = 0; a < 3; a++)
-            memcpy(xf + 2 * a, m->x + 2 * fa[a], 2 * sizeof(double));
-        cx_fem_facet_lumped(2, 3, xf, wf);
-        for (int a = 0; a < 3; a++) {
-            for (int q = 0; q < keep; q++)
-                if (sn[q] == fa[a])
-                    w[q] += wf[a];
-        }
-    }
-    /* by x; the weights follow their nodes through the sort: the key's id
-     * is the position in sn (ascending node ids, so ties stay in node order) */
-    cx_sort_key *order = CX_NEW(cx_sort_key, keep);
-    double *ws = CX_NEW(double, keep);
-    int *ns2 = CX_NEW(int, keep);
-    if (!order || !ws || !ns2) {
-        cx_free(order), cx_free(ws), cx_free(ns2), cx_free(w), cx_free(sn);
-        return CX_ENOMEM;
-    }
     for (int q = 0; q < keep; q++)
-        order[q] = (cx_sort_key){{m->x[2 * sn[q]], 0, 0}, q};
+        order[q] = (cx_sort_key){{m->x[2 * sn[q]], 0, 0}, sn[q]};
     cx_sort_keys(order, (size_t)keep);
     for (int q = 0; q < keep; q++)
-        ns2[q] = sn[order[q].id], ws[q] = w[order[q].id];
-    cx_free(order), cx_free(w), cx_free(sn);
-    *nodes = ns2, *weight = ws, *count = keep;
+        sn[q] = order[q].id;
+    cx_free(order);
+    *nodes = sn, *count = keep, *nfixed = ns - keep;
     return CX_OK;
 }
 
@@ -166,35 +147,31 @@ int cx_contact_masonry(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *
     if (m->dim != 2 || settle->npf != 3 || fixed->npf != 3 || joints->npf != 3)
         return cx_diag_set(d, CX_EINVAL, "masonry contact: needs a 2D P2 mesh (3-node edges)");
     cm_pair *pairs = NULL;
-    int *sn = NULL, ns = 0, np = 0, st;
-    double *sw = NULL;
+    int *sn = NULL, *pos = NULL, ns = 0, np = 0, nfixed = 0, st;
     CX_TRY(cm_pairs(m, joints, &pairs, &np, d));
-    if ((st = cm_signorini(m, settle, fixed, &sn, &sw, &ns))) {
+    if ((st = cm_signorini(m, settle, fixed, &sn, &ns, &nfixed))) {
         cx_free(pairs);
         return cx_diag_set(d, st, "out of memory building Signorini rows");
     }
     int count = ns + np;
-    cs->dim = 2;
-    cs->m = count;
-    cs->nall = 2 * m->nnodes;
-    cs->node = CX_NEW(int, count);
-    cs->x = CX_NEW(double, 2 * count);
-    cs->weight = CX_NEW(double, count);
-    cs->normal = CX_NEW(double, 2 * count);
-    cs->tangent = CX_NEW(double, 2 * count);
-    cs->gap = CX_NEW(double, count);
     st = CX_ENOMEM;
-    if (!cs->node || !cs->x || !cs->weight || !cs->normal || !cs->tangent || !cs->gap ||
-        (st = cx_triplet_init(&cs->N, count, cs->nall, (size_t)(4 * count))) ||
-        (st = cx_triplet_init(&cs->T, count, cs->nall, (size_t)(4 * count))))
+    pos = CX_NEW(int, m->nnodes);
+    if (!pos || (st = contact_alloc(cs, 2, count, 2 * m->nnodes, (size_t)(4 * count),
+                                    (size_t)(4 * count))))
         goto fail;
+    cs->nclamped = nfixed;
+    /* the Signorini points' lumped lengths on settle */
+    for (int k = 0; k < m->nnodes; k++)
+        pos[k] = -1;
+    for (int i = 0; i < ns; i++)
+        pos[sn[i]] = i;
+    contact_weights(cs->weight, m, settle, pos);
     for (int i = 0; i < count; i++) {
         int k = i < ns ? sn[i] : pairs[i - ns].k, l = i < ns ? -1 : pairs[i - ns].l;
         double *n = cs->normal + 2 * i, *t = cs->tangent + 2 * i, g = 0;
         cs->node[i] = k;
         memcpy(cs->x + 2 * i, m->x + 2 * k, 2 * sizeof(double));
         if (i < ns) {
-            cs->weight[i] = sw[i];
             if (cx_obstacle_gap(ob, 2, m->x + 2 * k, &g, n) != CX_OK || !(g >= 0) || !isfinite(g)) {
                 st = cx_diag_set(d, CX_EINVAL, "settlement point %d (node %d at (%g, %g)): gap %g to the "
                                  "%s obstacle (expected a finite gap >= 0)", i, k, m->x[2 * k],
@@ -216,11 +193,11 @@ int cx_contact_masonry(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *
                 goto fail;
         }
     }
-    cx_free(pairs), cx_free(sn), cx_free(sw);
+    cx_free(pairs), cx_free(sn), cx_free(pos);
     return CX_OK;
 
 fail:
-    cx_free(pairs), cx_free(sn), cx_free(sw);
+    cx_free(pairs), cx_free(sn), cx_free(pos);
     cx_contact_clear(cs);
     if (st == CX_ENOMEM)
         cx_diag_set(d, CX_ENOMEM, "out of memory building masonry contact rows");

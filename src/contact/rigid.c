@@ -1,23 +1,10 @@
 /* Contact points of a boundary against a rigid obstacle: one point per
  * boundary node, with its normal and tangent rows, gap and lumped weight. */
-#include "contact/contact.h"
+#include "contact/contact_impl.h"
 #include "fem/fem.h"
 
 #include <math.h>
 #include <string.h>
-
-void cx_contact_clear(cx_contact_set *cs)
-{
-    cx_free(cs->node);
-    cx_free(cs->x);
-    cx_free(cs->weight);
-    cx_free(cs->normal);
-    cx_free(cs->tangent);
-    cx_free(cs->gap);
-    cx_triplet_clear(&cs->N);
-    cx_triplet_clear(&cs->T);
-    memset(cs, 0, sizeof *cs);
-}
 
 /* The boundary nodes in their order along a 2D chain of facets, walked from
  * the facet whose first node ends no other facet, so that the contact strip
@@ -112,21 +99,8 @@ int cx_contact_from_obstacle(cx_contact_set *cs, const cx_mesh *m, const cx_boun
         }
     }
 
-    cs->dim = dim;
-    cs->m = count;
-    cs->nall = dim * m->nnodes;
-    cs->node = CX_NEW(int, count);
-    cs->x = CX_NEW(double, dim * count);
-    cs->weight = CX_NEW(double, count);
-    cs->normal = CX_NEW(double, dim * count);
-    cs->tangent = CX_NEW(double, dim * (dim - 1) * count);
-    cs->gap = CX_NEW(double, count);
-    if (!cs->node || !cs->x || !cs->weight || !cs->normal || !cs->tangent || !cs->gap) {
-        status = CX_ENOMEM;
-        goto fail;
-    }
-    if ((status = cx_triplet_init(&cs->N, count, cs->nall, (size_t)(dim * count))) ||
-        (status = cx_triplet_init(&cs->T, (dim - 1) * count, cs->nall, (size_t)(dim * (dim - 1) * count))))
+    if ((status = contact_alloc(cs, dim, count, dim * m->nnodes, (size_t)(dim * count),
+                                (size_t)(dim * (dim - 1) * count))))
         goto fail;
 
     /* ---- lumped weights: the share of each facet's measure ---- */
@@ -134,15 +108,7 @@ int cx_contact_from_obstacle(cx_contact_set *cs, const cx_mesh *m, const cx_boun
         pos[k] = -1;
     for (int i = 0; i < count; i++)
         pos[order[i]] = i;
-    for (int f = 0; f < b->nfacets; f++) {
-        double xf[12], w[4];
-        const int *fn = b->facets + b->npf * f;
-        for (int a = 0; a < b->npf; a++)
-            memcpy(xf + dim * a, m->x + dim * fn[a], sizeof(double) * (size_t)dim);
-        cx_fem_facet_lumped(dim, b->npf, xf, w);
-        for (int a = 0; a < b->npf; a++)
-            cs->weight[pos[fn[a]]] += w[a];
-    }
+    contact_weights(cs->weight, m, b, pos);
 
     /* ---- gap, normal, tangents and rows ---- */
     double tol = 1e-12 * mesh_size(m), far = 1e3 * mesh_size(m);

@@ -11,7 +11,7 @@
  *     T row:  the same with t,
  * at most 2 + 4 non-zeros (exact zeros, e.g. delta = 0 on matching meshes,
  * stay out of the pattern). Closing the gap is positive: N u - d <= 0. */
-#include "contact/contact.h"
+#include "contact/contact_impl.h"
 #include "fem/fem.h"
 
 #include <math.h>
@@ -97,39 +97,21 @@ int cx_contact_node_to_segment(cx_contact_set *cs, const cx_mesh *m, const cx_bo
     if ((status = seg_sort(nodes, mc, m->x)))
         goto fail;
 
-    cs->dim = 2;
-    cs->m = mc;
-    cs->nall = 2 * m->nnodes;
-    cs->node = CX_NEW(int, mc);
-    cs->x = CX_NEW(double, 2 * mc);
-    cs->weight = CX_NEW(double, mc);
-    cs->normal = CX_NEW(double, 2 * mc);
-    cs->tangent = CX_NEW(double, 2 * mc);
-    cs->gap = CX_NEW(double, mc);
     pos = CX_NEW(int, m->nnodes);
-    if (!cs->node || !cs->x || !cs->weight || !cs->normal || !cs->tangent || !cs->gap || !pos) {
+    if (!pos) {
         status = CX_ENOMEM;
         goto fail;
     }
-    if ((status = cx_triplet_init(&cs->N, mc, cs->nall, (size_t)(6 * mc))) ||
-        (status = cx_triplet_init(&cs->T, mc, cs->nall, (size_t)(6 * mc))))
+    if ((status = contact_alloc(cs, 2, mc, 2 * m->nnodes, (size_t)(6 * mc), (size_t)(6 * mc))))
         goto fail;
+    cs->nclamped = count - mc;
 
     /* lumped lengths of the slave boundary (Tresca bounds are tractions) */
     for (int k = 0; k < m->nnodes; k++)
         pos[k] = -1;
     for (int i = 0; i < mc; i++)
         pos[nodes[i]] = i;
-    for (int f = 0; f < slave->nfacets; f++) {
-        double xf[4], w[2];
-        const int *fn = slave->facets + 2 * f;
-        memcpy(xf, m->x + 2 * fn[0], 2 * sizeof(double));
-        memcpy(xf + 2, m->x + 2 * fn[1], 2 * sizeof(double));
-        cx_fem_facet_lumped(2, 2, xf, w);
-        for (int a = 0; a < 2; a++)
-            if (pos[fn[a]] >= 0)
-                cs->weight[pos[fn[a]]] += w[a];
-    }
+    contact_weights(cs->weight, m, slave, pos);
 
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     for (int k = 0; k < m->nnodes; k++)

@@ -2,7 +2,35 @@
  * loads and contact rows, then the problem over the free dofs. */
 #include "scene/scene.h"
 
+#include <stdarg.h>
+#include <stdio.h>
+#include <math.h>
 #include <string.h>
+
+/* ---- finite numbers: a NaN or Inf is refused where it appears, naming the
+ * section that put it there (the loader's ranges make this a backstop) ---- */
+
+static int build_finite(const double *x, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (!isfinite(x[k]))
+            return 0;
+    return 1;
+}
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+static int build_overflow(const cx_scene *s, int line, cx_diag *d, const char *fmt, ...)
+{
+    char what[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    return cx_diag_set(d, CX_EINVAL, "%s:%d: %s (overflow: Inf or NaN; rescale the units)",
+                       s->path, line, what);
+}
 
 static int build_mesh(const cx_scene *s, int level, cx_mesh **m, cx_diag *d)
 {
@@ -73,6 +101,10 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
                            level, s->id, s->level_max);
     if ((st = build_mesh(s, level, &m, d)))
         goto fail;
+    if (!build_finite(m->x, (size_t)m->dim * (size_t)m->nnodes)) {
+        st = build_overflow(s, s->line_mesh, d, "section [mesh]: the node coordinates");
+        goto fail;
+    }
     mats = CX_NEW(cx_material, m->nbodies);
     f = CX_NEW(double, m->dim * m->nnodes);
     if (!mats || !f) {
@@ -83,15 +115,32 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
         mats[k] = s->mat;
     if ((st = cx_fem_assemble_stiffness(m, mats, &K, d)))
         goto fail;
+    if (!build_finite(K.x, cx_csc_nnz(&K))) {
+        st = build_overflow(s, s->line_material, d, "section [material]: E = %g gives a stiffness "
+                            "matrix", s->mat.E);
+        goto fail;
+    }
 
+    size_t nall = (size_t)m->dim * (size_t)m->nnodes;
     for (int k = 0; k < s->ntractions; k++) {
         if ((st = build_boundary(s, m, s->tractions[k].boundary, &b, d)) ||
             (st = cx_fem_add_traction(m, b, &s->tractions[k].t, f)))
             goto fail;
+        if (!build_finite(f, nall)) {
+            st = build_overflow(s, s->tractions[k].line, d, "section [traction %s]: the loads",
+                                s->tractions[k].name);
+            goto fail;
+        }
     }
-    if (s->body_force[0] != 0 || s->body_force[1] != 0 || s->body_force[2] != 0)
+    if (s->body_force[0] != 0 || s->body_force[1] != 0 || s->body_force[2] != 0) {
         if ((st = cx_fem_add_body_force(m, s->body_force, f)))
             goto fail;
+        if (!build_finite(f, nall)) {
+            st = build_overflow(s, s->line_material, d, "section [material]: key 'body_force': "
+                                "the loads");
+            goto fail;
+        }
+    }
 
     if ((st = cx_dofmap_init(&map, m->dim * m->nnodes)))
         goto fail;
@@ -119,10 +168,27 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
     } else if ((st = cx_contact_from_obstacle(&cs, m, b, &s->obstacle, d))) {
         goto fail;
     }
+    if (!build_finite(cs.gap, (size_t)cs.m) || !build_finite(cs.N.x, cs.N.nnz) ||
+        !build_finite(cs.T.x, cs.T.nnz)) {
+        st = build_overflow(s, s->line_contact, d, "section [contact]: the gaps or normals");
+        goto fail;
+    }
+    /* contact points are the points with a free dof (DESIGN.md §2: Dirichlet
+     * dofs are eliminated; a clamped point's row would be empty) */
+    if ((st = cx_contact_drop_clamped(&cs, &map)))
+        goto fail;
 
     if ((st = cx_problem_create(pp, &m, &mats, &map, &cs, &K, f, d)))
         goto fail;
     cx_problem *p = *pp;
+    /* the prescribed displacements fold into f and g */
+    if (!build_finite(p->f, (size_t)p->n) || !build_finite(p->g, (size_t)p->m)) {
+        st = build_overflow(s, s->nsupports ? s->supports[0].line : s->line_contact, d,
+                            "section [support %s]: the prescribed displacements against K",
+                            s->nsupports ? s->supports[0].name : "");
+        cx_problem_destroy(pp);
+        goto fail;
+    }
     /* both friction values are kept; the law is the scene's default */
     p->slip_bound = s->slip_bound;
     p->F = s->F;

@@ -13,25 +13,43 @@
  * together, since some depend on each other (generator and lo/hi, obstacle
  * and radius); boundary names are checked once the generator is known. The
  * first error wins and ends the stream (the reader returns EOF); inih's own
- * syntax errors are compared by line with ours. */
+ * syntax errors are compared by line with ours.
+ *
+ * The file is read whole into memory first (a regular file or a pipe, at
+ * most LD_MAXFILE bytes), so that a device such as /dev/zero or an endless
+ * pipe ends at once; the reader then checks every byte of a line before
+ * inih sees it: a NUL would end inih's line early and hide the rest (read
+ * "E = 20\0 00" as E = 20, skip a line starting with one), and a control
+ * character is never part of a scene. */
 #include "scene/scene.h"
 
 #include <ini.h>
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#define LD_MAXFILE (1 << 20)     /* 1 MiB: a scene is a page or two of text */
 #define LD_MAXLINE 4096          /* ini_max_line: longest line + 3 */
 #define LD_MAXKEYS 14            /* keys of the largest section */
 #define LD_VALLEN 1024           /* longest value + 1 */
 #define LD_COUNT_MAX 1000000     /* largest level or cell count */
 #define LD_LEVEL_MAX_DEFAULT 4096
+/* Every real value lies within [-LD_BIG, LD_BIG], and the positive scales
+ * (E, radii, P, R) at or above LD_TINY: far outside any physical range in
+ * any units, and narrow enough that the products of a build (E h, t G x
+ * area, |f| / E) stay finite, so that an absurd value is refused here with
+ * its key rather than as an Inf or a NaN in K, f or the solution. */
+#define LD_BIG 1e30
+#define LD_TINY 1e-30
 
 /* The choice lists below are read as indices into these enums. */
 _Static_assert(CX_EL_TRI3 == 0 && CX_EL_TRI6 == 1 && CX_EL_QUAD4 == 2 && CX_EL_HEX8 == 3 &&
@@ -102,7 +120,8 @@ typedef struct ld_bname {
 struct ld_state {
     cx_scene *s;
     const char *path;
-    FILE *f;
+    const char *text;           /* the whole file, len bytes */
+    size_t len, pos;            /* pos: the next line's first byte */
     int line;                   /* lines read: the line inih is working on */
     int status;                 /* first error, CX_OK if none */
     int order;                  /* the line by which to compare it with inih's errors */
@@ -202,6 +221,15 @@ static int ld_unused(ld_state *L, const char *key, const char *what)
     return ld_bad(L, key, "not used %s", what);
 }
 
+/* |x| <= LD_BIG, and x >= LD_TINY for a positive scale. */
+static int ld_range(ld_state *L, const char *key, double x, int positive)
+{
+    if (fabs(x) > LD_BIG || (positive && x < LD_TINY))
+        return ld_bad(L, key, "%g is out of range (expected %s%g to %g; rescale the units)", x,
+                      positive ? "a value from " : "-", positive ? LD_TINY : LD_BIG, LD_BIG);
+    return CX_OK;
+}
+
 /* A number in the interval (lo, hi) if open, else [lo, hi]. Absent keys
  * keep *out (its default). */
 static int ld_real(ld_state *L, const char *key, double lo, double hi, int open,
@@ -213,6 +241,7 @@ static int ld_real(ld_state *L, const char *key, double lo, double hi, int open,
         return CX_OK;
     if (cx_parse_double(v, &x) != 0 || (open ? !(x > lo && x < hi) : !(x >= lo && x <= hi)))
         return ld_bad(L, key, "expected %s", expect);
+    CX_TRY(ld_range(L, key, x, lo == 0 && open));
     *out = x;
     return CX_OK;
 }
@@ -239,6 +268,8 @@ static int ld_vector(ld_state *L, const char *key, int n, const char *what, doub
             return ld_bad(L, key, "expected %d numbers%s", n, what);
         return ld_bad(L, key, "expected %d numbers (dim %d)", n, L->s->dim);
     }
+    for (int k = 0; k < n; k++)
+        CX_TRY(ld_range(L, key, x[k], 0));
     memcpy(out, x, (size_t)n * sizeof *x);
     return CX_OK;
 }
@@ -303,6 +334,8 @@ static int ld_direction(ld_state *L, const char *key, double *out)
         return CX_OK;
     if (cx_parse_doubles(v, x, dim) != dim)
         return ld_bad(L, key, "expected %d numbers, not all zero", dim);
+    for (int k = 0; k < dim; k++)
+        CX_TRY(ld_range(L, key, x[k], 0));
     for (int k = 0; k < dim; k++)
         n2 += x[k] * x[k];
     if (!(n2 > 0) || !isfinite(n2))
@@ -407,6 +440,7 @@ static int ld_finish_mesh(ld_state *L)
     cx_scene *s = L->s;
     int dim = s->dim, g = 0, el = dim == 2 ? CX_EL_TRI3 : CX_EL_HEX8;
 
+    s->line_mesh = L->sec.line;
     CX_TRY(ld_choice(L, "generator", ld_generators, 0, 4, ld_generators, &g));
     if (ld_generator_dim[g] != dim)
         return ld_bad(L, "generator", "generator '%s' needs dim %d (the scene has dim %d)",
@@ -465,6 +499,7 @@ static int ld_finish_material(ld_state *L)
 {
     cx_scene *s = L->s;
     int dim = s->dim, model = dim == 2 ? CX_PLANE_STRAIN : CX_SOLID;
+    s->line_material = L->sec.line;
     CX_TRY(ld_choice(L, "model", ld_models, dim == 2 ? 0 : 2, dim == 2 ? 1 : 2,
                      dim == 2 ? "plane_strain|plane_stress (dim 2)" : "solid (dim 3)", &model));
     s->mat.model = (cx_model)model;
@@ -480,6 +515,8 @@ static int ld_finish_traction(ld_state *L)
     int dim = s->dim;
     char what[64];
     memset(t, 0, sizeof *t);
+    strcpy(t->name, L->sec.name);
+    t->line = L->sec.line;
     CX_TRY(ld_boundary(L, t->boundary));
     CX_TRY(ld_vector(L, "t", dim, NULL, t->t.t0));
     snprintf(what, sizeof what, " (the %dx%d matrix G, row by row)", dim, dim);
@@ -495,6 +532,8 @@ static int ld_finish_support(ld_state *L)
     int dim = s->dim, fix = 0;
     double value[3] = {0, 0, 0};
     memset(sp, 0, sizeof *sp);
+    strcpy(sp->name, L->sec.name);
+    sp->line = L->sec.line;
     CX_TRY(ld_boundary(L, sp->boundary));
     CX_TRY(ld_choice(L, "fix", ld_fixes, 0, 7, ld_fixes, &fix));
     unsigned comps = ld_fix_comps[fix] & ((1u << dim) - 1);
@@ -580,6 +619,7 @@ static int ld_finish_contact(ld_state *L)
     cx_obstacle *ob = &s->obstacle;
     int dim = s->dim, kind = 0;
 
+    s->line_contact = L->sec.line;
     CX_TRY(ld_boundary(L, s->contact_boundary));
     if (ld_value(L, "master"))
         return ld_finish_contact_bodies(L);
@@ -776,35 +816,73 @@ static int ld_header(ld_state *L, const char *str)
         q++;
     if (*q != ']')
         return CX_OK;
+    /* inih ignores what follows the ']': only blanks or a comment may */
+    const unsigned char *r = q + 1;
+    while (isspace(*r))
+        r++;
+    if (*r && *r != ';' && *r != '#') {
+        size_t n = strcspn((const char *)r, "\r\n");
+        return ld_error(L, L->line, L->line,
+                        "junk after the section header [%.*s]: '%.*s' (expected the end of the "
+                        "line or a ';' comment)", (int)(q - p - 1 < 64 ? q - p - 1 : 64), p + 1,
+                        (int)(n < 64 ? n : 64), r);
+    }
     return ld_open(L, (const char *)p + 1, (size_t)(q - p - 1));
 }
 
 /* ---- inih's callbacks ------------------------------------------------------- */
 
+/* A line's bytes: a scene is text. Tabs, and a CR ending the line, are the
+ * only control characters; a NUL anywhere is refused (see the top). The
+ * key is named when the bad byte follows "key =". */
+static int ld_check_bytes(ld_state *L, const char *line, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        unsigned char c = (unsigned char)line[k];
+        if (c == '\t' || (c == '\r' && k + 1 == n) || (c >= 0x20 && c != 0x7f))
+            continue;
+        char what[48], key[72] = "";
+        const char *eq = memchr(line, '=', k);
+        if (eq) {
+            const char *a = line, *b = eq;
+            while (a < b && isspace((unsigned char)*a))
+                a++;
+            while (b > a && isspace((unsigned char)b[-1]))
+                b--;
+            if (b > a)
+                snprintf(key, sizeof key, "key '%.*s': ", (int)(b - a < 48 ? b - a : 48), a);
+        }
+        if (c == 0)
+            snprintf(what, sizeof what, "NUL byte");
+        else
+            snprintf(what, sizeof what, "control character 0x%02x", c);
+        return ld_error(L, L->line, L->line, "%s%s in column %zu (a scene file is text)", key,
+                        what, k + 1);
+    }
+    return CX_OK;
+}
+
+/* inih's reader: the next line of the text, checked, as a C string. */
 static char *ld_read(char *str, int num, void *stream)
 {
     ld_state *L = stream;
-    if (L->status != CX_OK)
+    if (L->status != CX_OK || L->pos >= L->len)
         return NULL;
-    errno = 0;
-    if (!fgets(str, num, L->f)) {
-        if (ferror(L->f)) {
-            snprintf(L->msg, sizeof L->msg, "%s: cannot read: %s", L->path,
-                     strerror(errno ? errno : EIO));
-            L->status = CX_EIO;
-            L->order = L->line + 1;
-        }
-        return NULL;
-    }
+    const char *line = L->text + L->pos;
+    const char *nl = memchr(line, '\n', L->len - L->pos);
+    size_t n = nl ? (size_t)(nl - line) : L->len - L->pos;   /* without the newline */
+    L->pos += n + (nl != NULL);
     L->line++;
-    size_t len = strlen(str);
-    if (len + 1 == (size_t)num && str[len - 1] != '\n') {
-        int c = fgetc(L->f);
-        if (c != EOF) {
-            ld_error(L, L->line, L->line, "line too long (at most %d characters)", num - 3);
-            return NULL;
-        }
+    if (ld_check_bytes(L, line, n) != CX_OK)
+        return NULL;
+    if (n + 3 > (size_t)num) {
+        ld_error(L, L->line, L->line, "line too long (at most %d characters)", num - 3);
+        return NULL;
     }
+    memcpy(str, line, n);
+    if (nl)
+        str[n++] = '\n';
+    str[n] = '\0';
     if (ld_header(L, str) != CX_OK)
         return NULL;
     return str;
@@ -866,7 +944,7 @@ static int ld_finish(ld_state *L)
     return ld_check_boundaries(L);
 }
 
-int cx_scene_load(cx_scene *s, const char *path, cx_diag *d)
+int cx_scene_parse(cx_scene *s, const char *path, const char *text, size_t len, cx_diag *d)
 {
     ld_state L;
 
@@ -874,9 +952,8 @@ int cx_scene_load(cx_scene *s, const char *path, cx_diag *d)
     ld_default(s, path);
     L.s = s;
     L.path = path;
-    L.f = fopen(path, "r");
-    if (!L.f)
-        return cx_diag_set(d, CX_EIO, "%s: cannot open: %s", path, strerror(errno));
+    L.text = text;
+    L.len = len;
 
     /* Debian's inih: its compile-time options are globals (toolchain.md, 8),
      * so two scenes loaded on two threads take turns */
@@ -886,7 +963,6 @@ int cx_scene_load(cx_scene *s, const char *path, cx_diag *d)
     ini_allow_multiline = false;   /* an indented line is not a continuation */
     int syntax = ini_parse_stream(ld_read, &L, ld_handler, &L);
     pthread_mutex_unlock(&ini_lock);
-    fclose(L.f);
     if (syntax < 0)
         return cx_diag_set(d, CX_ENOMEM, "%s: out of memory", path);
 
@@ -899,4 +975,89 @@ int cx_scene_load(cx_scene *s, const char *path, cx_diag *d)
     if (L.status != CX_OK)
         return cx_diag_set(d, L.status, "%s", L.msg);
     return CX_OK;
+}
+
+/* The whole of a regular file or a pipe, at most LD_MAXFILE bytes, into
+ * *text (cx_free). Devices (/dev/zero), directories and sockets are
+ * refused before anything is read; O_NONBLOCK keeps the open of a FIFO
+ * without a writer from waiting (it then reads as empty). */
+static int ld_slurp(const char *path, char **text, size_t *len, cx_diag *d)
+{
+    struct stat sb;
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC), st = CX_OK;
+    *text = NULL;
+    *len = 0;
+    if (fd < 0)
+        return cx_diag_set(d, CX_EIO, "%s: cannot open: %s", path, strerror(errno));
+    if (fstat(fd, &sb) != 0) {
+        st = cx_diag_set(d, CX_EIO, "%s: cannot read: %s", path, strerror(errno));
+    } else if (S_ISDIR(sb.st_mode)) {
+        st = cx_diag_set(d, CX_EIO, "%s: cannot read: %s", path, strerror(EISDIR));
+    } else if (!S_ISREG(sb.st_mode) && !S_ISFIFO(sb.st_mode)) {
+        st = cx_diag_set(d, CX_EIO, "%s: cannot read: not a regular file or a pipe", path);
+    } else if (S_ISREG(sb.st_mode) && sb.st_size > LD_MAXFILE) {
+        st = cx_diag_set(d, CX_EINVAL, "%s: too large: %lld bytes (a scene file has at most %d)",
+                         path, (long long)sb.st_size, LD_MAXFILE);
+    }
+    if (st) {
+        close(fd);
+        return st;
+    }
+    if (S_ISFIFO(sb.st_mode))
+        (void)fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+
+    size_t cap = S_ISREG(sb.st_mode) ? (size_t)sb.st_size + 1 : 65536, n = 0;
+    char *buf = cx_malloc(cap);
+    for (;;) {
+        if (!buf) {
+            st = cx_diag_set(d, CX_ENOMEM, "%s: out of memory", path);
+            break;
+        }
+        if (n == cap) {   /* a pipe, or a file that grew: room for one byte past the limit */
+            size_t want = cap * 2 > (size_t)LD_MAXFILE + 1 ? (size_t)LD_MAXFILE + 1 : cap * 2;
+            char *more = want > cap ? cx_realloc(buf, want) : NULL;
+            if (!more) {
+                if (want > cap) {
+                    st = cx_diag_set(d, CX_ENOMEM, "%s: out of memory", path);
+                } else {
+                    st = cx_diag_set(d, CX_EINVAL, "%s: too large: more than %d bytes (a scene file "
+                                     "has at most %d)", path, LD_MAXFILE, LD_MAXFILE);
+                }
+                break;
+            }
+            buf = more, cap = want;
+        }
+        ssize_t r = read(fd, buf + n, cap - n);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0) {
+            st = cx_diag_set(d, CX_EIO, "%s: cannot read: %s", path, strerror(errno));
+            break;
+        }
+        if (r == 0)
+            break;
+        n += (size_t)r;
+    }
+    close(fd);
+    if (st) {
+        cx_free(buf);
+        return st;
+    }
+    *text = buf;
+    *len = n;
+    return CX_OK;
+}
+
+int cx_scene_load(cx_scene *s, const char *path, cx_diag *d)
+{
+    char *text;
+    size_t len;
+    int st = ld_slurp(path, &text, &len, d);
+    if (st) {
+        ld_default(s, path);
+        return st;
+    }
+    st = cx_scene_parse(s, path, text, len, d);
+    cx_free(text);
+    return st;
 }

@@ -22,6 +22,8 @@
 
 typedef struct cx_scene_traction {
     char boundary[CX_SCENE_NAMELEN];
+    char name[CX_SCENE_NAMELEN];   /* NAME of [traction NAME] */
+    int line;                      /* of its header */
     cx_traction t;
 } cx_scene_traction;
 
@@ -29,6 +31,8 @@ typedef struct cx_scene_support {
     char boundary[CX_SCENE_NAMELEN];
     unsigned comps;        /* bit c set: component c prescribed */
     double value[3];       /* prescribed displacement per component */
+    char name[CX_SCENE_NAMELEN];   /* NAME of [support NAME] */
+    int line;                      /* of its header */
 } cx_scene_support;
 
 typedef enum cx_scene_generator {
@@ -91,12 +95,24 @@ typedef struct cx_scene {
     /* [hertz] analytical reference (2D): load per unit length P, radius R */
     int has_hertz;
     double hertz_P, hertz_R;
+
+    /* the lines of the [mesh], [material] and [contact] headers, for the
+     * messages of cx_scene_build */
+    int line_mesh, line_material, line_contact;
 } cx_scene;
 
-/* Read and check a scene file. CX_EIO if it cannot be read, CX_EINVAL with
- * "file:line: ..." for any bad content (the first error only). Sets inih's
- * option globals (Debian): not to be called from two threads at once. */
+/* Read and check a scene file: a regular file or a pipe of at most 1 MiB
+ * (CX_EINVAL beyond), read whole. CX_EIO if it cannot be read (or is a
+ * device or a directory), CX_EINVAL with "file:line: ..." for any bad
+ * content (the first error only): NUL bytes and control characters but
+ * tabs, junk after a section header, unknown keys, values out of range
+ * (reals within +-1e30, positive scales from 1e-30). Sets inih's option
+ * globals (Debian): not to be called from two threads at once. */
 int cx_scene_load(cx_scene *s, const char *path, cx_diag *d);
+
+/* The same for a scene held in memory: len bytes of text (not
+ * NUL-terminated; a NUL among them is refused), named path in messages. */
+int cx_scene_parse(cx_scene *s, const char *path, const char *text, size_t len, cx_diag *d);
 
 /* Resolve a scene id (or a path to an .ini) to a path; CX_EINVAL
  * "unknown scene 'x' (see 'signorini list')". */
@@ -116,7 +132,11 @@ void cx_scene_cells(const cx_scene *s, int level, int cells[3]);
 void cx_scene_cells_lower(const cx_scene *s, int level, int cells[3]);
 
 /* Generate the mesh, assemble, apply supports and loads, build contact:
- * the problem at a level (level <= 0: the scene's default). */
+ * the problem at a level (level <= 0: the scene's default). The contact
+ * points are those with a free normal dof (p->contact.nclamped counts the
+ * others). A NaN or Inf in the mesh, K, f, the gap or the rows is
+ * CX_EINVAL "file:line: section [...]: ..." naming the section it comes
+ * from (the loader's ranges keep a scene's values from getting there). */
 int cx_scene_build(const cx_scene *s, int level, cx_problem **p, cx_diag *d);
 
 /* Hertz pressure p(x) = 2P/(pi b^2) sqrt(b^2 - x^2) of the scene (0 if

@@ -1,5 +1,6 @@
 /* contact/: N and T rows, gaps, weights and normals against hand values
- * for each obstacle, and the refusal of an initial penetration. */
+ * for each obstacle, the refusal of an initial penetration, and the
+ * removal of clamped points (cx_contact_drop_clamped). */
 #include "contact/contact.h"
 #include "check.h"
 
@@ -133,10 +134,50 @@ static void test_sphere_3d(void)
     cx_mesh_destroy(&m);
 }
 
+/* Clamped points leave the set: the left edge fixed in x and y drops the
+ * point at x = 0 and renumbers the rows; fixing y only (the normal) on the
+ * right edge drops that one too; x only keeps it (its normal is free). */
+static void test_drop_clamped(void)
+{
+    cx_mesh *m = NULL;
+    cx_diag d;
+    cx_dofmap map = {0};
+    CX_CHECK_OK(cx_mesh_rectangle(&m, 0, 0.1, 1, 1, 2, 2, CX_EL_QUAD4, &d));
+    cx_obstacle ob = {.kind = CX_OBST_PLANE, .normal = {0, 1}};
+    const cx_boundary *left = cx_mesh_boundary(m, "left"), *right = cx_mesh_boundary(m, "right");
+    for (int fix_right = 0; fix_right < 3; fix_right++) {   /* none, y, x */
+        cx_contact_set cs = {0};
+        CX_CHECK_OK(cx_dofmap_init(&map, 2 * m->nnodes));
+        CX_CHECK_OK(cx_dofmap_fix(&map, m, left, 0, 0));
+        CX_CHECK_OK(cx_dofmap_fix(&map, m, left, 1, 0));
+        if (fix_right)
+            CX_CHECK_OK(cx_dofmap_fix(&map, m, right, fix_right == 1 ? 1 : 0, 0));
+        CX_CHECK_OK(cx_dofmap_finish(&map));
+        CX_CHECK_OK(cx_contact_from_obstacle(&cs, m, cx_mesh_boundary(m, "bottom"), &ob, &d));
+        CX_CHECK(cs.m == 3 && cs.nclamped == 0);
+        CX_CHECK_OK(cx_contact_drop_clamped(&cs, &map));
+        int want = fix_right == 1 ? 1 : 2;
+        CX_CHECK(cs.m == want && cs.nclamped == 3 - want);
+        CX_CHECK(cs.N.nrow == want && cs.T.nrow == want && cs.N.nnz == (size_t)want);
+        for (int i = 0; i < cs.m; i++) {
+            int k = cs.node[i];
+            CX_CHECK_NEAR(cs.x[2 * i], 0.5 * (i + 1), 0, 1e-15);   /* order kept */
+            CX_CHECK_NEAR(cs.weight[i], i == 0 ? 0.5 : 0.25, 1e-14, 0);
+            CX_CHECK_NEAR(row_get(&cs.N, i, 2 * k + 1), -1, 0, 0);
+            CX_CHECK_NEAR(row_get(&cs.T, i, 2 * k), 1, 0, 0);
+            CX_CHECK_NEAR(cs.gap[i], 0.1, 1e-14, 0);
+        }
+        cx_contact_clear(&cs);
+        cx_dofmap_clear(&map);
+    }
+    cx_mesh_destroy(&m);
+}
+
 int main(void)
 {
     test_plane_2d();
     test_disc_2d();
     test_sphere_3d();
+    test_drop_clamped();
     return check_finish("contact_rows");
 }

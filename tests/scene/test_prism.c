@@ -1,7 +1,9 @@
 /* Paper 001's prism and its mesh rule (level_rule = sqrt2): the cell
  * counts, nodes and contact nodes of every level against Table 1 (levels
  * 2-8 exactly; level 1 by the rule, 112 / 24), the built problems of levels
- * 1-5 (nodes, contact points, contact dofs), and a bad level_rule value. */
+ * 1-5 (nodes, contact points, contact dofs; the clamped points counted
+ * apart), pdas and pdpc on the frictionless prism (they need every contact
+ * row to have a free dof of its own), and a bad level_rule value. */
 #include "scene/scene.h"
 #include "check.h"
 
@@ -37,7 +39,8 @@ static void check_built(const cx_scene *s)
             continue;
         int c[3], active = 0;
         cx_scene_cells(s, L, c);
-        /* contact points with a free dof: a non-empty row of N */
+        /* contact points are the points with a free dof: every row of N
+         * is non-empty, the clamped edge (x = 0) is counted apart */
         int *hit = calloc((size_t)p->m, sizeof(int));
         for (size_t q = 0; q < cx_csc_nnz(&p->N); q++)
             hit[p->N.i[q]] = 1;
@@ -45,12 +48,47 @@ static void check_built(const cx_scene *s)
             active += hit[i];
         free(hit);
         CX_CHECK(p->mesh->nnodes == table_nodes[L]);
-        CX_CHECK(p->m == (c[0] + 1) * (c[1] + 1));   /* the whole bottom face */
-        CX_CHECK(active == table_contact[L]);          /* off the clamped face */
+        CX_CHECK(p->m == table_contact[L]);            /* off the clamped face */
+        CX_CHECK(active == p->m);
+        CX_CHECK(p->contact.nclamped == c[1] + 1);     /* the bottom face's edge x = 0 */
+        CX_CHECK(p->m + p->contact.nclamped == (c[0] + 1) * (c[1] + 1));
+        for (int i = 0; i < p->m; i++)
+            CX_CHECK(p->contact.x[3 * i] > 0);
         CX_CHECK(p->nc == 3 * table_contact[L]);
         CX_CHECK(p->n == 3 * (table_nodes[L] - (c[1] + 1) * (c[2] + 1)));
         CX_CHECK(p->friction == CX_FRICTION_TRESCA);
         cx_problem_destroy(&p);
+    }
+}
+
+/* pdas and pdpc refused the prism while its clamped points were contact
+ * rows ("contact row 0 has no dof of its own"). */
+static void check_active_set_methods(const cx_scene *s)
+{
+    const char *ids[] = {"pdas", "pdpc"};
+    for (int k = 0; k < 2; k++) {
+        cx_problem *p = NULL;
+        cx_session *ss = NULL;
+        cx_diag d;
+        cx_options o;
+        CX_CHECK_OK(cx_scene_build(s, 2, &p, &d));
+        CX_CHECK_OK(cx_session_create(&ss, &p, &d));
+        if (!ss)
+            continue;
+        CX_CHECK_OK(cx_session_set_friction(ss, CX_FRICTION_NONE, 0, &d));
+        cx_options_default(&o);
+        int st = cx_session_set_method(ss, cx_method_find(ids[k]), NULL, &o, &d);
+        CX_CHECK_OK(st);
+        if (st == CX_OK)
+            CX_CHECK_OK(cx_solver_solve(ss, NULL, NULL, &d));
+        if (st != CX_OK)
+            fprintf(stderr, "  %s: %s\n", ids[k], d.msg);
+        const cx_iterate *it = cx_session_iterate(ss);
+        CX_CHECK(cx_session_problem(ss)->m == 40);
+        CX_CHECK(it->reason > 0);
+        CX_CHECK_LE(it->kkt, o.tol);
+        CX_CHECK(it->iter <= 20 && it->ncontact + it->nstick + it->nslip > 0);
+        cx_session_destroy(&ss);
     }
 }
 
@@ -90,6 +128,7 @@ int main(void)
     CX_CHECK(s.level_rule == CX_LEVEL_SQRT2);
     check_counts(&s);
     check_built(&s);
+    check_active_set_methods(&s);
     check_bad_rule();
     return check_finish("scene_prism");
 }
