@@ -174,30 +174,44 @@ static int pattern_alloc(const node_graph *g, int nn, int dim, cx_csc *K)
     return CX_OK;
 }
 
-/* K += Ke of the element with nodes, at the places the pattern gives. */
-static void scatter(const node_graph *g, int dim, int npe, const int *nodes, const double *Ke,
-                    cx_csc *K)
+/* K += Ke of every element (kernel, then scatter at the places the
+ * pattern gives), inlined with constant dim and npe so that the gather
+ * and the scatter are fixed-size loops. Returns the first element whose
+ * kernel fails, or -1. */
+static inline __attribute__((always_inline)) int
+assemble_elements(int dim, int npe, const cx_mesh *restrict m, const cx_fem_ref *restrict ref,
+                  const double *restrict D, const node_graph *restrict g, double *restrict Kx)
 {
-    int nd = dim * npe;
-    for (int b = 0; b < npe; b++) {
-        int nb = nodes[b], deg = g->p[nb + 1] - g->p[nb];
-        const int *adj = g->adj + g->p[nb];
-        double *col = K->x + (size_t)dim * (size_t)dim * (size_t)g->p[nb];
-        for (int a = 0; a < npe; a++) {
-            int k = 0;
-            while (adj[k] != nodes[a])
-                k++;
-            for (int j = 0; j < dim; j++)
-                for (int i = 0; i < dim; i++)
-                    col[dim * (j * deg + k) + i] += Ke[nd * (dim * a + i) + dim * b + j];
+    const int nd = dim * npe, ns = cx_fem_nstress(dim);
+    double xe[3 * CX_FEM_MAXNPE], Ke[CX_FEM_MAXDOF * CX_FEM_MAXDOF];
+    for (int e = 0; e < m->nelems; e++) {
+        const int *nodes = m->conn + npe * e;
+        for (int a = 0; a < npe; a++)
+            for (int i = 0; i < dim; i++)
+                xe[dim * a + i] = m->x[dim * nodes[a] + i];
+        if (cx_fem_ref_stiffness(ref, xe, D + ns * ns * (m->body ? m->body[e] : 0), Ke))
+            return e;
+        for (int b = 0; b < npe; b++) {
+            int nb = nodes[b], deg = g->p[nb + 1] - g->p[nb];
+            const int *adj = g->adj + g->p[nb];
+            double *col = Kx + (size_t)dim * (size_t)dim * (size_t)g->p[nb];
+            for (int a = 0; a < npe; a++) {
+                int k = 0;
+                while (adj[k] != nodes[a])
+                    k++;
+                for (int j = 0; j < dim; j++)
+                    for (int i = 0; i < dim; i++)
+                        col[dim * (j * deg + k) + i] += Ke[nd * (dim * a + i) + dim * b + j];
+            }
         }
     }
+    return -1;
 }
 
 int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc *K, cx_diag *d)
 {
-    int dim = m->dim, npe = m->npe, ns = cx_fem_nstress(dim), status;
-    double *D = NULL, xe[3 * CX_FEM_MAXNPE], Ke[CX_FEM_MAXDOF * CX_FEM_MAXDOF];
+    int dim = m->dim, ns = cx_fem_nstress(dim), status;
+    double *D = NULL;
     node_graph g = {0};
     cx_fem_ref ref;
 
@@ -217,15 +231,18 @@ int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc 
     if ((status = node_graph_build(m, &g, d)) || (status = pattern_alloc(&g, m->nnodes, dim, K)))
         goto fail;
 
-    for (int e = 0; e < m->nelems; e++) {
-        const int *nodes = m->conn + npe * e;
-        gather(m, nodes, npe, xe);
-        if ((status = cx_fem_ref_stiffness(&ref, xe, D + ns * ns * (m->body ? m->body[e] : 0), Ke))) {
-            cx_diag_set(d, status, "element %d (%s) is degenerate or inverted", e, cx_elem_name(m->etype));
-            goto fail;
-        }
-        scatter(&g, dim, npe, nodes, Ke, K);
+    int bad;
+    switch (m->etype) {
+    case CX_EL_TRI3: bad = assemble_elements(2, 3, m, &ref, D, &g, K->x); break;
+    case CX_EL_TRI6: bad = assemble_elements(2, 6, m, &ref, D, &g, K->x); break;
+    case CX_EL_QUAD4: bad = assemble_elements(2, 4, m, &ref, D, &g, K->x); break;
+    case CX_EL_HEX8: bad = assemble_elements(3, 8, m, &ref, D, &g, K->x); break;
+    case CX_EL_TET4: bad = assemble_elements(3, 4, m, &ref, D, &g, K->x); break;
+    default: bad = 0;   /* refused by cx_fem_ref_init above */
     }
+    if (bad >= 0)
+        status = cx_diag_set(d, CX_ENUMERIC, "element %d (%s) is degenerate or inverted", bad,
+                             cx_elem_name(m->etype));
 fail:
     if (status == CX_ENOMEM)
         cx_diag_set(d, CX_ENOMEM, "out of memory assembling the stiffness (%d elements)", m->nelems);
