@@ -35,6 +35,11 @@ static int check_mesh(const cx_mesh *m, cx_diag *d)
         if (m->body[e] < 0 || m->body[e] >= m->nbodies)
             return cx_diag_set(d, CX_EINVAL, "element %d: body %d not in [0, %d)", e, m->body[e],
                                m->nbodies);
+    /* the pattern indexes by node: a node out of range would write anywhere */
+    for (size_t k = 0; k < (size_t)m->nelems * (size_t)m->npe; k++)
+        if (m->conn[k] < 0 || m->conn[k] >= m->nnodes)
+            return cx_diag_set(d, CX_EINVAL, "element %d: node %d not in [0, %d)", (int)(k / (size_t)m->npe),
+                               m->conn[k], m->nnodes);
     return CX_OK;
 }
 

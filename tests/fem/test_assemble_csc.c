@@ -1,7 +1,7 @@
 /* The stiffness assembled straight into its CSC pattern, for TRI3, TRI6,
  * QUAD4 (2D) and TET4, HEX8 (3D) on distorted meshes of two bodies, a
  * masonry wall (separate bodies with coincident nodes) and a mesh with a
- * node in no element:
+ * node in no element (a node id out of range is refused):
  *  - equals a reference triplet assembly of the element matrices (the same
  *    pattern entry for entry, values to 1e-14 of max |K|);
  *  - its pattern is symmetric and K exactly symmetric, columns sorted with
@@ -251,6 +251,13 @@ static void test_lonely_node(void)
     CX_CHECK(K.p[last] == K.p[last + 2]);
     run_case("tri3 with a node in no element", m, &mat, NULL, NULL);
     cx_csc_clear(&K);
+
+    /* a node id out of range is refused, not written through */
+    cx_diag d;
+    m->conn[4] = m->nnodes;
+    CX_CHECK(cx_fem_assemble_stiffness(m, &mat, &K, &d) == CX_EINVAL);
+    CX_CHECK(strstr(d.msg, "element 1: node") != NULL);
+    CX_CHECK(K.p == NULL);
     cx_mesh_destroy(&m);
 }
 
