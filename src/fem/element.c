@@ -8,10 +8,12 @@
  * QUAD4 2x2 and HEX8 2x2x2 Gauss. For straight edges / affine elements the
  * stiffness is exact, and for every element (also curved P2 and distorted
  * Q1) the rule integrates cof(J) grad N, the integrand of the constant-
- * stress residual, exactly, which is what makes the patch test pass. */
+ * stress residual, exactly, which is what makes the patch test pass.
+ *
+ * The shape functions are evaluated once per element type (cx_fem_ref):
+ * the per-element work is the Jacobian, its inverse and B'DB. */
 #include "fem/fem_impl.h"
 
-#include <math.h>
 #include <string.h>
 
 /* ---- reference elements ------------------------------------------------ */
@@ -23,7 +25,7 @@ static const double ref_hex8[] = {-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1,
                                   -1, -1, 1,  1, -1, 1,  1, 1, 1,  -1, 1, 1};
 static const double ref_tet4[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
 
-const double *cx_fem_ref_nodes(cx_elem_type t)
+static const double *ref_nodes(cx_elem_type t)
 {
     switch (t) {
     case CX_EL_TRI3: return ref_tri3;
@@ -47,7 +49,7 @@ static const double q_hex[] = {-G1, -G1, -G1, G1, -G1, -G1, G1, G1, -G1, -G1, G1
 static const double w_hex[] = {1, 1, 1, 1, 1, 1, 1, 1};
 static const double q_tet1[] = {0.25, 0.25, 0.25}, w_tet1[] = {1.0 / 6};
 
-int cx_fem_rule(cx_elem_type t, const double **xi, const double **w)
+static int rule(cx_elem_type t, const double **xi, const double **w)
 {
     switch (t) {
     case CX_EL_TRI3: *xi = q_tri1, *w = w_tri1; return 1;
@@ -113,46 +115,77 @@ static void shape(cx_elem_type t, const double *xi, double *N, double *dN)
     }
 }
 
+/* ---- the reference element of a type ------------------------------------ */
+
+int cx_fem_ref_init(cx_fem_ref *r, cx_elem_type t)
+{
+    const double *xi, *w;
+    memset(r, 0, sizeof *r);
+    r->dim = cx_elem_dim(t);
+    r->npe = cx_elem_npe(t);
+    r->nq = rule(t, &xi, &w);
+    if (!r->dim || !r->nq)
+        return CX_EINVAL;
+    r->t = t;
+    r->affine = t == CX_EL_TRI3 || t == CX_EL_TET4;
+    for (int q = 0; q < r->nq; q++) {
+        r->w[q] = w[q];
+        shape(t, xi + r->dim * q, r->Nq[q], r->dNq[q]);
+    }
+    const double *ref = ref_nodes(t);
+    double N[CX_FEM_MAXNPE];
+    for (int a = 0; a < r->npe; a++)
+        shape(t, ref + r->dim * a, N, r->dNn[a]);
+    return CX_OK;
+}
+
 /* ---- geometry ------------------------------------------------------------ */
+
+/* The helpers and the stiffness kernel are inlined into callers that pass
+ * constant sizes (one instance per element type), so that every loop has a
+ * fixed trip count and the compiler unrolls or vectorises it. */
+#define CX_FEM_INLINE static inline __attribute__((always_inline))
 
 /* The size below which det J counts as zero: rounding of an exactly
  * degenerate element leaves ~1e-16 h^dim, never exactly 0. */
-static double det_floor(int dim, int npe, const double *xe)
+CX_FEM_INLINE double det_floor(int dim, int npe, const double *restrict xe)
 {
     double h = 0;
     for (int k = 0; k < dim; k++) {
         double lo = xe[k], hi = xe[k];
         for (int a = 1; a < npe; a++) {
-            lo = fmin(lo, xe[dim * a + k]);
-            hi = fmax(hi, xe[dim * a + k]);
+            double v = xe[dim * a + k];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
         }
-        h = fmax(h, hi - lo);
+        h = hi - lo > h ? hi - lo : h;
     }
-    return 1e-12 * pow(h, dim);
+    return dim == 3 ? 1e-12 * h * h * h : 1e-12 * h * h;
 }
 
-int cx_fem_eval(cx_elem_type t, const double *xe, const double *xi, double *N, double *G,
-                double *detJ)
+/* det J at reference gradients dN, J[i][k] = dx_i / dxi_k = sum_a
+ * x_a,i dN_a,k, and, when G is not NULL, the physical gradients
+ * G_a = J^-T dN_a (node-major). */
+CX_FEM_INLINE double jacobian(int dim, int npe, const double *restrict dN,
+                              const double *restrict xe, double *restrict G)
 {
-    int dim = cx_elem_dim(t), npe = cx_elem_npe(t);
-    double dN[3 * CX_FEM_MAXNPE], J[9] = {0}, Ji[9];
-    if (!dim)
-        return CX_EINVAL;
-    shape(t, xi, N, dN);
-    /* J[i][k] = dx_i / dxi_k */
+    double J[9] = {0}, Ji[9], det;
     for (int a = 0; a < npe; a++)
         for (int i = 0; i < dim; i++)
             for (int k = 0; k < dim; k++)
                 J[dim * i + k] += xe[dim * a + i] * dN[dim * a + k];
-    double det;
     if (dim == 2) {
         det = J[0] * J[3] - J[1] * J[2];
+        if (!G)
+            return det;
         Ji[0] = J[3] / det, Ji[1] = -J[1] / det;
         Ji[2] = -J[2] / det, Ji[3] = J[0] / det;
     } else {
         double c00 = J[4] * J[8] - J[5] * J[7], c01 = J[5] * J[6] - J[3] * J[8],
                c02 = J[3] * J[7] - J[4] * J[6];
         det = J[0] * c00 + J[1] * c01 + J[2] * c02;
+        if (!G)
+            return det;
         Ji[0] = c00 / det;
         Ji[1] = (J[2] * J[7] - J[1] * J[8]) / det;
         Ji[2] = (J[1] * J[5] - J[2] * J[4]) / det;
@@ -163,10 +196,7 @@ int cx_fem_eval(cx_elem_type t, const double *xe, const double *xi, double *N, d
         Ji[7] = (J[1] * J[6] - J[0] * J[7]) / det;
         Ji[8] = (J[0] * J[4] - J[1] * J[3]) / det;
     }
-    *detJ = det;
-    if (!(det > det_floor(dim, npe, xe)))
-        return CX_ENUMERIC;
-    /* grad N_a = J^-T dN_a: G[a][i] = sum_k dN[a][k] Ji[k][i] */
+    /* G[a][i] = sum_k dN[a][k] Ji[k][i] */
     for (int a = 0; a < npe; a++)
         for (int i = 0; i < dim; i++) {
             double s = 0;
@@ -174,20 +204,26 @@ int cx_fem_eval(cx_elem_type t, const double *xe, const double *xi, double *N, d
                 s += dN[dim * a + k] * Ji[dim * k + i];
             G[dim * a + i] = s;
         }
-    return CX_OK;
+    return det;
 }
 
 /* det J > 0 at every node as well as at the quadrature points: a
  * non-convex quadrilateral or a folded hexahedron can pass at the Gauss
- * points and still be inverted near a corner. */
-static int check_nodes(cx_elem_type t, const double *xe)
+ * points and still be inverted near a corner. On an affine element J is
+ * the same everywhere and the quadrature point's check is this one. */
+CX_FEM_INLINE int check_nodes(int dim, int npe, const cx_fem_ref *restrict r,
+                              const double *restrict xe, double lim)
 {
-    int dim = cx_elem_dim(t), npe = cx_elem_npe(t);
-    const double *ref = cx_fem_ref_nodes(t);
-    double N[CX_FEM_MAXNPE], G[3 * CX_FEM_MAXNPE], det;
     for (int a = 0; a < npe; a++)
-        CX_TRY(cx_fem_eval(t, xe, ref + dim * a, N, G, &det));
+        if (!(jacobian(dim, npe, r->dNn[a], xe, NULL) > lim))
+            return CX_ENUMERIC;
     return CX_OK;
+}
+
+int cx_fem_ref_node_gradients(const cx_fem_ref *r, const double *xe, int a, double *G)
+{
+    double lim = det_floor(r->dim, r->npe, xe);
+    return jacobian(r->dim, r->npe, r->dNn[a], xe, G) > lim ? CX_OK : CX_ENUMERIC;
 }
 
 void cx_fem_strain_matrix(int dim, int npe, const double *G, double *B)
@@ -212,39 +248,74 @@ void cx_fem_strain_matrix(int dim, int npe, const double *G, double *B)
 
 /* ---- kernels ------------------------------------------------------------- */
 
-int cx_fem_element_stiffness(cx_elem_type t, const double *xe, const double *D, double *Ke)
+/* Ke = sum_q w_q det J_q B_q' D B_q. B has three non-zeros per column in
+ * 3D (two in 2D), at the rows of cx_fem_strain_matrix, so DB = s D B costs
+ * ns x nd x 3 and each row of B'(DB) three rows of DB: contiguous rows of
+ * fixed length nd, which the compiler vectorises. The sums run in the
+ * order of the dense product over the Voigt rows (the zeros of B skipped
+ * add nothing), so Ke is the same to the last bit as B'(DB) with a dense
+ * B. The full Ke is summed and its upper triangle mirrored below at the
+ * end, so that Ke is exactly symmetric (the two triangles of B'(DB) differ
+ * in rounding). */
+CX_FEM_INLINE int stiffness(int dim, int npe, int nq, int affine, const cx_fem_ref *restrict r,
+                            const double *restrict xe, const double *restrict D,
+                            double *restrict Ke)
 {
-    int dim = cx_elem_dim(t), npe = cx_elem_npe(t);
-    if (!dim)
-        return CX_EINVAL;
-    int nd = dim * npe, ns = cx_fem_nstress(dim);
-    const double *xi, *w;
-    int nq = cx_fem_rule(t, &xi, &w);
-    double N[CX_FEM_MAXNPE], G[3 * CX_FEM_MAXNPE], B[6 * CX_FEM_MAXDOF], DB[6 * CX_FEM_MAXDOF];
+    const int nd = dim * npe;
+    double G[3 * CX_FEM_MAXNPE], DB[6][CX_FEM_MAXDOF];
+    double lim = det_floor(dim, npe, xe);
 
-    memset(Ke, 0, sizeof(double) * (size_t)(nd * nd));
-    CX_TRY(check_nodes(t, xe));
+    if (!affine && check_nodes(dim, npe, r, xe, lim))
+        return CX_ENUMERIC;
+    for (int k = 0; k < nd * nd; k++)
+        Ke[k] = 0;
     for (int q = 0; q < nq; q++) {
-        double det;
-        CX_TRY(cx_fem_eval(t, xe, xi + dim * q, N, G, &det));
-        cx_fem_strain_matrix(dim, npe, G, B);
-        double s = w[q] * det;
-        for (int r = 0; r < ns; r++)
-            for (int j = 0; j < nd; j++) {
-                double v = 0;
-                for (int k = 0; k < ns; k++)
-                    v += D[ns * r + k] * B[nd * k + j];
-                DB[nd * r + j] = s * v;
+        double det = jacobian(dim, npe, r->dNq[q], xe, G);
+        if (!(det > lim))
+            return CX_ENUMERIC;
+        double s = r->w[q] * det;
+        if (dim == 2) {
+            /* Voigt (xx, yy, xy): column (a, x) of B is gx e0 + gy e2,
+             * column (a, y) is gy e1 + gx e2 */
+            for (int a = 0; a < npe; a++) {
+                double gx = G[2 * a], gy = G[2 * a + 1];
+                for (int k = 0; k < 3; k++) {
+                    DB[k][2 * a] = s * (D[3 * k] * gx + D[3 * k + 2] * gy);
+                    DB[k][2 * a + 1] = s * (D[3 * k + 1] * gy + D[3 * k + 2] * gx);
+                }
             }
-        /* the upper triangle, mirrored below: Ke is then exactly symmetric
-         * (summing B'(DB) both ways round would differ in rounding) */
-        for (int i = 0; i < nd; i++)
-            for (int j = i; j < nd; j++) {
-                double v = 0;
-                for (int k = 0; k < ns; k++)
-                    v += B[nd * k + i] * DB[nd * k + j];
-                Ke[nd * i + j] += v;
+            for (int a = 0; a < npe; a++) {
+                double gx = G[2 * a], gy = G[2 * a + 1];
+                double *restrict kx = Ke + nd * (2 * a), *restrict ky = kx + nd;
+                for (int j = 0; j < nd; j++) {
+                    kx[j] += gx * DB[0][j] + gy * DB[2][j];
+                    ky[j] += gy * DB[1][j] + gx * DB[2][j];
+                }
             }
+        } else {
+            /* Voigt (xx, yy, zz, yz, xz, xy): column (a, x) of B is
+             * gx e0 + gz e4 + gy e5, (a, y) gy e1 + gz e3 + gx e5,
+             * (a, z) gz e2 + gy e3 + gx e4 */
+            for (int a = 0; a < npe; a++) {
+                double gx = G[3 * a], gy = G[3 * a + 1], gz = G[3 * a + 2];
+                for (int k = 0; k < 6; k++) {
+                    const double *Dk = D + 6 * k;
+                    DB[k][3 * a] = s * (Dk[0] * gx + Dk[4] * gz + Dk[5] * gy);
+                    DB[k][3 * a + 1] = s * (Dk[1] * gy + Dk[3] * gz + Dk[5] * gx);
+                    DB[k][3 * a + 2] = s * (Dk[2] * gz + Dk[3] * gy + Dk[4] * gx);
+                }
+            }
+            for (int a = 0; a < npe; a++) {
+                double gx = G[3 * a], gy = G[3 * a + 1], gz = G[3 * a + 2];
+                double *restrict kx = Ke + nd * (3 * a), *restrict ky = kx + nd,
+                                 *restrict kz = ky + nd;
+                for (int j = 0; j < nd; j++) {
+                    kx[j] += gx * DB[0][j] + gz * DB[4][j] + gy * DB[5][j];
+                    ky[j] += gy * DB[1][j] + gz * DB[3][j] + gx * DB[5][j];
+                    kz[j] += gz * DB[2][j] + gy * DB[3][j] + gx * DB[4][j];
+                }
+            }
+        }
     }
     for (int i = 0; i < nd; i++)
         for (int j = 0; j < i; j++)
@@ -252,22 +323,46 @@ int cx_fem_element_stiffness(cx_elem_type t, const double *xe, const double *D, 
     return CX_OK;
 }
 
-int cx_fem_element_body_force(cx_elem_type t, const double *xe, const double *b, double *fe)
+int cx_fem_ref_stiffness(const cx_fem_ref *r, const double *xe, const double *D, double *Ke)
 {
-    int dim = cx_elem_dim(t), npe = cx_elem_npe(t);
-    if (!dim)
-        return CX_EINVAL;
-    const double *xi, *w;
-    int nq = cx_fem_rule(t, &xi, &w);
-    double N[CX_FEM_MAXNPE], G[3 * CX_FEM_MAXNPE];
+    switch (r->t) {
+    case CX_EL_TRI3: return stiffness(2, 3, 1, 1, r, xe, D, Ke);
+    case CX_EL_TRI6: return stiffness(2, 6, 3, 0, r, xe, D, Ke);
+    case CX_EL_QUAD4: return stiffness(2, 4, 4, 0, r, xe, D, Ke);
+    case CX_EL_HEX8: return stiffness(3, 8, 8, 0, r, xe, D, Ke);
+    case CX_EL_TET4: return stiffness(3, 4, 1, 1, r, xe, D, Ke);
+    }
+    return CX_EINVAL;
+}
+
+int cx_fem_ref_body_force(const cx_fem_ref *r, const double *xe, const double *b, double *fe)
+{
+    int dim = r->dim, npe = r->npe;
+    double lim = det_floor(dim, npe, xe);
     memset(fe, 0, sizeof(double) * (size_t)(dim * npe));
-    CX_TRY(check_nodes(t, xe));
-    for (int q = 0; q < nq; q++) {
-        double det;
-        CX_TRY(cx_fem_eval(t, xe, xi + dim * q, N, G, &det));
+    if (!r->affine && check_nodes(dim, npe, r, xe, lim))
+        return CX_ENUMERIC;
+    for (int q = 0; q < r->nq; q++) {
+        double det = jacobian(dim, npe, r->dNq[q], xe, NULL);
+        if (!(det > lim))
+            return CX_ENUMERIC;
         for (int a = 0; a < npe; a++)
             for (int c = 0; c < dim; c++)
-                fe[dim * a + c] += w[q] * det * N[a] * b[c];
+                fe[dim * a + c] += r->w[q] * det * r->Nq[q][a] * b[c];
     }
     return CX_OK;
+}
+
+int cx_fem_element_stiffness(cx_elem_type t, const double *xe, const double *D, double *Ke)
+{
+    cx_fem_ref r;
+    CX_TRY(cx_fem_ref_init(&r, t));
+    return cx_fem_ref_stiffness(&r, xe, D, Ke);
+}
+
+int cx_fem_element_body_force(cx_elem_type t, const double *xe, const double *b, double *fe)
+{
+    cx_fem_ref r;
+    CX_TRY(cx_fem_ref_init(&r, t));
+    return cx_fem_ref_body_force(&r, xe, b, fe);
 }

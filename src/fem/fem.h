@@ -57,9 +57,11 @@ void cx_fem_facet_lumped(int dim, int npf, const double *xf, double *w);
 /* ---- assembly ---------------------------------------------------------- */
 
 /* K over all dim * nnodes dofs, symmetric, full storage. mats: one per body
- * (mesh->nbodies entries). K must be empty and is left empty on failure:
- * CX_EINVAL (bad material or body id), CX_ENUMERIC (names the degenerate
- * element), CX_ENOMEM. */
+ * (mesh->nbodies entries). The pattern: every dof pair of two nodes that
+ * share an element (explicit zeros kept), nothing else. K must be empty and
+ * is left empty on failure: CX_EINVAL (bad material, body or node id, or
+ * more than INT_MAX entries), CX_ENUMERIC (names the degenerate element),
+ * CX_ENOMEM. */
 int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc *K, cx_diag *d);
 /* f += traction on the facets of boundary b. CX_EINVAL for facets the
  * kernels do not know. */

@@ -10,8 +10,8 @@
 int cx_fem_nodal_stress(const cx_mesh *m, const cx_material *mats, const double *uall, double *sig)
 {
     int dim = m->dim, npe = m->npe, nd = dim * npe, ns = cx_fem_nstress(dim);
-    const double *ref = cx_fem_ref_nodes(m->etype);
-    if (!ref || cx_elem_dim(m->etype) != dim || cx_elem_npe(m->etype) != npe)
+    cx_fem_ref ref;
+    if (cx_fem_ref_init(&ref, m->etype) || ref.dim != dim || ref.npe != npe)
         return CX_EINVAL;
     int *count = CX_NEW(int, m->nnodes);
     double *D = CX_NEW(double, (size_t)m->nbodies * (size_t)(ns * ns));
@@ -35,8 +35,8 @@ int cx_fem_nodal_stress(const cx_mesh *m, const cx_material *mats, const double 
                 ue[dim * a + i] = uall[dim * nodes[a] + i];
             }
         for (int a = 0; a < npe; a++) {
-            double N[CX_FEM_MAXNPE], G[3 * CX_FEM_MAXNPE], B[6 * CX_FEM_MAXDOF], eps[6], det;
-            if ((status = cx_fem_eval(m->etype, xe, ref + dim * a, N, G, &det)))
+            double G[3 * CX_FEM_MAXNPE], B[6 * CX_FEM_MAXDOF], eps[6];
+            if ((status = cx_fem_ref_node_gradients(&ref, xe, a, G)))
                 break;
             cx_fem_strain_matrix(dim, npe, G, B);
             for (int r = 0; r < ns; r++) {

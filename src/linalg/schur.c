@@ -80,14 +80,13 @@ static void schur_extract(cx_schur *s)
 }
 
 /* M = A + D, D = diag(A_cc) on the c dofs (the largest diagonal of A where
- * that is not positive); cmember[j] = 1 marks the c dofs. */
+ * that is not positive); cmember[j] = 1 marks the c dofs. M shares the
+ * pattern of A (p and i borrowed) and owns only its values M->x. */
 static int schur_shift(const cx_csc *A, const int *c, int nc, cx_csc *M, int *cmember, double *dshift,
                        cx_diag *d)
 {
     int n = A->nrow;
-    double dmax = 0;
-    for (int j = 0; j < n; j++)
-        dmax = fmax(dmax, cx_csc_get(A, j, j));
+    size_t nz = cx_csc_nnz(A);
     for (int k = 0; k < nc; k++) {
         int j = c[k];
         if (j < 0 || j >= n)
@@ -96,7 +95,15 @@ static int schur_shift(const cx_csc *A, const int *c, int nc, cx_csc *M, int *cm
             return cx_diag_set(d, CX_EINVAL, "schur: dof %d given twice", j);
         cmember[j] = 1;
     }
-    CX_TRY(cx_csc_copy(M, A));
+    *M = *A;
+    if (!(M->x = CX_NEW(double, nz)))
+        return CX_ENOMEM;
+    memcpy(M->x, A->x, sizeof(double) * nz);
+    double dmax = 0;
+    for (int j = 0; j < n; j++)
+        for (int q = A->p[j]; q < A->p[j + 1]; q++)
+            if (A->i[q] == j)
+                dmax = fmax(dmax, A->x[q]);
     for (int k = 0; k < nc; k++) {
         int j = c[k], q;
         for (q = M->p[j]; q < M->p[j + 1] && M->i[q] != j; q++)
@@ -214,7 +221,7 @@ int cx_schur_create(cx_schur **Sp, const cx_csc *A, const int *c, int nc, cx_cou
     if ((st = schur_form(s, dshift)))
         goto fail;
 
-    cx_csc_clear(&M);
+    cx_free(M.x);
     cx_free(cmember);
     cx_free(perm);
     cx_free(dshift);
@@ -224,7 +231,7 @@ int cx_schur_create(cx_schur **Sp, const cx_csc *A, const int *c, int nc, cx_cou
 fail:
     if (st == CX_ENOMEM)
         cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
-    cx_csc_clear(&M);
+    cx_free(M.x);
     cx_free(cmember);
     cx_free(perm);
     cx_free(dshift);
