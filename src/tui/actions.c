@@ -4,12 +4,14 @@
  * TUI_RESOLVE, which the session serves from its operator cache. No
  * curses here. */
 #include "tui/tui_impl.h"
+#include "base/opt_solve.h"
 #include "cx_config.h"
 
 #if CX_HAVE_RENDER
 #include "render/render.h"
 #endif
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <stdio.h>
@@ -126,6 +128,20 @@ static int change_param(tui_state *st, int i, int dir)
     return TUI_REDRAW | TUI_RESOLVE;
 }
 
+/* The row of cx_solve_opts a field's value is checked against: one range
+ * per option, the same as on the command line (base/opt_solve.h). */
+static const char *actions_key(int field)
+{
+    return field == TUI_F_LEVEL ? "level" : field == TUI_F_TOL ? "tol" : "max-iter";
+}
+
+static const cx_opt *actions_row(const char *name)
+{
+    const cx_opt *o = cx_opt_find(cx_solve_opts, name);
+    assert(o);
+    return o;
+}
+
 /* Left (-1) or right (+1) on the row under the cursor. */
 static int change_field(tui_state *st, int dir)
 {
@@ -159,11 +175,17 @@ static int change_field(tui_state *st, int dir)
         return select_method(st, ((st->sel_method + dir) % n + n) % n);
     }
     case TUI_F_TOL:
-        st->sel_opt.tol = fmax(1e-16, fmin(1, dir > 0 ? st->sel_opt.tol * 10 : st->sel_opt.tol / 10));
-        return TUI_REDRAW | TUI_RESOLVE;
     case TUI_F_MAXIT: {
-        int n = dir > 0 ? st->sel_opt.max_iter * 2 : st->sel_opt.max_iter / 2;
-        st->sel_opt.max_iter = n < 1 ? 1 : n > 1000000 ? 1000000 : n;
+        /* a step that would leave the option's range (cx_solve_opts) is not taken */
+        double x = st->field == TUI_F_TOL ? (dir > 0 ? st->sel_opt.tol * 10 : st->sel_opt.tol / 10)
+                   : dir > 0              ? st->sel_opt.max_iter * 2.0
+                                          : floor(st->sel_opt.max_iter / 2.0);
+        if (!cx_opt_in_range(actions_row(actions_key(st->field)), x) || (st->field == TUI_F_TOL && x < 1e-16))
+            return TUI_REDRAW;
+        if (st->field == TUI_F_TOL)
+            st->sel_opt.tol = x;
+        else
+            st->sel_opt.max_iter = (int)x;
         return TUI_REDRAW | TUI_RESOLVE;
     }
     default:
@@ -176,7 +198,6 @@ static int commit_edit(tui_state *st, const char *text)
 {
     cx_diag d;
     cx_diag_clear(&d);
-    long n;
     double x;
     switch (st->field) {
     case TUI_F_SCENE:
@@ -188,11 +209,14 @@ static int commit_edit(tui_state *st, const char *text)
         tui_msg(st, 1, "unknown scene '%s' (see 'signorini list')", text);
         return TUI_REDRAW;
     case TUI_F_LEVEL:
-        if (cx_parse_int(text, 1, st->scene.level_max, &n)) {
-            tui_msg(st, 1, "level '%s': expected an integer in [1, %d]", text, st->scene.level_max);
+        if (cx_opt_value(actions_row(actions_key(st->field)), text, &x, &d) == CX_OK && x > st->scene.level_max)
+            cx_diag_set(&d, CX_EINVAL, "level '%s': scene '%s' allows levels 1 to %d", text, st->scene.id,
+                        st->scene.level_max);
+        if (d.status) {
+            tui_msg(st, 1, "%s", d.msg);
             return TUI_REDRAW;
         }
-        st->sel_level = (int)n;
+        st->sel_level = (int)x;
         return TUI_REDRAW | TUI_REASSEMBLE;
     case TUI_F_FRICTION: {
         int law = cx_friction_from_name(text);
@@ -204,8 +228,9 @@ static int commit_edit(tui_state *st, const char *text)
         return TUI_REDRAW | TUI_RESOLVE;
     }
     case TUI_F_COEF:
-        if (cx_parse_double(text, &x) || !(x >= 0) || !isfinite(x)) {
-            tui_msg(st, 1, "'%s': expected a number >= 0", text);
+        if (cx_opt_value(actions_row(st->sel_law == CX_FRICTION_COULOMB ? "F" : "slip"), text, &x,
+                         &d)) {
+            tui_msg(st, 1, "%s", d.msg);
             return TUI_REDRAW;
         }
         if (st->sel_law == CX_FRICTION_COULOMB)
@@ -225,18 +250,15 @@ static int commit_edit(tui_state *st, const char *text)
         return TUI_REDRAW;
     }
     case TUI_F_TOL:
-        if (cx_parse_double(text, &x) || !(x > 0) || !(x < 1)) {
-            tui_msg(st, 1, "tol '%s': expected a number in (0, 1)", text);
-            return TUI_REDRAW;
-        }
-        st->sel_opt.tol = x;
-        return TUI_REDRAW | TUI_RESOLVE;
     case TUI_F_MAXIT:
-        if (cx_parse_int(text, 1, 100000000, &n)) {
-            tui_msg(st, 1, "max iter '%s': expected a positive integer", text);
+        if (cx_opt_value(actions_row(actions_key(st->field)), text, &x, &d)) {
+            tui_msg(st, 1, "%s", d.msg);
             return TUI_REDRAW;
         }
-        st->sel_opt.max_iter = (int)n;
+        if (st->field == TUI_F_TOL)
+            st->sel_opt.tol = x;
+        else
+            st->sel_opt.max_iter = (int)x;
         return TUI_REDRAW | TUI_RESOLVE;
     default: {
         char owner[64];
