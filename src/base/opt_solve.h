@@ -25,9 +25,10 @@
 #define CX_OPT_ROW_SLIP(type, field) \
     {"slip", 0, CX_OPT_REAL, 0, INFINITY, CX_OPT_MAX_OPEN, NULL, "VALUE", \
      "Tresca slip bound, a traction (default: the scene's)", offsetof(type, field), NULL}
-#define CX_OPT_ROW_LEVEL(type, field) \
-    {"level", 0, CX_OPT_INT, 1, 1 << 20, 0, NULL, "L", "mesh level (default: the scene's)", \
-     offsetof(type, field), NULL}
+#define CX_OPT_LEVEL_MAX (1 << 20)   /* a scene's own level_max is checked when it is built */
+#define CX_OPT_ROW_LEVEL_HELP(type, field, help) \
+    {"level", 0, CX_OPT_INT, 1, CX_OPT_LEVEL_MAX, 0, NULL, "L", help, offsetof(type, field), NULL}
+#define CX_OPT_ROW_LEVEL(type, field) CX_OPT_ROW_LEVEL_HELP(type, field, "mesh level (default: the scene's)")
 #define CX_OPT_ROW_TOL(type, field, help) \
     {"tol", 0, CX_OPT_REAL, 0, 1, CX_OPT_MIN_OPEN | CX_OPT_MAX_OPEN, NULL, "T", help, \
      offsetof(type, field), NULL}

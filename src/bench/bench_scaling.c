@@ -43,7 +43,7 @@ static int scaling_levels(const char *v, scaling_args *a, cx_diag *d)
     if (dots) {
         char first[32];
         snprintf(first, sizeof first, "%.*s", (int)(dots - v), v);
-        if (cx_parse_int(first, 1, 1 << 20, &lo) || cx_parse_int(dots + 2, 1, 1 << 20, &hi) || hi < lo)
+        if (cx_parse_int(first, 1, CX_OPT_LEVEL_MAX, &lo) || cx_parse_int(dots + 2, 1, CX_OPT_LEVEL_MAX, &hi) || hi < lo)
             return cx_diag_set(d, CX_EINVAL, "--levels '%s': expected a..b with 1 <= a <= b", v);
         for (long l = lo; l <= hi && a->nlevels < SCALING_MAX_LEVELS; l *= 2)
             a->levels[a->nlevels++] = (int)l;

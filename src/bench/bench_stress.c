@@ -69,8 +69,7 @@ typedef struct {
 } stress_nominal;
 
 static const cx_opt stress_opts[] = {
-    {"level", 0, CX_OPT_INT, 1, 1 << 20, 0, NULL, "L", "mesh level of every scene (default: each scene's)",
-     offsetof(stress_args, level), NULL},
+    CX_OPT_ROW_LEVEL_HELP(stress_args, level, "mesh level of every scene (default: each scene's)"),
     {"cases", 0, CX_OPT_STRING, 0, 0, 0, NULL, "LIST", "case id prefixes (see the cases below)",
      offsetof(stress_args, cases), NULL},
     {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
