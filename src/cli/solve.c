@@ -24,6 +24,10 @@ typedef struct {
     cli_render_args render;   /* --png, --vtu and the drawing options (cli/render.c) */
 } solve_args;
 
+/* --friction is a CHOICE of base/opt_solve.h stored as its index */
+_Static_assert(CX_FRICTION_NONE == 0 && CX_FRICTION_TRESCA == 1 && CX_FRICTION_COULOMB == 2,
+               "--friction's choices none|tresca|coulomb follow cx_friction");
+
 /* What only the command line's solve has. */
 static const cx_opt solve_own_opts[] = {
     {"json", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "print one JSON object on stdout instead of the summary",
