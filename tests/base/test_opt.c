@@ -157,6 +157,15 @@ int main(void)
     /* the solve table: one range per option, as the explorer reads it */
     const cx_opt *tol = cx_opt_find(cx_solve_opts, "tol"), *maxit = cx_opt_find(cx_solve_opts, "max-iter");
     CX_CHECK(tol && maxit && !cx_opt_find(cx_solve_opts, "nope"));
+    /* every row the explorer's value entry reads (tui/actions.c) */
+    CX_CHECK(cx_opt_find(cx_solve_opts, "level") && cx_opt_find(cx_solve_opts, "F") &&
+             cx_opt_find(cx_solve_opts, "slip"));
+    {
+        double x;
+        const cx_opt *F = cx_opt_find(cx_solve_opts, "F");
+        CX_CHECK(F && cx_opt_value(F, "0", &x, &d) == CX_OK && cx_opt_value(F, "-0.1", &x, &d) == CX_EINVAL);
+        CX_CHECK(strstr(d.msg, "[0, inf)") != NULL);
+    }
     if (tol && maxit) {
         CX_CHECK(!cx_opt_in_range(tol, 0) && !cx_opt_in_range(tol, 1) && cx_opt_in_range(tol, 1e-10));
         CX_CHECK(cx_opt_in_range(maxit, 1) && cx_opt_in_range(maxit, 1e8) && !cx_opt_in_range(maxit, 1e8 + 1));
