@@ -23,7 +23,33 @@ static const char usage[] =
     "  render SCENE --png FILE  solve and draw a field, a plot or a VTU file (render --help)\n"
     "  version                  print the version\n"
     "\n"
-    "'signorini <command> --help' describes a command's options.\n";
+    "  -h, --help               this help\n"
+    "  -V, --version            print the version\n"
+    "\n"
+    "'signorini <command> --help' describes a command's options. Exit status:\n"
+    "0 success, 1 an error of the run, 2 a malformed command line (unknown\n"
+    "option, missing or bad value, a value out of range), 3 a solve that did\n"
+    "not converge, 130 interrupted.\n";
+
+static const char version_usage[] = "usage: signorini version\n\nPrints the version.\n";
+
+/* 'signorini version' has no options but -h. */
+static int main_version(int argc, char **argv)
+{
+    static const cx_opt none[] = {{NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}};
+    cx_opt_group groups[] = {{none, NULL}, {NULL, NULL}};
+    cx_diag d;
+    int parsed = argc > 1 ? cx_opt_parse(groups, argc, argv, NULL, 0, NULL, &d) : CX_OK;
+    if (parsed == CX_OPT_HELP) {
+        const cx_opt *const tables[] = {NULL};
+        cli_help(version_usage, tables, stdout);
+        return CX_EXIT_OK;
+    }
+    if (parsed)
+        return cli_usage("version", d.msg);
+    printf("signorini %s\n", CX_VERSION);
+    return CX_EXIT_OK;
+}
 
 int main(int argc, char **argv)
 {
@@ -46,12 +72,12 @@ int main(int argc, char **argv)
         return cli_render(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
         return bench_main(argc - 1, argv + 1);
-    if (strcmp(cmd, "version") == 0 || strcmp(cmd, "--version") == 0) {
-        printf("signorini %s\n", CX_VERSION);
-        return CX_EXIT_OK;
-    }
+    if (strcmp(cmd, "version") == 0)
+        return main_version(argc - 1, argv + 1);
+    if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "-V") == 0)
+        return main_version(1, argv + 1);
     char safe[256];
-    fprintf(stderr, "signorini: unknown command '%s' (see 'signorini --help')\n",
+    fprintf(stderr, "signorini: unknown %s '%s' (see 'signorini --help')\n", cmd[0] == '-' ? "option" : "command",
             cx_escape(safe, sizeof safe, cmd, strlen(cmd)));
-    return CX_EXIT_ERROR;
+    return CX_EXIT_USAGE;
 }

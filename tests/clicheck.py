@@ -20,12 +20,19 @@ def run(*args, cwd=None):
     return r.returncode, r.stdout, r.stderr
 
 
-def one_line_error(code, err, *needles):
+def one_line_error(code, err, *needles, status=1):
+    """An error of the run (status 1) or, with status=2, a malformed
+    command line: one line on stderr holding every needle."""
     lines = err.strip().splitlines()
-    check(code == 1, f"exit 1 for an error, got {code}: {err!r}")
+    check(code == status, f"exit {status} for an error, got {code}: {err!r}")
     check(len(lines) == 1, f"one line on stderr, got {lines!r}")
     for n in needles:
         check(n in err, f"{n!r} in {err!r}")
+
+
+def usage_error(code, err, *needles):
+    """A malformed command line: exit 2, one line."""
+    one_line_error(code, err, *needles, status=2)
 
 
 def finish(name):

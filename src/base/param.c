@@ -54,8 +54,8 @@ void cx_param_range(const cx_param *p, char *buf, size_t len)
 {
     switch (p->type) {
     case CX_PARAM_REAL:
-        snprintf(buf, len, "[%g, %g]%s", p->min, p->max,
-                 (p->flags & CX_PARAM_AUTO) ? " or auto" : "");
+        snprintf(buf, len, "%c%g, %g%c%s", (p->flags & CX_PARAM_MIN_OPEN) ? '(' : '[', p->min, p->max,
+                 (p->flags & CX_PARAM_MAX_OPEN) ? ')' : ']', (p->flags & CX_PARAM_AUTO) ? " or auto" : "");
         break;
     case CX_PARAM_INT:
         snprintf(buf, len, "integer in [%.0f, %.0f]", p->min, p->max);
@@ -72,6 +72,35 @@ void cx_param_range(const cx_param *p, char *buf, size_t len)
     }
 }
 
+int cx_param_value(const cx_param *p, const char *text, double *x)
+{
+    long k;
+    switch (p->type) {
+    case CX_PARAM_REAL:
+        if (cx_parse_double(text, x) != 0 || *x < p->min || *x > p->max ||
+            ((p->flags & CX_PARAM_MIN_OPEN) && *x == p->min) ||
+            ((p->flags & CX_PARAM_MAX_OPEN) && *x == p->max))
+            return -1;
+        return 0;
+    case CX_PARAM_INT:
+        if (cx_parse_int(text, (long)p->min, (long)p->max, &k) != 0)
+            return -1;
+        break;
+    case CX_PARAM_BOOL:
+        if ((k = param_parse_bool(text)) < 0)
+            return -1;
+        break;
+    case CX_PARAM_CHOICE:
+        if ((k = cx_parse_choice(text, p->choices)) < 0)
+            return -1;
+        break;
+    default:
+        return -1;
+    }
+    *x = (double)k;
+    return 0;
+}
+
 int cx_param_set(cx_param_values *v, const char *key, const char *text,
                  const char *owner, cx_diag *d)
 {
@@ -82,38 +111,20 @@ int cx_param_set(cx_param_values *v, const char *key, const char *text,
     char range[128];
     cx_param_range(p, range, sizeof range);
     double x;
-    long k;
-    switch (p->type) {
-    case CX_PARAM_REAL:
-        if ((p->flags & CX_PARAM_AUTO) && strcmp(text, "auto") == 0) {
-            v->num[i] = NAN;
-            return CX_OK;
-        }
-        if (cx_parse_double(text, &x) != 0 || x < p->min || x > p->max)
-            goto bad;
-        v->num[i] = x;
+    if (p->type == CX_PARAM_REAL && (p->flags & CX_PARAM_AUTO) && strcmp(text, "auto") == 0) {
+        v->num[i] = NAN;
         return CX_OK;
-    case CX_PARAM_INT:
-        if (cx_parse_int(text, (long)p->min, (long)p->max, &k) != 0)
-            goto bad;
-        v->num[i] = (double)k;
-        return CX_OK;
-    case CX_PARAM_BOOL:
-        if ((k = param_parse_bool(text)) < 0)
-            goto bad;
-        v->num[i] = (double)k;
-        return CX_OK;
-    case CX_PARAM_CHOICE:
-        if ((k = cx_parse_choice(text, p->choices)) < 0)
-            goto bad;
-        v->num[i] = (double)k;
-        return CX_OK;
-    case CX_PARAM_STRING:
+    }
+    if (p->type == CX_PARAM_STRING) {
         if (strlen(text) == 0 || strlen(text) >= CX_PARAM_STRLEN)
             goto bad;
         snprintf(v->str[i], CX_PARAM_STRLEN, "%s", text);
         return CX_OK;
     }
+    if (cx_param_value(p, text, &x) != 0)
+        goto bad;
+    v->num[i] = x;
+    return CX_OK;
 bad:
     return cx_diag_set(d, CX_EINVAL, "parameter '%s' of %s: '%s' is not in %s",
                        key, owner, text, range);

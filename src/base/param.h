@@ -18,13 +18,15 @@ typedef enum cx_param_type {
 } cx_param_type;
 
 /* flags */
-#define CX_PARAM_AUTO 1u  /* REAL that also accepts "auto" (stored as NaN) */
+#define CX_PARAM_AUTO 1u      /* REAL that also accepts "auto" (stored as NaN) */
+#define CX_PARAM_MIN_OPEN 2u  /* REAL: min itself is outside the range: (min, ... */
+#define CX_PARAM_MAX_OPEN 4u  /* REAL: max itself is outside the range: ..., max) */
 
 typedef struct cx_param {
     const char *key;      /* lower_snake */
     cx_param_type type;
     double def;           /* default (REAL/INT/BOOL; CHOICE: index) */
-    double min, max;      /* inclusive range (REAL/INT) */
+    double min, max;      /* range (REAL/INT): inclusive unless a *_OPEN flag says */
     const char *choices;  /* CHOICE: "a|b|c"; STRING: the default text */
     const char *help;     /* one line */
     unsigned flags;
@@ -56,6 +58,10 @@ int cx_param_find(const cx_param_values *v, const char *key);
 int cx_param_set(cx_param_values *v, const char *key, const char *text,
                  const char *owner, cx_diag *d);
 
+/* Parse text as a value of p (REAL/INT/BOOL/CHOICE) and check its range:
+ * 0 and *x set, or -1. The one range check of parameters and options. */
+int cx_param_value(const cx_param *p, const char *text, double *x);
+
 /* Parse "key=value" (as given to --set). */
 int cx_param_set_pair(cx_param_values *v, const char *pair,
                       const char *owner, cx_diag *d);
@@ -67,7 +73,7 @@ const char *cx_param_get_str(const cx_param_values *v, const char *key);
 /* The value of entry i as text ("0.11", "auto", "true", "ubr-tf"). */
 void cx_param_format(const cx_param_values *v, int i, char *buf, size_t len);
 
-/* The allowed values of entry i as text ("(0, 1e+30]", "fixed|adaptive"). */
+/* The allowed values of p as text ("[0.001, 1e+30]", "(0, 1)", "fixed|adaptive"). */
 void cx_param_range(const cx_param *p, char *buf, size_t len);
 
 #endif

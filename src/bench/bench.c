@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char bench_usage[] =
+static const char bench_main_usage[] =
     "usage: signorini bench <kind> [options]\n"
     "\n"
     "kinds:\n"
@@ -20,6 +20,9 @@ static const char bench_usage[] =
     "                         mesh scaling: assembly, baseline and methods per level\n"
     "  stress [SCENE...]      numerical stability under a catalogue of perturbations\n"
     "  paper NNN [options]    reproduce the tables of paper NNN (see below)\n"
+    "\n"
+    "'signorini bench KIND --help' and 'signorini bench paper NNN --help' give\n"
+    "their options.\n"
     "\n"
     "papers:\n";
 
@@ -52,7 +55,7 @@ static const struct {
 
 static void bench_print_usage(FILE *out)
 {
-    fputs(bench_usage, out);
+    fputs(bench_main_usage, out);
     for (int k = 0; bench_papers[k].id; k++)
         fprintf(out, "  %s  %s\n", bench_papers[k].id, bench_papers[k].what);
     if (!bench_papers[0].id)
@@ -62,7 +65,14 @@ static void bench_print_usage(FILE *out)
 static int bench_paper_run(int argc, char **argv)
 {
     if (argc < 2)
-        return bench_fail("bench paper", "which paper? (see 'signorini bench --help')");
+        return bench_usage("bench paper", "which paper? (see 'signorini bench --help')");
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        fputs("usage: signorini bench paper NNN [options]\n\nReproduce the tables of paper NNN"
+              " ('signorini bench paper NNN --help' for its options):\n", stdout);
+        for (int k = 0; bench_papers[k].id; k++)
+            printf("  %s  %s\n", bench_papers[k].id, bench_papers[k].what);
+        return CX_EXIT_OK;
+    }
     for (int k = 0; bench_papers[k].id; k++)
         if (strcmp(bench_papers[k].id, argv[1]) == 0) {
             bench_catch_sigint();
@@ -75,15 +85,16 @@ static int bench_paper_run(int argc, char **argv)
             return CX_EXIT_INTERRUPTED;
         }
     char msg[128];
-    snprintf(msg, sizeof msg, "unknown paper '%s' (see 'signorini bench --help')", argv[1]);
-    return bench_fail("bench paper", msg);
+    snprintf(msg, sizeof msg, "unknown paper '%s'", argv[1]);
+    return bench_usage("bench paper", msg);
 }
 
 int bench_main(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
-        bench_print_usage(stdout);
-        return argc < 2 ? CX_EXIT_ERROR : CX_EXIT_OK;
+        /* no kind is a malformed line: the usage goes to stderr, status 2 */
+        bench_print_usage(argc < 2 ? stderr : stdout);
+        return argc < 2 ? CX_EXIT_USAGE : CX_EXIT_OK;
     }
     if (strcmp(argv[1], "paper") == 0)
         return bench_paper_run(argc - 1, argv + 1);
@@ -93,6 +104,6 @@ int bench_main(int argc, char **argv)
             return bench_kinds[k].run(argc - 1, argv + 1);
         }
     char msg[128];
-    snprintf(msg, sizeof msg, "unknown kind '%s' (see 'signorini bench --help')", argv[1]);
-    return bench_fail("bench", msg);
+    snprintf(msg, sizeof msg, "unknown kind '%s'", argv[1]);
+    return bench_usage("bench", msg);
 }

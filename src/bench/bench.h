@@ -13,6 +13,7 @@
 #define CX_BENCH_H
 
 #include "base/args.h"
+#include "base/opt_solve.h"
 #include "scene/scene.h"
 
 #include <stdint.h>
@@ -215,8 +216,8 @@ typedef struct bench_common {
     const char *png;           /* --png FILE (refused until the renderer lands) */
     const char *cache;         /* --cache DIR (default: see bench_cache) */
     const char *methods;       /* --methods a,b */
-    const char *friction;      /* --friction LAW */
-    const char *value;         /* --slip / --F value */
+    int friction;              /* --friction LAW (-1: the scene's) */
+    double value;              /* --slip / --F value (NaN: the scene's) */
     double time_limit;         /* --time-limit S per run (default 60) */
     int max_iter;              /* --max-iter N (0: the default) */
     int repeat;                /* --repeat N: timings are medians of N runs */
@@ -224,22 +225,28 @@ typedef struct bench_common {
     bench_cache refs;          /* the reference cache the options give */
 } bench_common;
 
-/* If argv[*i] is a common option, consume it and return 1; -1 on a bad
- * value (message in d); 0 otherwise. */
-int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d);
+/* The options every benchmark takes (values into a bench_common). */
+extern const cx_opt bench_common_opts[];
 
-/* A benchmark's own arguments: if argv[*i] is one of its options or a
- * positional argument it takes, consume it (advance *i past a value) and
- * return 1; 0 if it is not its own; negative on a bad value (message in d). */
-typedef int (*bench_arg_fn)(void *args, int argc, char **argv, int *i, cx_diag *d);
-/* The one argument loop of the benchmarks: each argument is a common
- * option (into c) or one of own's; anything else is an error naming it
- * and 'signorini bench KIND --help'. CX_EINVAL with the message in d. */
-int bench_parse(int argc, char **argv, const char *kind, bench_common *c, bench_arg_fn own, void *args,
-                cx_diag *d);
-/* For a bench_arg_fn taking one SCENE: 0 if argv[*i] is an option, 1
- * after setting *scene, negative if a scene was given already. */
-int bench_arg_scene(char **argv, const int *i, const char **scene, cx_diag *d);
+/* The one argument loop of the benchmarks: the kind's own table (into
+ * args) and the common table (into c), with up to maxpos positional
+ * arguments (SCENE...) into pos. CX_OK; CX_OPT_HELP when -h/--help was
+ * given (nothing printed: see bench_help); CX_EINVAL with one line in d
+ * for a malformed command line. */
+int bench_parse(int argc, char **argv, const cx_opt *own, void *args, bench_common *c, const char **pos,
+                int maxpos, int *npos, cx_diag *d);
+/* The argument loop of a paper driver (its own table only; argv[0] is the
+ * paper id): -1 to go on, else the exit status: 0 after printing the help
+ * (usage, then the table), CX_EXIT_USAGE after one line on stderr. */
+int bench_paper_args(const char *cmd, const char *usage, const cx_opt *opts, void *args, int argc,
+                     char **argv);
+/* The help of a benchmark: usage, then its own options and the common
+ * ones, from their tables. */
+void bench_help(const char *usage, const cx_opt *own, FILE *out);
+/* The exit status of a failed parse or check: CX_EINVAL is a malformed
+ * command line (one line "signorini CMD: msg (see ...)", CX_EXIT_USAGE),
+ * any other status an error of the run (CX_EXIT_ERROR). */
+int bench_parse_fail(const char *cmd, int status, const char *msg);
 /* Open the scene id (or path) into sc and describe the problem to run:
  * spec = sc at level (<= 0: the scene's), under the law and value the
  * common options give. */
@@ -328,6 +335,9 @@ int bench_paper_003(int argc, char **argv);
 
 /* Print "signorini CMD: message" on stderr and return CX_EXIT_ERROR. */
 int bench_fail(const char *cmd, const char *msg);
+/* A malformed command line: "signorini CMD: message (see 'signorini CMD
+ * --help')" on stderr; returns CX_EXIT_USAGE. */
+int bench_usage(const char *cmd, const char *msg);
 
 /* Median of v[0..n-1] (reorders v); NaN when n <= 0. The one median of
  * the benchmarks: every "median of N" goes through it. */

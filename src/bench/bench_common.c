@@ -16,27 +16,52 @@
 #include <string.h>
 #include <unistd.h>
 
-const char bench_common_help[] =
-    "  --methods a,b,...    methods to run (default: every registered method\n"
-    "                       that supports the scene's law, dimension and bodies)\n"
-    "  --friction LAW       none | tresca | coulomb (default: the scene's)\n"
-    "  --slip S / --F F     Tresca slip bound / Coulomb coefficient (default: the scene's)\n"
-    "  --max-iter N         iteration limit of every run (default 500)\n"
-    "  --time-limit S       seconds per run before it is stopped (default 60)\n"
-    "  --repeat N           timings are medians of N runs\n"
-    "  --threads N          BLAS (OpenBLAS) and OpenMP threads (default: as the\n"
-    "                       environment says); 1 gives steadier ratios on a busy machine\n"
-    "  --csv FILE           also write the rows as CSV (header lines start with '#')\n"
-    "  --json               print JSON {meta, rows} on stdout instead of the table\n"
-    "  --png FILE           the plot of the runs (PNG, through the renderer)\n"
-    "  --cache DIR          reference solutions (default: $XDG_CACHE_HOME/signorini,\n"
-    "                       else ~/.cache/signorini)\n";
+/* --methods a,b,...: every id in the registry. */
+static int common_check_methods(const char *text, cx_diag *d)
+{
+    char buf[512];
+    if (snprintf(buf, sizeof buf, "%s", text) >= (int)sizeof buf)
+        return cx_diag_set(d, CX_EINVAL, "--methods: list too long");
+    for (char *save = NULL, *id = strtok_r(buf, ",", &save); id; id = strtok_r(NULL, ",", &save))
+        if (!cx_method_find(id))
+            return cx_diag_set(d, CX_EINVAL, "--methods: unknown method '%s' (see 'signorini list')", id);
+    return CX_OK;
+}
+
+const cx_opt bench_common_opts[] = {
+    {"methods", 0, CX_OPT_STRING, 0, 0, 0, NULL, "a,b,...",
+     "methods to run (default: every registered method\n"
+     "that supports the scene's law, dimension and bodies)", offsetof(bench_common, methods),
+     common_check_methods},
+    CX_OPT_ROW_FRICTION(bench_common, friction),
+    CX_OPT_ROW_SLIP(bench_common, value),
+    CX_OPT_ROW_F(bench_common, value),
+    CX_OPT_ROW_MAX_ITER(bench_common, max_iter, "iteration limit of every run (default 500)"),
+    CX_OPT_ROW_TIME_LIMIT(bench_common, time_limit, "seconds per run before it is stopped (default 60)"),
+    {"repeat", 0, CX_OPT_INT, 1, BENCH_MAX_REPEAT, 0, NULL, "N", "timings are medians of N runs",
+     offsetof(bench_common, repeat), NULL},
+    {"threads", 0, CX_OPT_INT, 1, 1024, 0, NULL, "N",
+     "BLAS (OpenBLAS) and OpenMP threads (default: as the\n"
+     "environment says); 1 gives steadier ratios on a busy machine", offsetof(bench_common, threads), NULL},
+    {"csv", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
+     "also write the rows as CSV (header lines start with '#')", offsetof(bench_common, csv), NULL},
+    {"json", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "print JSON {meta, rows} on stdout instead of the table",
+     offsetof(bench_common, json), NULL},
+    {"png", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE", "the plot of the runs (PNG, through the renderer)",
+     offsetof(bench_common, png), NULL},
+    {"cache", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR",
+     "reference solutions (default: $XDG_CACHE_HOME/signorini,\n"
+     "else ~/.cache/signorini)", offsetof(bench_common, cache), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
 
 const char bench_png_missing[] = "PNG plots need the renderer (not in this build)";
 
 void bench_common_default(bench_common *c, int repeat)
 {
     memset(c, 0, sizeof *c);
+    c->friction = -1;
+    c->value = NAN;
     c->time_limit = 60;
     c->repeat = repeat;
 }
@@ -47,88 +72,51 @@ int bench_fail(const char *cmd, const char *msg)
     return CX_EXIT_ERROR;
 }
 
-/* An integer option's value in [lo, hi]: 1, or -1 with the range in d. */
-static int common_int(const char *name, const char *v, long lo, long hi, int *out, cx_diag *d)
+int bench_usage(const char *cmd, const char *msg)
 {
-    long n;
-    if (cx_parse_int(v, lo, hi, &n)) {
-        cx_diag_set(d, CX_EINVAL, "%s '%s': expected an integer in [%ld, %ld]", name, v, lo, hi);
-        return -1;
-    }
-    *out = (int)n;
-    return 1;
+    /* a message that names where to look already is not given a second pointer */
+    if (strstr(msg, "(see "))
+        fprintf(stderr, "signorini %s: %s\n", cmd, msg);
+    else
+        fprintf(stderr, "signorini %s: %s (see 'signorini %s --help')\n", cmd, msg, cmd);
+    return CX_EXIT_USAGE;
 }
 
-int bench_common_option(int argc, char **argv, int *i, bench_common *c, cx_diag *d)
+int bench_parse_fail(const char *cmd, int status, const char *msg)
 {
-    static const char *const names[] = {"--csv", "--png", "--cache", "--methods", "--friction",
-                                        "--slip", "--F", "--time-limit", "--max-iter", "--repeat",
-                                        "--threads", NULL};
-    if (strcmp(argv[*i], "--json") == 0) {
-        c->json = 1;
-        return 1;
-    }
-    for (int k = 0; names[k]; k++) {
-        const char *v;
-        int r = cx_arg_option(argc, argv, i, names[k], &v, d);
-        if (r <= 0) {
-            if (r < 0)
-                return -1;
-            continue;
-        }
-        switch (k) {
-        case 0: c->csv = v; break;
-        case 1: c->png = v; break;
-        case 2: c->cache = v; break;
-        case 3: c->methods = v; break;
-        case 4: c->friction = v; break;
-        case 5: case 6: c->value = v; break;
-        case 7:
-            if (cx_parse_double(v, &c->time_limit) || !(c->time_limit > 0)) {
-                cx_diag_set(d, CX_EINVAL, "--time-limit '%s': expected a positive number of seconds", v);
-                return -1;
-            }
-            break;
-        case 8:
-            return common_int(names[k], v, 1, 100000000, &c->max_iter, d);
-        case 9:
-            return common_int(names[k], v, 1, BENCH_MAX_REPEAT, &c->repeat, d);
-        case 10:
-            return common_int(names[k], v, 1, 1024, &c->threads, d);
-        }
-        return 1;
-    }
-    return 0;
+    return status == CX_EINVAL ? bench_usage(cmd, msg) : bench_fail(cmd, msg);
 }
 
-int bench_parse(int argc, char **argv, const char *kind, bench_common *c, bench_arg_fn own, void *args,
-                cx_diag *d)
+int bench_parse(int argc, char **argv, const cx_opt *own, void *args, bench_common *c, const char **pos,
+                int maxpos, int *npos, cx_diag *d)
 {
-    for (int i = 1; i < argc; i++) {
-        int r = bench_common_option(argc, argv, &i, c, d);
-        if (r == 0)
-            r = own(args, argc, argv, &i, d);
-        if (r < 0)
-            return CX_EINVAL;
-        if (r > 0)
-            continue;
-        if (argv[i][0] == '-' && argv[i][1])
-            return cx_diag_set(d, CX_EINVAL, "unknown option '%s' (see 'signorini bench %s --help')", argv[i],
-                               kind);
-        return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s' (see 'signorini bench %s --help')",
-                           argv[i], kind);
-    }
-    return CX_OK;
+    cx_opt_group groups[] = {{own, args}, {bench_common_opts, c}, {NULL, NULL}};
+    return cx_opt_parse(groups, argc, argv, pos, maxpos, npos, d);
 }
 
-int bench_arg_scene(char **argv, const int *i, const char **scene, cx_diag *d)
+int bench_paper_args(const char *cmd, const char *usage, const cx_opt *opts, void *args, int argc,
+                     char **argv)
 {
-    if (argv[*i][0] == '-' && argv[*i][1])
-        return 0;
-    if (*scene)
-        return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s': one scene only", argv[*i]);
-    *scene = argv[*i];
-    return 1;
+    cx_opt_group groups[] = {{opts, args}, {NULL, NULL}};
+    cx_diag d;
+    cx_diag_clear(&d);
+    int r = cx_opt_parse(groups, argc, argv, NULL, 0, NULL, &d);
+    if (r == CX_OPT_HELP) {
+        fputs(usage, stdout);
+        fputs("\n  -h, --help           this help\n", stdout);
+        cx_opt_help(opts, stdout);
+        return CX_EXIT_OK;
+    }
+    return r ? bench_usage(cmd, d.msg) : -1;
+}
+
+void bench_help(const char *usage, const cx_opt *own, FILE *out)
+{
+    fputs(usage, out);
+    fputs("\n  -h, --help           this help\n", out);
+    cx_opt_help(own, out);
+    fputs("\noptions of every benchmark:\n", out);
+    cx_opt_help(bench_common_opts, out);
 }
 
 int bench_open(const bench_common *c, const char *id, int level, cx_scene *sc,
@@ -149,16 +137,6 @@ static void common_set_threads(int n)
         blas(n);
     if (omp)
         omp(n);
-}
-
-int bench_print_help(int argc, char **argv, const char *usage)
-{
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            printf("%s%s", usage, bench_common_help);
-            return 1;
-        }
-    return 0;
 }
 
 int bench_common_finish(bench_common *c, cx_diag *d)
@@ -190,15 +168,14 @@ int bench_common_finish(bench_common *c, cx_diag *d)
 int bench_common_law(const bench_common *c, const cx_scene *s, cx_friction *law, double *value,
                      cx_diag *d)
 {
-    int l = s->friction;
-    if (c->friction && (l = cx_friction_from_name(c->friction)) < 0)
-        return cx_diag_set(d, CX_EINVAL, "--friction '%s': expected none, tresca or coulomb", c->friction);
+    int l = c->friction >= 0 ? c->friction : (int)s->friction;
+    (void)d;
     *law = (cx_friction)l;
     *value = l == CX_FRICTION_COULOMB ? s->F : s->slip_bound;
     if (l == CX_FRICTION_NONE)
         *value = 0;
-    if (c->value && (cx_parse_double(c->value, value) || *value < 0))
-        return cx_diag_set(d, CX_EINVAL, "--slip/--F '%s': expected a non-negative number", c->value);
+    if (!isnan(c->value))
+        *value = c->value;   /* its range was checked by the table */
     return CX_OK;
 }
 

@@ -16,11 +16,7 @@ static const char scaling_usage[] =
     "factor's size, and for each method its time (setup + solve, from a fresh\n"
     "session) as a ratio to the baseline, iterations, peak memory of the run\n"
     "against the factor's, and the error against the reference solution.\n"
-    "Timings are medians of --repeat runs (default 3).\n"
-    "\n"
-    "  --levels a..b|a,b,c  mesh levels\n"
-    "  --tol T              kkt tolerance of the runs (default 1e-10)\n"
-    "  --no-reference       skip the reference solutions (no err_u column)\n";
+    "Timings are medians of --repeat runs (default 3).\n";
 
 static const char *const scaling_cols[] = {
     "scene", "level", "friction", "dofs", "contact", "assembly", "baseline", "assembly/baseline",
@@ -32,6 +28,7 @@ static const char *const scaling_cols[] = {
 typedef struct {
     bench_common c;
     const char *scene;
+    const char *levels_text;   /* --levels as given */
     int levels[SCALING_MAX_LEVELS];
     int nlevels;
     double tol;
@@ -46,7 +43,7 @@ static int scaling_levels(const char *v, scaling_args *a, cx_diag *d)
     if (dots) {
         char first[32];
         snprintf(first, sizeof first, "%.*s", (int)(dots - v), v);
-        if (cx_parse_int(first, 1, 1 << 20, &lo) || cx_parse_int(dots + 2, 1, 1 << 20, &hi) || hi < lo)
+        if (cx_parse_int(first, 1, CX_OPT_LEVEL_MAX, &lo) || cx_parse_int(dots + 2, 1, CX_OPT_LEVEL_MAX, &hi) || hi < lo)
             return cx_diag_set(d, CX_EINVAL, "--levels '%s': expected a..b with 1 <= a <= b", v);
         for (long l = lo; l <= hi && a->nlevels < SCALING_MAX_LEVELS; l *= 2)
             a->levels[a->nlevels++] = (int)l;
@@ -66,37 +63,32 @@ static int scaling_levels(const char *v, scaling_args *a, cx_diag *d)
     return CX_OK;
 }
 
-/* scaling's own arguments (bench_arg_fn): --no-reference, --levels,
- * --tol, SCENE. */
-static int scaling_arg(void *args, int argc, char **argv, int *i, cx_diag *d)
-{
-    scaling_args *a = args;
-    const char *v;
-    int r;
-    if (strcmp(argv[*i], "--no-reference") == 0) {
-        a->no_ref = 1;
-        return 1;
-    }
-    if ((r = cx_arg_option(argc, argv, i, "--levels", &v, d)) != 0)
-        return r < 0 ? r : scaling_levels(v, a, d) ? CX_EINVAL : 1;
-    if ((r = cx_arg_option(argc, argv, i, "--tol", &v, d)) != 0) {
-        if (r > 0 && (cx_parse_double(v, &a->tol) || !(a->tol > 0)))
-            return cx_diag_set(d, CX_EINVAL, "--tol '%s': expected a positive number", v);
-        return r;
-    }
-    return bench_arg_scene(argv, i, &a->scene, d);
-}
+static const cx_opt scaling_opts[] = {
+    {"levels", 0, CX_OPT_STRING, 0, 0, 0, NULL, "a..b|a,b,c", "mesh levels",
+     offsetof(scaling_args, levels_text), NULL},
+    CX_OPT_ROW_TOL(scaling_args, tol, "kkt tolerance of the runs (default 1e-10)"),
+    {"no-reference", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "skip the reference solutions (no err_u column)",
+     offsetof(scaling_args, no_ref), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
 
+/* CX_OK, CX_OPT_HELP, CX_EINVAL (a malformed line) or the status of
+ * bench_common_finish. */
 static int scaling_parse(int argc, char **argv, scaling_args *a, cx_diag *d)
 {
     memset(a, 0, sizeof *a);
     bench_common_default(&a->c, 3);
     a->tol = 1e-10;
-    CX_TRY(bench_parse(argc, argv, "scaling", &a->c, scaling_arg, a, d));
-    if (!a->scene)
-        return cx_diag_set(d, CX_EINVAL, "missing SCENE (see 'signorini bench scaling --help')");
+    int npos = 0;
+    int r = bench_parse(argc, argv, scaling_opts, a, &a->c, &a->scene, 1, &npos, d);
+    if (r)
+        return r;
+    if (a->levels_text)
+        CX_TRY(scaling_levels(a->levels_text, a, d));
+    if (npos == 0)
+        return cx_diag_set(d, CX_EINVAL, "missing SCENE");
     if (a->nlevels == 0)
-        return cx_diag_set(d, CX_EINVAL, "missing --levels a..b (see 'signorini bench scaling --help')");
+        return cx_diag_set(d, CX_EINVAL, "missing --levels a..b");
     return bench_common_finish(&a->c, d);
 }
 
@@ -183,14 +175,19 @@ static int scaling_level_costs(const bench_problem_spec *spec, int repeat, doubl
 
 int bench_scaling(int argc, char **argv)
 {
-    if (bench_print_help(argc, argv, scaling_usage))
-        return CX_EXIT_OK;
     cx_diag d;
     cx_diag_clear(&d);
     scaling_args a;
     cx_scene sc;
     bench_problem_spec spec;
-    if (scaling_parse(argc, argv, &a, &d) || bench_open(&a.c, a.scene, 0, &sc, &spec, &d))
+    int parsed = scaling_parse(argc, argv, &a, &d);
+    if (parsed == CX_OPT_HELP) {
+        bench_help(scaling_usage, scaling_opts, stdout);
+        return CX_EXIT_OK;
+    }
+    if (parsed)
+        return bench_parse_fail("bench scaling", parsed, d.msg);
+    if (bench_open(&a.c, a.scene, 0, &sc, &spec, &d))
         return bench_fail("bench scaling", d.msg);
     uint64_t shash = bench_scene_hash(&sc);
     for (int k = 0; k < a.nlevels; k++)

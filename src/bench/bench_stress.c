@@ -14,12 +14,7 @@ static const char stress_usage[] =
     "\n"
     "Stability: each scene (default: all) and method under the perturbations\n"
     "below; a failure is a row with its reason. --cases keeps the cases whose id\n"
-    "starts with one of the given prefixes.\n"
-    "\n"
-    "  --level L            mesh level of every scene (default: each scene's)\n"
-    "  --cases LIST         case id prefixes\n"
-    "\n"
-    "cases:\n";
+    "starts with one of the given prefixes.\n";
 
 typedef enum {
     S_NOMINAL, S_UNITS, S_CONTRAST, S_NU, S_FRICTION, S_LOAD, S_GAP, S_DUP, S_JITTER, S_PARAM
@@ -73,31 +68,22 @@ typedef struct {
     double *u, *lN, *lT;
 } stress_nominal;
 
-/* stress's own arguments (bench_arg_fn): --level, --cases, SCENE... */
-static int stress_arg(void *args, int argc, char **argv, int *i, cx_diag *d)
-{
-    stress_args *a = args;
-    const char *v;
-    int r;
-    if ((r = cx_arg_option(argc, argv, i, "--level", &v, d)) != 0)
-        return r < 0 ? r : cx_arg_level(v, &a->level, d) ? CX_EINVAL : 1;
-    if ((r = cx_arg_option(argc, argv, i, "--cases", &v, d)) != 0) {
-        a->cases = r > 0 ? v : NULL;
-        return r;
-    }
-    if (argv[*i][0] == '-' && argv[*i][1])
-        return 0;
-    if (a->nscenes == 32)
-        return cx_diag_set(d, CX_EINVAL, "too many scenes (at most 32)");
-    a->scenes[a->nscenes++] = argv[*i];
-    return 1;
-}
+static const cx_opt stress_opts[] = {
+    CX_OPT_ROW_LEVEL_HELP(stress_args, level, "mesh level of every scene (default: each scene's)"),
+    {"cases", 0, CX_OPT_STRING, 0, 0, 0, NULL, "LIST", "case id prefixes (see the cases below)",
+     offsetof(stress_args, cases), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
 
+/* CX_OK, CX_OPT_HELP, CX_EINVAL (a malformed line) or the status of
+ * bench_common_finish. */
 static int stress_parse(int argc, char **argv, stress_args *a, cx_diag *d)
 {
     memset(a, 0, sizeof *a);
     bench_common_default(&a->c, 1);
-    CX_TRY(bench_parse(argc, argv, "stress", &a->c, stress_arg, a, d));
+    int r = bench_parse(argc, argv, stress_opts, a, &a->c, a->scenes, 32, &a->nscenes, d);
+    if (r)
+        return r;
     return bench_common_finish(&a->c, d);
 }
 
@@ -418,19 +404,19 @@ static int stress_scene(stress_args *a, const char *id, bench_table *t, int *don
 
 int bench_stress(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(stress_usage, stdout);
-            for (int c = 0; c < STRESS_NCASES; c++)
-                printf("  %-18s %s\n", stress_cases[c].id, stress_cases[c].what);
-            printf("\n%s", bench_common_help);
-            return CX_EXIT_OK;
-        }
     cx_diag d;
     cx_diag_clear(&d);
     stress_args a;
-    if (stress_parse(argc, argv, &a, &d))
-        return bench_fail("bench stress", d.msg);
+    int parsed = stress_parse(argc, argv, &a, &d);
+    if (parsed == CX_OPT_HELP) {
+        bench_help(stress_usage, stress_opts, stdout);
+        printf("\ncases:\n");
+        for (int c = 0; c < STRESS_NCASES; c++)
+            printf("  %-18s %s\n", stress_cases[c].id, stress_cases[c].what);
+        return CX_EXIT_OK;
+    }
+    if (parsed)
+        return bench_parse_fail("bench stress", parsed, d.msg);
     char (*ids)[CX_SCENE_NAMELEN] = NULL;
     if (a.nscenes == 0) {
         int count;

@@ -15,12 +15,7 @@ static const char wp_usage[] =
     "Work-precision: each method runs to each tolerance on the kkt error (runs\n"
     "stop on the kkt error only) from a fresh session (the setup is timed), for\n"
     "each value of its main parameter. Errors are against the reference solution\n"
-    "(computed once, cached). Default tolerances 1e-2,1e-4,1e-6,1e-8,1e-10,1e-12.\n"
-    "\n"
-    "  --level L            mesh level (default: the scene's)\n"
-    "  --tols LIST          tolerances\n"
-    "  --sweep KEY=LIST     values of the parameter KEY, for every method that has it\n"
-    "                       (default: the parameter each method's paper tunes, below)\n";
+    "(computed once, cached). Default tolerances 1e-2,1e-4,1e-6,1e-8,1e-10,1e-12.\n";
 
 /* The parameter each method's paper tunes, and the values swept. A method
  * not listed runs with its defaults. */
@@ -45,6 +40,7 @@ typedef struct {
     bench_common c;
     const char *scene;
     int level;
+    const char *tols_text, *sweep_text;   /* --tols, --sweep as given */
     double tols[WP_MAX_VALUES];
     int ntols;
     char sweep_key[CX_PARAM_STRLEN];   /* "": each method's own (wp_sweeps) */
@@ -64,28 +60,17 @@ static int wp_list(const char *opt, const char *text, double *out, int *n, cx_di
     return CX_OK;
 }
 
-/* wp's own arguments (bench_arg_fn): --level, --tols, --sweep, SCENE. */
-static int wp_arg(void *args, int argc, char **argv, int *i, cx_diag *d)
-{
-    wp_args *a = args;
-    const char *v;
-    int r;
-    if ((r = cx_arg_option(argc, argv, i, "--level", &v, d)) != 0)
-        return r < 0 ? r : cx_arg_level(v, &a->level, d) ? CX_EINVAL : 1;
-    if ((r = cx_arg_option(argc, argv, i, "--tols", &v, d)) != 0)
-        return r < 0 ? r : wp_list("--tols", v, a->tols, &a->ntols, d) ? CX_EINVAL : 1;
-    if ((r = cx_arg_option(argc, argv, i, "--sweep", &v, d)) != 0) {
-        if (r < 0)
-            return r;
-        const char *eq = strchr(v, '=');
-        if (!eq || eq == v)
-            return cx_diag_set(d, CX_EINVAL, "--sweep '%s': expected KEY=v1,v2,...", v);
-        snprintf(a->sweep_key, sizeof a->sweep_key, "%.*s", (int)(eq - v), v);
-        return wp_list("--sweep", eq + 1, a->sweep, &a->nsweep, d) ? CX_EINVAL : 1;
-    }
-    return bench_arg_scene(argv, i, &a->scene, d);
-}
+static const cx_opt wp_opts[] = {
+    CX_OPT_ROW_LEVEL(wp_args, level),
+    {"tols", 0, CX_OPT_STRING, 0, 0, 0, NULL, "LIST", "tolerances", offsetof(wp_args, tols_text), NULL},
+    {"sweep", 0, CX_OPT_STRING, 0, 0, 0, NULL, "KEY=LIST",
+     "values of the parameter KEY, for every method that has it\n"
+     "(default: the parameter each method's paper tunes)", offsetof(wp_args, sweep_text), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
 
+/* CX_OK, CX_OPT_HELP, CX_EINVAL (a malformed line) or the status of
+ * bench_common_finish. */
 static int wp_parse(int argc, char **argv, wp_args *a, cx_diag *d)
 {
     memset(a, 0, sizeof *a);
@@ -93,9 +78,21 @@ static int wp_parse(int argc, char **argv, wp_args *a, cx_diag *d)
     static const double tols[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
     a->ntols = 6;
     memcpy(a->tols, tols, sizeof tols);
-    CX_TRY(bench_parse(argc, argv, "wp", &a->c, wp_arg, a, d));
-    if (!a->scene)
-        return cx_diag_set(d, CX_EINVAL, "missing SCENE (see 'signorini bench wp --help')");
+    int npos = 0;
+    int r = bench_parse(argc, argv, wp_opts, a, &a->c, &a->scene, 1, &npos, d);
+    if (r)
+        return r;
+    if (a->tols_text)
+        CX_TRY(wp_list("--tols", a->tols_text, a->tols, &a->ntols, d));
+    if (a->sweep_text) {
+        const char *v = a->sweep_text, *eq = strchr(v, '=');
+        if (!eq || eq == v)
+            return cx_diag_set(d, CX_EINVAL, "--sweep '%s': expected KEY=v1,v2,...", v);
+        snprintf(a->sweep_key, sizeof a->sweep_key, "%.*s", (int)(eq - v), v);
+        CX_TRY(wp_list("--sweep", eq + 1, a->sweep, &a->nsweep, d));
+    }
+    if (npos == 0)
+        return cx_diag_set(d, CX_EINVAL, "missing SCENE");
     return bench_common_finish(&a->c, d);
 }
 
@@ -173,14 +170,19 @@ static void wp_time_to_accuracy(bench_table *t, double baseline)
 
 int bench_wp(int argc, char **argv)
 {
-    if (bench_print_help(argc, argv, wp_usage))
-        return CX_EXIT_OK;
     cx_diag d;
     cx_diag_clear(&d);
     wp_args a;
     cx_scene sc;
     bench_problem_spec spec;
-    if (wp_parse(argc, argv, &a, &d) || bench_open(&a.c, a.scene, a.level, &sc, &spec, &d))
+    int parsed = wp_parse(argc, argv, &a, &d);
+    if (parsed == CX_OPT_HELP) {
+        bench_help(wp_usage, wp_opts, stdout);
+        return CX_EXIT_OK;
+    }
+    if (parsed)
+        return bench_parse_fail("bench wp", parsed, d.msg);
+    if (bench_open(&a.c, a.scene, a.level, &sc, &spec, &d))
         return bench_fail("bench wp", d.msg);
     int level = a.level > 0 ? a.level : sc.level;
 

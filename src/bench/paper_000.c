@@ -123,46 +123,40 @@ static void p000_cell(char *buf, size_t len, const p000_result *r, int with_k)
         snprintf(buf, len, "%ld%s", r->nk, r->converged ? "" : "!");
 }
 
+typedef struct {
+    int rows, all, first, repeat;
+    double slip;
+} p000_args;
+
+static const char p000_usage[] =
+    "usage: signorini bench paper 000 [--rows N | --all] [--first R] [--slip S] [--repeat R]\n"
+    "\n"
+    "Tables 1 and 2 of paper 000 on 'twoblocks': rows m = 150, 165, ... (default 10\n"
+    "rows from the first, up to n = 109440; --all: 21 rows).\n";
+
+static const cx_opt p000_opts[] = {
+    {"rows", 0, CX_OPT_INT, 1, 21, 0, NULL, "N", "the number of rows (default 10)", offsetof(p000_args, rows),
+     NULL},
+    {"all", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "all 21 rows", offsetof(p000_args, all), NULL},
+    {"first", 0, CX_OPT_INT, 1, 21, 0, NULL, "R", "start at row R (default 1)", offsetof(p000_args, first),
+     NULL},
+    {"slip", 0, CX_OPT_REAL, 0, INFINITY, CX_OPT_MIN_OPEN | CX_OPT_MAX_OPEN, NULL, "S",
+     "the Tresca bound, a traction (default: the scene's 1.7e7)", offsetof(p000_args, slip), NULL},
+    {"repeat", 0, CX_OPT_INT, 1, 63, 0, NULL, "R",
+     "times are medians of R runs (the baseline of max(R, 3))", offsetof(p000_args, repeat), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
+
 int bench_paper_000(int argc, char **argv)
 {
-    int rows = 10, repeat = 1, first = 0;
-    double slip = 0;
+    p000_args a = {10, 0, 1, 1, 0};
+    int code = bench_paper_args("bench paper 000", p000_usage, p000_opts, &a, argc, argv);
+    if (code >= 0)
+        return code;
+    int rows = a.all ? 21 : a.rows, repeat = a.repeat, first = a.first - 1;
+    double slip = a.slip;
     cx_diag d;
     cx_diag_clear(&d);
-    for (int i = 1; i < argc; i++) {
-        const char *v = NULL;
-        long k;
-        int r;
-        if ((r = cx_arg_option(argc, argv, &i, "--first", &v, &d)) != 0) {
-            if (r < 0 || cx_parse_int(v, 1, 21, &k))
-                return bench_fail("bench paper 000", "--first: expected an integer in [1, 21]");
-            first = (int)k - 1;
-        } else if (strcmp(argv[i], "--all") == 0) {
-            rows = 21;
-        } else if ((r = cx_arg_option(argc, argv, &i, "--rows", &v, &d)) != 0) {
-            if (r < 0 || cx_parse_int(v, 1, 21, &k))
-                return bench_fail("bench paper 000", "--rows: expected an integer in [1, 21]");
-            rows = (int)k;
-        } else if ((r = cx_arg_option(argc, argv, &i, "--repeat", &v, &d)) != 0) {
-            if (r < 0 || cx_parse_int(v, 1, 63, &k))
-                return bench_fail("bench paper 000", "--repeat: expected an integer in [1, 63]");
-            repeat = (int)k;
-        } else if ((r = cx_arg_option(argc, argv, &i, "--slip", &v, &d)) != 0) {
-            if (r < 0 || cx_parse_double(v, &slip) || !(slip > 0))
-                return bench_fail("bench paper 000", "--slip: expected a positive traction");
-        } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            printf("usage: signorini bench paper 000 [--rows N | --all] [--first R] [--slip S] [--repeat R]\n"
-                   "  Tables 1 and 2 of paper 000 on 'twoblocks': rows m = 150, 165, ... (default 10\n"
-                   "  rows from the first, up to n = 109440; --all: 21 rows). --slip overrides the Tresca bound\n"
-                   "  (a traction; the scene's 1.7e7 by default). --first R starts at row R (1-21).\n"
-                   "  --repeat R: times are medians of R runs (the baseline of max(R, 3)).\n");
-            return CX_EXIT_OK;
-        } else {
-            char msg[160];
-            snprintf(msg, sizeof msg, "unknown option '%.60s' (see --help)", argv[i]);
-            return bench_fail("bench paper 000", msg);
-        }
-    }
     cx_scene sc;
     if (cx_scene_open("twoblocks", &sc, &d))
         return bench_fail("bench paper 000", d.msg);

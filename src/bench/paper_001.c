@@ -40,11 +40,7 @@ static const struct {
 static const char p001_usage[] =
     "usage: signorini bench paper 001 [options]\n"
     "\n"
-    "Table 1 of paper 001 on scene 'prism': ours beside the paper's.\n"
-    "\n"
-    "  --levels LIST   levels, e.g. 1-7 (default), 8, 2,4,6 (1 to 8)\n"
-    "  --repeat N      baseline runs per level, median taken (default 3)\n"
-    "  --no-solves     skip the reduction one solve per contact dof\n";
+    "Table 1 of paper 001 on scene 'prism': ours beside the paper's.\n";
 
 typedef struct {
     int level, nodes, contact, iters, reason;
@@ -234,38 +230,39 @@ static void p001_print(const p001_row *r, int n)
            "the paper's values are lost, so its iteration counts compare in shape only.\n");
 }
 
+typedef struct {
+    const char *levels;
+    int repeat, no_solves;
+} p001_args;
+
+static int p001_check_levels(const char *text, cx_diag *d)
+{
+    int want[P001_LEVELS + 1];
+    if (p001_levels(text, want))
+        return cx_diag_set(d, CX_EINVAL, "--levels '%s': expected levels 1 to 8 as a list, e.g. 1-7 or 2,4,8",
+                           text);
+    return CX_OK;
+}
+
+static const cx_opt p001_opts[] = {
+    {"levels", 0, CX_OPT_STRING, 0, 0, 0, NULL, "LIST", "levels, e.g. 1-7 (default), 8, 2,4,6 (1 to 8)",
+     offsetof(p001_args, levels), p001_check_levels},
+    {"repeat", 0, CX_OPT_INT, 1, 15, 0, NULL, "N", "baseline runs per level, median taken (default 3)",
+     offsetof(p001_args, repeat), NULL},
+    {"no-solves", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "skip the reduction one solve per contact dof",
+     offsetof(p001_args, no_solves), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
+
 int bench_paper_001(int argc, char **argv)
 {
-    int want[P001_LEVELS + 1], repeat = 3, solves = 1;
-    p001_levels("1-7", want);
+    p001_args a = {"1-7", 3, 0};
+    int code = bench_paper_args("bench paper 001", p001_usage, p001_opts, &a, argc, argv);
+    if (code >= 0)
+        return code;
+    int want[P001_LEVELS + 1], repeat = a.repeat, solves = !a.no_solves;
+    p001_levels(a.levels, want);
     cx_diag d;
-    for (int i = 1; i < argc; i++) {
-        const char *v = NULL;
-        int r;
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(p001_usage, stdout);
-            return CX_EXIT_OK;
-        } else if (strcmp(argv[i], "--no-solves") == 0) {
-            solves = 0;
-        } else if ((r = cx_arg_option(argc, argv, &i, "--levels", &v, &d)) != 0) {
-            if (r < 0)
-                return bench_fail("bench paper 001", d.msg);
-            if (p001_levels(v, want))
-                return bench_fail("bench paper 001",
-                                "--levels: expected levels 1 to 8 as a list, e.g. 1-7 or 2,4,8");
-        } else if ((r = cx_arg_option(argc, argv, &i, "--repeat", &v, &d)) != 0) {
-            char *end;
-            long n = r > 0 ? strtol(v, &end, 10) : 0;
-            if (r < 0 || *end || n < 1 || n > 15)
-                return bench_fail("bench paper 001", "--repeat: expected an integer from 1 to 15");
-            repeat = (int)n;
-        } else {
-            char msg[160];
-            snprintf(msg, sizeof msg, "unknown option '%s' (see 'signorini bench paper 001 --help')",
-                     argv[i]);
-            return bench_fail("bench paper 001", msg);
-        }
-    }
     cx_scene sc;
     if (cx_scene_open("prism", &sc, &d))
         return bench_fail("bench paper 001", d.msg);

@@ -391,36 +391,52 @@ static const char p2_usage[] =
     "usage: signorini bench paper 002 [--quick] [--tables LIST]\n"
     "\n"
     "Koko's Tables 1-6 (hertz, halfball) beside ours, Table A (r = auto against\n"
-    "the best hand-tuned r) and the performance figures (P).\n"
-    "  --quick         the three smallest levels of each table\n"
-    "  --tables LIST   which tables, e.g. 1,2,5 or A,P (default: all)\n";
+    "the best hand-tuned r) and the performance figures (P).\n";
+
+/* "1,2,5" or "A,P" as a mask (1-6: bits 0-5, A: 64, P: 128); -1 if bad. */
+static int p2_tables(const char *text)
+{
+    int tables = 0;
+    for (const char *t = text; *t; t++) {
+        if (*t >= '1' && *t <= '6')
+            tables |= 1 << (*t - '1');
+        else if (*t == 'A' || *t == 'a')
+            tables |= 64;
+        else if (*t == 'P' || *t == 'p')
+            tables |= 128;
+        else if (*t != ',')
+            return -1;
+    }
+    return tables;
+}
+
+static int p2_check_tables(const char *text, cx_diag *d)
+{
+    if (p2_tables(text) < 0)
+        return cx_diag_set(d, CX_EINVAL, "--tables '%s': expected a list of 1-6, A, P", text);
+    return CX_OK;
+}
+
+typedef struct {
+    int quick;
+    const char *tables;
+} p2_args;
+
+static const cx_opt p2_opts[] = {
+    {"quick", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "the three smallest levels of each table",
+     offsetof(p2_args, quick), NULL},
+    {"tables", 0, CX_OPT_STRING, 0, 0, 0, NULL, "LIST", "which tables, e.g. 1,2,5 or A,P (default: all)",
+     offsetof(p2_args, tables), p2_check_tables},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
 
 int bench_paper_002(int argc, char **argv)
 {
-    int nlev = 5, tables = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(p2_usage, stdout);
-            return CX_EXIT_OK;
-        } else if (strcmp(argv[i], "--quick") == 0) {
-            nlev = 3;
-        } else if (strcmp(argv[i], "--tables") == 0 && i + 1 < argc) {
-            for (const char *t = argv[++i]; *t; t++) {
-                if (*t >= '1' && *t <= '6')
-                    tables |= 1 << (*t - '1');
-                else if (*t == 'A' || *t == 'a')
-                    tables |= 64;
-                else if (*t == 'P' || *t == 'p')
-                    tables |= 128;
-                else if (*t != ',')
-                    return bench_fail("bench paper 002", "--tables: expected a list of 1-6, A, P");
-            }
-        } else {
-            char msg[128];
-            snprintf(msg, sizeof msg, "unknown option '%s' (see --help)", argv[i]);
-            return bench_fail("bench paper 002", msg);
-        }
-    }
+    p2_args a = {0, NULL};
+    int code = bench_paper_args("bench paper 002", p2_usage, p2_opts, &a, argc, argv);
+    if (code >= 0)
+        return code;
+    int nlev = a.quick ? 3 : 5, tables = a.tables ? p2_tables(a.tables) : 0;
     if (!tables)
         tables = 255;
     cx_diag d;

@@ -15,13 +15,7 @@
 static const char p003_usage[] =
     "usage: signorini bench paper 003 [options]\n"
     "\n"
-    "  --max-level N   largest level 1/H for PDAS and PDPC (default 100; 225 is the paper's)\n"
-    "  --small N       largest level for PSOR, LSSNN, Graves and the Schur variants (default 25)\n"
-    "  --time-limit S  seconds per solve before it is given up (default 30)\n"
-    "  --tables LIST   which of 3,4,5,6,7 (default all), e.g. --tables 5,6\n"
-    "  --geometry G    stackbond, runningbond or laminae only (default all three)\n"
-    "  --gap G         settlement gap g as a fraction of H, in (0, 1) (default: the scenes', 0.01;\n"
-    "                  0.5 is the stress case where the joints slide by a node spacing)\n";
+    "Masonry walls: Tables 1-7 of paper 003 beside ours.\n";
 
 static const int p003_levels[] = {5, 10, 15, 20, 25, 50, 75, 100, 125, 150, 175, 200, 225};
 #define P003_NLEVELS 13
@@ -187,45 +181,48 @@ static int p003_sizes(const cx_scene *sc, int g, int max_build)
     return CX_EXIT_OK;
 }
 
+typedef struct {
+    int max_level, small;
+    double time_limit, gap;
+    const char *tables, *only;
+} p003_args;
+
+static int p003_check_geometry(const char *text, cx_diag *d)
+{
+    if (cx_parse_choice(text, "stackbond|runningbond|laminae") < 0)
+        return cx_diag_set(d, CX_EINVAL, "--geometry '%s': expected stackbond|runningbond|laminae", text);
+    return CX_OK;
+}
+
+static const cx_opt p003_opts[] = {
+    {"max-level", 0, CX_OPT_INT, 5, 225, 0, NULL, "N",
+     "largest level 1/H for PDAS and PDPC (default 100; 225 is\nthe paper's)",
+     offsetof(p003_args, max_level), NULL},
+    {"small", 0, CX_OPT_INT, 5, 225, 0, NULL, "N",
+     "largest level for PSOR, LSSNN, Graves and the Schur\nvariants (default 25)", offsetof(p003_args, small),
+     NULL},
+    CX_OPT_ROW_TIME_LIMIT(p003_args, time_limit, "seconds per solve before it is given up (default 30)"),
+    {"tables", 0, CX_OPT_STRING, 0, 0, 0, NULL, "LIST", "which of 3,4,5,6,7 (default all), e.g. --tables 5,6",
+     offsetof(p003_args, tables), NULL},
+    {"geometry", 0, CX_OPT_STRING, 0, 0, 0, NULL, "G", "stackbond, runningbond or laminae only (default all three)",
+     offsetof(p003_args, only), p003_check_geometry},
+    {"gap", 0, CX_OPT_REAL, 0, 1, CX_OPT_MIN_OPEN | CX_OPT_MAX_OPEN, NULL, "G",
+     "settlement gap g as a fraction of H (default: the\n"
+     "scenes', 0.01; 0.5 is the stress case where the joints\n"
+     "slide by a node spacing)", offsetof(p003_args, gap), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
+
 int bench_paper_003(int argc, char **argv)
 {
-    int max_level = 100, small = 25;
-    double time_limit = 30, gap = 0;
-    const char *tables = NULL, *only = NULL;
+    p003_args a = {100, 25, 30, 0, NULL, NULL};
+    int code = bench_paper_args("bench paper 003", p003_usage, p003_opts, &a, argc, argv);
+    if (code >= 0)
+        return code;
+    int max_level = a.max_level, small = a.small;
+    double time_limit = a.time_limit, gap = a.gap;
+    const char *tables = a.tables, *only = a.only;
     cx_diag d;
-    for (int i = 1; i < argc; i++) {
-        const char *v;
-        int got;
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(p003_usage, stdout);
-            return CX_EXIT_OK;
-        }
-        if ((got = cx_arg_option(argc, argv, &i, "--max-level", &v, &d)) != 0) {
-            if (got < 0 || (max_level = atoi(v)) < 5 || max_level > 225)
-                return bench_fail("bench paper 003", "--max-level: expected a level from 5 to 225");
-        } else if ((got = cx_arg_option(argc, argv, &i, "--small", &v, &d)) != 0) {
-            if (got < 0 || (small = atoi(v)) < 5 || small > 225)
-                return bench_fail("bench paper 003", "--small: expected a level from 5 to 225");
-        } else if ((got = cx_arg_option(argc, argv, &i, "--time-limit", &v, &d)) != 0) {
-            if (got < 0 || cx_parse_double(v, &time_limit) || !(time_limit > 0))
-                return bench_fail("bench paper 003", "--time-limit: expected seconds > 0");
-        } else if ((got = cx_arg_option(argc, argv, &i, "--tables", &v, &d)) != 0) {
-            if (got < 0)
-                return bench_fail("bench paper 003", d.msg);
-            tables = v;
-        } else if ((got = cx_arg_option(argc, argv, &i, "--gap", &v, &d)) != 0) {
-            if (got < 0 || cx_parse_double(v, &gap) || !(gap > 0 && gap < 1))
-                return bench_fail("bench paper 003", "--gap: expected a fraction of H in (0, 1)");
-        } else if ((got = cx_arg_option(argc, argv, &i, "--geometry", &v, &d)) != 0) {
-            if (got < 0 || cx_parse_choice(v, "stackbond|runningbond|laminae") < 0)
-                return bench_fail("bench paper 003", "--geometry: expected stackbond|runningbond|laminae");
-            only = v;
-        } else {
-            char msg[128];
-            snprintf(msg, sizeof msg, "unknown option '%s' (see --help)", argv[i]);
-            return bench_fail("bench paper 003", msg);
-        }
-    }
 
     cx_scene sc[3];
     for (int g = 0; g < 3; g++) {

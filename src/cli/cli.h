@@ -1,30 +1,35 @@
 /* The command line: subcommands and their shared option handling. Each
- * subcommand returns the process exit status: 0 success, 1 an error (one
- * line on stderr), 3 a solve that did not converge (a result, not an
- * error). */
+ * subcommand declares its options as cx_opt tables (base/args.h) and
+ * returns the process exit status: 0 success, 1 an error of the run (one
+ * line on stderr), 2 a malformed command line (one line), 3 a solve that
+ * did not converge (a result, not an error). */
 #ifndef CLI_H
 #define CLI_H
 
 #include "base/args.h"
+#include "base/opt_solve.h"
 #include "out/result.h"
 
 int cli_list(int argc, char **argv);
 int cli_solve(int argc, char **argv);
 
 int cli_render(int argc, char **argv);  /* cli/render.c */
-/* 'solve' under another command name (render: the same options and more). */
-int cli_solve_as(const char *cmd, int argc, char **argv);
+/* 'solve' under another command name and usage (render: the same options,
+ * and --png required). */
+int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv);
 
 /* The rendering options shared by solve and render (cli/render.c). */
 typedef struct cli_render_args {
-    const char *png, *vtu, *field_name;
-    int plot;            /* 0 none, 1 pressure, 2 convergence, 3 work */
+    const char *png, *vtu, *field_name, *size;
+    int plot;            /* -1 none, 0 pressure, 1 convergence, 2 work */
     double scale;        /* 0: auto */
     int w, h, view, edges, vtu_ascii, timing;
 } cli_render_args;
 void cli_render_args_init(cli_render_args *r);
-/* 1 if argv[*i] was a rendering option (consumed), 0 if not, -1 on error. */
-int cli_render_option(int argc, char **argv, int *i, cli_render_args *r, cx_diag *d);
+/* Their table (values into a cli_render_args). */
+extern const cx_opt cli_render_opts[];
+/* After parsing: the image size from --size. */
+void cli_render_finish(cli_render_args *r);
 /* Check the options against the problem's dimension before solving. */
 int cli_render_check(const cli_render_args *r, int dim, cx_diag *d);
 /* Write what was asked (VTU, PNG image or plot) for the solution res of
@@ -36,6 +41,11 @@ int cli_render_stdout_users(const cli_render_args *r);
 
 /* Print "signorini CMD: message" on stderr and return CX_EXIT_ERROR. */
 int cli_fail(const char *cmd, const char *msg);
+/* A malformed command line: print "signorini CMD: message (see 'signorini
+ * CMD --help')" on stderr and return CX_EXIT_USAGE. */
+int cli_usage(const char *cmd, const char *msg);
+/* The help of a command: usage (its first lines), then each table. */
+void cli_help(const char *usage, const cx_opt *const *tables, FILE *out);
 
 
 #endif

@@ -12,6 +12,16 @@ static const char list_usage[] =
     "Lists the scenes (id, dimension, element, default level, friction, suited\n"
     "methods) and the methods (id, source, what each supports, parameters).\n";
 
+typedef struct {
+    int json;
+} list_args;
+
+static const cx_opt list_opts[] = {
+    {"json", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "one JSON object on stdout instead of the text",
+     offsetof(list_args, json), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
+
 static void list_text(char (*ids)[CX_SCENE_NAMELEN], int nids)
 {
     printf("scenes:\n");
@@ -44,22 +54,20 @@ static void list_text(char (*ids)[CX_SCENE_NAMELEN], int nids)
 
 int cli_list(int argc, char **argv)
 {
-    int json = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--json") == 0)
-            json = 1;
-        else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(list_usage, stdout);
-            return CX_EXIT_OK;
-        } else {
-            char msg[160];
-            snprintf(msg, sizeof msg, "unknown option '%s' (see 'signorini list --help')", argv[i]);
-            return cli_fail("list", msg);
-        }
+    list_args a = {0};
+    cx_opt_group groups[] = {{list_opts, &a}, {NULL, NULL}};
+    cx_diag d;
+    int parsed = cx_opt_parse(groups, argc, argv, NULL, 0, NULL, &d);
+    if (parsed == CX_OPT_HELP) {
+        const cx_opt *const tables[] = {list_opts, NULL};
+        cli_help(list_usage, tables, stdout);
+        return CX_EXIT_OK;
     }
+    if (parsed)
+        return cli_usage("list", d.msg);
+    int json = a.json;
     char (*ids)[CX_SCENE_NAMELEN] = NULL;
     int nids = 0;
-    cx_diag d;
     if (cx_scene_list(&ids, &nids, &d))
         return cli_fail("list", d.msg);
     if (json)

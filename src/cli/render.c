@@ -15,85 +15,81 @@
 static const char render_usage[] =
     "usage: signorini render SCENE [solve options] --png FILE [options]\n"
     "\n"
-    "Solve SCENE (options as for 'signorini solve') and draw the solution.\n"
-    "\n"
-    "  --png FILE           the image (written to a temporary file, then renamed;\n"
-    "                       '-' for standard output)\n"
-    "  --field F            von-mises (default), sxx, syy, sxy, szz, syz, sxz (3D),\n"
-    "                       u, ux, uy, uz, pressure, status\n"
-    "  --scale S            displacement magnification (default: auto, the largest\n"
-    "                       displacement drawn as 7 % of the body size)\n"
-    "  --size WxH           image size in pixels (default 1200x900)\n"
-    "  --view body|contact  3D: the whole body, or the contact faces alone\n"
-    "  --edges              draw the mesh edges\n"
-    "  --vtu FILE           also write a VTK XML UnstructuredGrid (ParaView; '-' for\n"
-    "                       standard output; works without the renderer)\n"
-    "  --vtu-ascii          ASCII instead of base64 binary data in the VTU\n"
-    "  --plot pressure|convergence|work  a line plot instead of the image: the\n"
-    "                       contact pressure along the boundary (with Hertz's where\n"
-    "                       the scene has it); the kkt error per iteration of every\n"
-    "                       method of the scene (semilog); or work-precision: the\n"
-    "                       kkt error against the time spent (log-log), with the\n"
-    "                       baseline (one factorisation + solve of K) marked\n"
-    "  --timing             print the time of each rendering stage\n";
+    "Solve SCENE (options as for 'signorini solve') and draw the solution:\n"
+    "the image of a field, a line plot (--plot) or a VTU file (--vtu).\n";
+
+/* --field: a name the renderer knows (whether it exists in the scene's
+ * dimension is checked once the problem is built). */
+static int render_check_field(const char *text, cx_diag *d)
+{
+#if CX_HAVE_RENDER
+    if (cx_field_from_name(text) < 0)
+        return cx_diag_set(d, CX_EINVAL, "--field '%s': unknown field", text);
+#else
+    (void)text;
+    (void)d;
+#endif
+    return CX_OK;
+}
+
+static int render_check_size(const char *text, cx_diag *d)
+{
+    int w, h;
+    char extra;
+    if (sscanf(text, "%dx%d%c", &w, &h, &extra) != 2 || w < 64 || h < 64 || w > 16384 || h > 16384)
+        return cx_diag_set(d, CX_EINVAL, "--size '%s': expected WxH, 64..16384 pixels each way", text);
+    return CX_OK;
+}
+
+const cx_opt cli_render_opts[] = {
+    {"png", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
+     "also draw the solution (written to a temporary file,\n"
+     "then renamed; '-' for standard output)", offsetof(cli_render_args, png), NULL},
+    {"field", 0, CX_OPT_STRING, 0, 0, 0, NULL, "F",
+     "von-mises (default), sxx, syy, sxy, szz, syz, sxz (3D),\n"
+     "u, ux, uy, uz, pressure, status", offsetof(cli_render_args, field_name), render_check_field},
+    {"scale", 0, CX_OPT_REAL, 0, INFINITY, CX_OPT_MIN_OPEN | CX_OPT_MAX_OPEN, NULL, "S",
+     "displacement magnification (default: auto, the largest\n"
+     "displacement drawn as 7 % of the body size)", offsetof(cli_render_args, scale), NULL},
+    {"size", 0, CX_OPT_STRING, 0, 0, 0, NULL, "WxH", "image size in pixels (default 1200x900)",
+     offsetof(cli_render_args, size), render_check_size},
+    {"view", 0, CX_OPT_CHOICE, 0, 0, 0, "body|contact", "body|contact",
+     "3D: the whole body, or the contact faces alone", offsetof(cli_render_args, view), NULL},
+    {"edges", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "draw the mesh edges", offsetof(cli_render_args, edges),
+     NULL},
+    {"vtu", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
+     "also write a VTK XML UnstructuredGrid for ParaView ('-' for\n"
+     "standard output: the summary goes to stderr; works\n"
+     "without the renderer)", offsetof(cli_render_args, vtu), NULL},
+    {"vtu-ascii", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "ASCII instead of base64 binary data in the VTU",
+     offsetof(cli_render_args, vtu_ascii), NULL},
+    {"plot", 0, CX_OPT_CHOICE, 0, 0, 0, "pressure|convergence|work", "pressure|convergence|work",
+     "a line plot instead of the image: the contact pressure along\n"
+     "the boundary (with Hertz's where the scene has it); the kkt\n"
+     "error per iteration of every method of the scene (semilog);\n"
+     "or work-precision: the kkt error against the time spent\n"
+     "(log-log), with the baseline (one factorisation + solve of\n"
+     "K) marked", offsetof(cli_render_args, plot), NULL},
+    {"timing", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "print the time of each rendering stage",
+     offsetof(cli_render_args, timing), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
 
 void cli_render_args_init(cli_render_args *r)
 {
     memset(r, 0, sizeof *r);
+    r->plot = -1;
     r->w = 1200;
     r->h = 900;
 }
 
-int cli_render_option(int argc, char **argv, int *i, cli_render_args *r, cx_diag *d)
+void cli_render_finish(cli_render_args *r)
 {
-    const char *v = NULL;
-    int k;
-    if (strcmp(argv[*i], "--edges") == 0) { r->edges = 1; return 1; }
-    if (strcmp(argv[*i], "--vtu-ascii") == 0) { r->vtu_ascii = 1; return 1; }
-    if (strcmp(argv[*i], "--timing") == 0) { r->timing = 1; return 1; }
-    if ((k = cx_arg_option(argc, argv, i, "--png", &v, d)) != 0) {
-        r->png = v;
-        return k;
+    /* checked by render_check_size while parsing */
+    if (r->size && sscanf(r->size, "%dx%d", &r->w, &r->h) != 2) {
+        r->w = 1200;
+        r->h = 900;
     }
-    if ((k = cx_arg_option(argc, argv, i, "--vtu", &v, d)) != 0) {
-        r->vtu = v;
-        return k;
-    }
-    if ((k = cx_arg_option(argc, argv, i, "--plot", &v, d)) != 0) {
-        if (k > 0 && (r->plot = (int)cx_parse_choice(v, "pressure|convergence|work") + 1) <= 0) {
-            cx_diag_set(d, CX_EINVAL, "--plot '%s': expected pressure, convergence or work", v);
-            return -1;
-        }
-        return k;
-    }
-    if ((k = cx_arg_option(argc, argv, i, "--field", &v, d)) != 0) {
-        r->field_name = v;
-        return k;
-    }
-    if ((k = cx_arg_option(argc, argv, i, "--scale", &v, d)) != 0) {
-        if (k > 0 && (cx_parse_double(v, &r->scale) || !(r->scale > 0) || !isfinite(r->scale))) {
-            cx_diag_set(d, CX_EINVAL, "--scale '%s': expected a positive number", v);
-            return -1;
-        }
-        return k;
-    }
-    if ((k = cx_arg_option(argc, argv, i, "--size", &v, d)) != 0) {
-        char extra;
-        if (k > 0 && (sscanf(v, "%dx%d%c", &r->w, &r->h, &extra) != 2 || r->w < 64 || r->h < 64 ||
-                      r->w > 16384 || r->h > 16384)) {
-            cx_diag_set(d, CX_EINVAL, "--size '%s': expected WxH, 64..16384 pixels each way", v);
-            return -1;
-        }
-        return k;
-    }
-    if ((k = cx_arg_option(argc, argv, i, "--view", &v, d)) != 0) {
-        if (k > 0 && (r->view = (int)cx_parse_choice(v, "body|contact")) < 0) {
-            cx_diag_set(d, CX_EINVAL, "--view '%s': expected body or contact", v);
-            return -1;
-        }
-        return k;
-    }
-    return 0;
 }
 
 #if CX_HAVE_RENDER
@@ -234,10 +230,10 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
 static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
                       cx_diag *d)
 {
-    if (r->plot == 1)
+    if (r->plot == 0)
         return render_plot_pressure(r, sc, res, d);
-    if (r->plot >= 2)
-        return render_plot_convergence(r, sc, s, res->run.level, r->plot == 3, d);
+    if (r->plot >= 1)
+        return render_plot_convergence(r, sc, s, res->run.level, r->plot == 2, d);
     cx_render_opts o;
     cx_render_opts_default(&o);
     o.width = r->w;
@@ -309,15 +305,5 @@ int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session 
 
 int cli_render(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(render_usage, stdout);
-            return CX_EXIT_OK;
-        }
-    int png = 0;
-    for (int i = 1; i < argc; i++)
-        png |= strcmp(argv[i], "--png") == 0 || strncmp(argv[i], "--png=", 6) == 0;
-    if (!png)
-        return cli_fail("render", "missing --png FILE (see 'signorini render --help')");
-    return cli_solve_as("render", argc, argv);
+    return cli_solve_as("render", render_usage, argc, argv);
 }

@@ -13,117 +13,57 @@ static const char solve_usage[] =
     "\n"
     "SCENE is a scene id (see 'signorini list') or a path to an .ini file.\n"
     "\n"
-    "  --method ID|auto     solver (default auto: the fastest measured for the scene\n"
-    "                       and law, or a rule from the problem; see the README)\n"
-    "  --friction LAW       none | tresca | coulomb (default: the scene's)\n"
-    "  --F VALUE            Coulomb coefficient (default: the scene's)\n"
-    "  --slip VALUE         Tresca slip bound, a traction (default: the scene's)\n"
-    "  --level L            mesh level (default: the scene's)\n"
-    "  --tol T              stop when the kkt error is below T (default 1e-10)\n"
-    "  --max-iter N         iteration limit (default 500)\n"
-    "  --stop kkt|own       stop on the kkt error only, or also on the method's\n"
-    "                       own criterion (default own; a run it stops above the\n"
-    "                       tolerance has not converged)\n"
-    "  --time-limit S       stop the run after S seconds (checked inside long steps)\n"
-    "  --set KEY=VALUE      a method parameter (repeatable; see 'signorini list')\n"
-    "  --json               print one JSON object on stdout instead of the summary\n"
-    "  --baseline           also time one factorisation + solve of K alone\n"
-    "  --quiet              no per-iteration lines\n"
-    "  --png FILE           also draw the solution (see 'signorini render --help'\n"
-    "                       for --field, --scale, --size, --view, --edges)\n"
-    "  --vtu FILE           also write a VTK XML UnstructuredGrid for ParaView\n"
-    "                       ('-' for standard output: the summary goes to stderr)\n"
-    "\n"
-    "Exit status: 0 converged (kkt error <= tol), 1 error, 2 usage, 3 not converged\n"
-    "(stopped by its own criterion above tol, stalled, iteration or time limit,\n"
-    "breakdown, overflow or NaN), 130 interrupted (Ctrl-C: the partial result is\n"
-    "printed as cancelled).\n";
+    "Exit status: 0 converged (kkt error <= tol), 1 error, 2 usage (a malformed\n"
+    "command line), 3 not converged (stopped by its own criterion above tol,\n"
+    "stalled, iteration or time limit, breakdown, overflow or NaN), 130\n"
+    "interrupted (Ctrl-C: the partial result is printed as cancelled).\n";
 
 typedef struct {
-    const char *scene;
-    const char *method;
-    const char *friction;
-    const char *F, *slip;
-    int level;
-    cx_options opt;
-    const char *sets[CX_PARAM_MAX];
-    int nsets;
+    cx_solve_args s;          /* the options every solve has (base/opt_solve.h) */
     int json, baseline, quiet;
     cli_render_args render;   /* --png, --vtu and the drawing options (cli/render.c) */
 } solve_args;
 
-enum { OPT_METHOD, OPT_FRICTION, OPT_F, OPT_SLIP, OPT_LEVEL, OPT_TOL, OPT_MAXIT, OPT_STOP, OPT_SET,
-       OPT_TIME };
-static const char *const solve_value_opts[] = {"--method", "--friction", "--F", "--slip", "--level",
-                                               "--tol", "--max-iter", "--stop", "--set", "--time-limit",
-                                               NULL};
+/* --friction is a CHOICE of base/opt_solve.h stored as its index */
+_Static_assert(CX_FRICTION_NONE == 0 && CX_FRICTION_TRESCA == 1 && CX_FRICTION_COULOMB == 2,
+               "--friction's choices none|tresca|coulomb follow cx_friction");
 
-static int solve_parse(int argc, char **argv, solve_args *a, cx_diag *d)
+/* What only the command line's solve has. */
+static const cx_opt solve_own_opts[] = {
+    {"json", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "print one JSON object on stdout instead of the summary",
+     offsetof(solve_args, json), NULL},
+    {"baseline", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "also time one factorisation + solve of K alone",
+     offsetof(solve_args, baseline), NULL},
+    {"quiet", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no per-iteration lines", offsetof(solve_args, quiet),
+     NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
+
+static const cx_opt *const solve_tables[] = {cx_solve_opts, solve_own_opts, cli_render_opts, NULL};
+
+/* CX_OK, CX_OPT_HELP, or CX_EINVAL for a malformed command line. */
+static int solve_parse(int argc, char **argv, const char **scene, solve_args *a, cx_diag *d)
 {
+    cx_options o;
+    cx_options_default(&o);
     memset(a, 0, sizeof *a);
-    cx_options_default(&a->opt);
+    cx_solve_args_default(&a->s, o.tol, o.max_iter, o.own_stop, o.time_limit);
     cli_render_args_init(&a->render);
-    for (int i = 1; i < argc; i++) {
-        int r = cli_render_option(argc, argv, &i, &a->render, d);
-        if (r < 0)
-            return CX_EINVAL;
-        if (r)
-            continue;
-        if (strcmp(argv[i], "--json") == 0) { a->json = 1; continue; }
-        if (strcmp(argv[i], "--baseline") == 0) { a->baseline = 1; continue; }
-        if (strcmp(argv[i], "--quiet") == 0) { a->quiet = 1; continue; }
-        const char *v = NULL;
-        int which = -1;
-        for (int k = 0; solve_value_opts[k] && which < 0; k++) {
-            int r = cx_arg_option(argc, argv, &i, solve_value_opts[k], &v, d);
-            if (r < 0)
-                return CX_EINVAL;
-            if (r)
-                which = k;
-        }
-        long n;
-        switch (which) {
-        case OPT_METHOD: a->method = v; break;
-        case OPT_FRICTION: a->friction = v; break;
-        case OPT_F: a->F = v; break;
-        case OPT_SLIP: a->slip = v; break;
-        case OPT_LEVEL:
-            CX_TRY(cx_arg_level(v, &a->level, d));
-            break;
-        case OPT_TOL:
-            if (cx_parse_double(v, &a->opt.tol) || !(a->opt.tol > 0))
-                return cx_diag_set(d, CX_EINVAL, "--tol '%s': expected a positive number", v);
-            break;
-        case OPT_MAXIT:
-            if (cx_parse_int(v, 1, 100000000, &n))
-                return cx_diag_set(d, CX_EINVAL, "--max-iter '%s': expected a positive integer", v);
-            a->opt.max_iter = (int)n;
-            break;
-        case OPT_STOP:
-            if ((n = cx_parse_choice(v, "kkt|own")) < 0)
-                return cx_diag_set(d, CX_EINVAL, "--stop '%s': expected kkt or own", v);
-            a->opt.own_stop = n == 1;
-            break;
-        case OPT_TIME:
-            if (cx_parse_double(v, &a->opt.time_limit) || !(a->opt.time_limit > 0) ||
-                !isfinite(a->opt.time_limit))
-                return cx_diag_set(d, CX_EINVAL, "--time-limit '%s': expected a positive number of seconds", v);
-            break;
-        case OPT_SET:
-            if (a->nsets == CX_PARAM_MAX)
-                return cx_diag_set(d, CX_EINVAL, "--set: too many parameters");
-            a->sets[a->nsets++] = v;
-            break;
-        default:
-            if (argv[i][0] == '-' && argv[i][1] != '\0')
-                return cx_diag_set(d, CX_EINVAL, "unknown option '%s' (see 'signorini solve --help')", argv[i]);
-            if (a->scene)
-                return cx_diag_set(d, CX_EINVAL, "unexpected argument '%s': one scene only", argv[i]);
-            a->scene = argv[i];
-        }
-    }
-    if (!a->scene)
-        return cx_diag_set(d, CX_EINVAL, "missing SCENE (see 'signorini solve --help')");
+    cx_opt_group groups[] = {{cx_solve_opts, &a->s}, {solve_own_opts, a}, {cli_render_opts, &a->render},
+                             {NULL, NULL}};
+    int npos = 0;
+    int r = cx_opt_parse(groups, argc, argv, scene, 1, &npos, d);
+    if (r)
+        return r;
+    cli_render_finish(&a->render);
+    if (npos == 0)
+        return cx_diag_set(d, CX_EINVAL, "missing SCENE");
+    /* a method id is a word of the registry: known before anything is built */
+    if (a->s.method && strcmp(a->s.method, "auto") != 0 && !cx_method_find(a->s.method))
+        return cx_diag_set(d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", a->s.method);
+    /* the summary (or JSON) and a file on standard output cannot share it */
+    if (cli_render_stdout_users(&a->render) + a->json > 1)
+        return cx_diag_set(d, CX_EINVAL, "--json, --png - and --vtu -: only one can go to standard output");
     return CX_OK;
 }
 
@@ -217,32 +157,38 @@ static int solve_method_params(const cx_method *m, const char *auto_sets, const 
     snprintf(buf, sizeof buf, "%s", auto_sets);
     for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok; tok = strtok_r(NULL, " ", &save))
         CX_TRY(cx_param_set_pair(pv, tok, owner, d));
-    for (int k = 0; k < a->nsets; k++)
-        CX_TRY(cx_param_set_pair(pv, a->sets[k], owner, d));
+    for (int k = 0; k < a->s.sets.n; k++)
+        CX_TRY(cx_param_set_pair(pv, a->s.sets.v[k], owner, d));
     return CX_OK;
 }
 
 int cli_solve(int argc, char **argv)
 {
-    return cli_solve_as("solve", argc, argv);
+    return cli_solve_as("solve", solve_usage, argc, argv);
 }
 
-int cli_solve_as(const char *cmd, int argc, char **argv)
+int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(solve_usage, stdout);
-            return CX_EXIT_OK;
-        }
     cx_diag d;
     cx_diag_clear(&d);
     solve_args a;
-    if (solve_parse(argc, argv, &a, &d))
-        return cli_fail(cmd, d.msg);
-    /* the summary (or JSON) and a file on standard output cannot share it */
+    const char *scene = NULL;
+    int parsed = solve_parse(argc, argv, &scene, &a, &d);
+    if (parsed == CX_OPT_HELP) {
+        cli_help(usage, solve_tables, stdout);
+        return CX_EXIT_OK;
+    }
+    if (parsed)
+        return cli_usage(cmd, d.msg);
+    if (strcmp(cmd, "render") == 0 && !a.render.png)
+        return cli_usage(cmd, "missing --png FILE");
+    cx_options opt;
+    cx_options_default(&opt);
+    opt.tol = a.s.tol;
+    opt.max_iter = a.s.max_iter;
+    opt.own_stop = a.s.own_stop;
+    opt.time_limit = a.s.time_limit;
     int to_stdout = cli_render_stdout_users(&a.render);
-    if (to_stdout + a.json > 1)
-        return cli_fail(cmd, "--json, --png - and --vtu -: only one can go to standard output");
     FILE *summary = to_stdout ? stderr : stdout;
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -252,16 +198,12 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
 
     double t0 = cx_clock_now();
     cx_scene sc;
-    if (cx_scene_open(a.scene, &sc, &d))
+    if (cx_scene_open(scene, &sc, &d))
         return cli_fail(cmd, d.msg);
 
     /* friction and a named method with its parameters are checked before
      * anything is built; --method auto needs the problem */
-    int law = sc.friction;
-    if (a.friction && (law = cx_friction_from_name(a.friction)) < 0) {
-        cx_diag_set(&d, CX_EINVAL, "--friction '%s': expected none, tresca or coulomb", a.friction);
-        return cli_fail(cmd, d.msg);
-    }
+    int law = a.s.friction >= 0 ? a.s.friction : (int)sc.friction;
     if (!(sc.laws & (1u << law))) {
         char laws[32] = "";
         for (int k = 0; k < 3; k++)
@@ -273,28 +215,21 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         return cli_fail(cmd, d.msg);
     }
     double F = sc.F, slip = sc.slip_bound;
-    if (a.F && (cx_parse_double(a.F, &F) || F < 0)) {
-        cx_diag_set(&d, CX_EINVAL, "--F '%s': expected a non-negative number", a.F);
-        return cli_fail(cmd, d.msg);
-    }
-    if (a.slip && (cx_parse_double(a.slip, &slip) || slip < 0)) {
-        cx_diag_set(&d, CX_EINVAL, "--slip '%s': expected a non-negative number", a.slip);
-        return cli_fail(cmd, d.msg);
-    }
-    int is_auto = !a.method || strcmp(a.method, "auto") == 0;
+    if (!isnan(a.s.F))
+        F = a.s.F;
+    if (!isnan(a.s.slip))
+        slip = a.s.slip;
+    int is_auto = !a.s.method || strcmp(a.s.method, "auto") == 0;
     const cx_method *m = NULL;
     cx_param_values pv;
     if (!is_auto) {
-        if (!(m = cx_method_find(a.method))) {
-            cx_diag_set(&d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", a.method);
-            return cli_fail(cmd, d.msg);
-        }
+        m = cx_method_find(a.s.method);
         if (solve_method_params(m, "", &a, &pv, &d))
-            return cli_fail(cmd, d.msg);
+            return cli_usage(cmd, d.msg);   /* --set names a key or a value the method has not */
     }
 
     cx_problem *p = NULL;
-    if (cx_scene_build(&sc, a.level, &p, &d))
+    if (cx_scene_build(&sc, a.s.level, &p, &d))
         return cli_fail(cmd, d.msg);
     double t_assemble = cx_clock_now() - t0;
     if (cli_render_check(&a.render, p->dim, &d)) {
@@ -309,10 +244,10 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
     }
     if (is_auto) {
         const char *auto_sets;
-        m = cx_method_find(cx_scene_auto_method(&sc, a.level, p, (cx_friction)law, &auto_sets));
+        m = cx_method_find(cx_scene_auto_method(&sc, a.s.level, p, (cx_friction)law, &auto_sets));
         if (!m || solve_method_params(m, auto_sets, &a, &pv, &d)) {
             cx_problem_destroy(&p);
-            return cli_fail(cmd, m ? d.msg : "--method auto: no method");
+            return m ? cli_usage(cmd, d.msg) : cli_fail(cmd, "--method auto: no method");
         }
     }
 
@@ -322,7 +257,7 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         return cli_fail(cmd, d.msg);
     }
     int code = CX_EXIT_ERROR;
-    if (cx_session_set_method(s, m, &pv, &a.opt, &d)) {
+    if (cx_session_set_method(s, m, &pv, &opt, &d)) {
         cli_fail(cmd, d.msg);
         goto done;
     }
@@ -333,7 +268,7 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         if (cp->contact.nclamped > 0)
             snprintf(clamped, sizeof clamped, ", %d clamped", cp->contact.nclamped);
         fprintf(summary, "%s level %d: %dD, %d dofs, %d contact points%s; %s%s, friction %s\n", sc.id,
-                a.level > 0 ? a.level : sc.level, cp->dim, cp->n, cp->m, clamped, m->id,
+                a.s.level > 0 ? a.s.level : sc.level, cp->dim, cp->n, cp->m, clamped, m->id,
                 is_auto ? " (auto)" : "", cx_friction_name(cp->friction));
         fprintf(summary, "  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
         fflush(summary);   /* the run may be long: show where it is */
@@ -352,7 +287,7 @@ int cli_solve_as(const char *cmd, int argc, char **argv)
         goto done;
     }
     cx_result *res = NULL;
-    if (cx_result_from_session(&res, s, &sc, a.level, &d)) {
+    if (cx_result_from_session(&res, s, &sc, a.s.level, &d)) {
         cli_fail(cmd, d.msg);
         goto done;
     }

@@ -4,12 +4,14 @@
  * TUI_RESOLVE, which the session serves from its operator cache. No
  * curses here. */
 #include "tui/tui_impl.h"
+#include "base/opt_solve.h"
 #include "cx_config.h"
 
 #if CX_HAVE_RENDER
 #include "render/render.h"
 #endif
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <stdio.h>
@@ -86,6 +88,26 @@ static void level_format(const tui_state *st, int i, char *buf, size_t len)
     snprintf(buf, len, "%d", st->sel_level);
 }
 
+/* The row of cx_solve_opts a typed or stepped value is checked against:
+ * one range per option, the same as on the command line (base/opt_solve.h). */
+static const cx_opt *actions_row(const char *name)
+{
+    const cx_opt *o = cx_opt_find(cx_solve_opts, name);
+    assert(o);
+    return o;
+}
+
+/* The value of text for option name, or a message in the status line. */
+static int actions_value(tui_state *st, const char *name, const char *text, double *x)
+{
+    cx_diag d;
+    cx_diag_clear(&d);
+    if (cx_opt_value(actions_row(name), text, x, &d) == CX_OK)
+        return CX_OK;
+    tui_msg(st, 1, "%s", d.msg);
+    return d.status;
+}
+
 static int level_step(tui_state *st, int i, int dir)
 {
     (void)i;
@@ -100,12 +122,14 @@ static int level_step(tui_state *st, int i, int dir)
 static int level_enter(tui_state *st, int i, const char *text)
 {
     (void)i;
-    long n;
-    if (cx_parse_int(text, 1, st->scene.level_max, &n)) {
-        tui_msg(st, 1, "level '%s': expected an integer in [1, %d]", text, st->scene.level_max);
+    double x;
+    if (actions_value(st, "level", text, &x))
+        return TUI_REDRAW;
+    if (x > st->scene.level_max) {
+        tui_msg(st, 1, "level '%s': scene '%s' allows levels 1 to %d", text, st->scene.id, st->scene.level_max);
         return TUI_REDRAW;
     }
-    st->sel_level = (int)n;
+    st->sel_level = (int)x;
     return TUI_REDRAW | TUI_REASSEMBLE;
 }
 
@@ -184,10 +208,8 @@ static int coef_enter(tui_state *st, int i, const char *text)
 {
     (void)i;
     double x;
-    if (cx_parse_double(text, &x) || !(x >= 0) || !isfinite(x)) {
-        tui_msg(st, 1, "'%s': expected a number >= 0", text);
+    if (actions_value(st, st->sel_law == CX_FRICTION_COULOMB ? "F" : "slip", text, &x))
         return TUI_REDRAW;
-    }
     if (st->sel_law == CX_FRICTION_COULOMB)
         st->sel_F = x;
     else
@@ -265,7 +287,11 @@ static void tol_format(const tui_state *st, int i, char *buf, size_t len)
 static int tol_step(tui_state *st, int i, int dir)
 {
     (void)i;
-    st->sel_opt.tol = fmax(1e-16, fmin(1, dir > 0 ? st->sel_opt.tol * 10 : st->sel_opt.tol / 10));
+    /* a step that would leave the option's range is not taken */
+    double x = dir > 0 ? st->sel_opt.tol * 10 : st->sel_opt.tol / 10;
+    if (!cx_opt_in_range(actions_row("tol"), x) || x < 1e-16)
+        return TUI_REDRAW;
+    st->sel_opt.tol = x;
     return TUI_REDRAW | TUI_RESOLVE;
 }
 
@@ -273,10 +299,8 @@ static int tol_enter(tui_state *st, int i, const char *text)
 {
     (void)i;
     double x;
-    if (cx_parse_double(text, &x) || !(x > 0) || !(x < 1)) {
-        tui_msg(st, 1, "tol '%s': expected a number in (0, 1)", text);
+    if (actions_value(st, "tol", text, &x))
         return TUI_REDRAW;
-    }
     st->sel_opt.tol = x;
     return TUI_REDRAW | TUI_RESOLVE;
 }
@@ -290,20 +314,20 @@ static void maxit_format(const tui_state *st, int i, char *buf, size_t len)
 static int maxit_step(tui_state *st, int i, int dir)
 {
     (void)i;
-    int n = dir > 0 ? st->sel_opt.max_iter * 2 : st->sel_opt.max_iter / 2;
-    st->sel_opt.max_iter = n < 1 ? 1 : n > 1000000 ? 1000000 : n;
+    double x = dir > 0 ? st->sel_opt.max_iter * 2.0 : floor(st->sel_opt.max_iter / 2.0);
+    if (!cx_opt_in_range(actions_row("max-iter"), x))
+        return TUI_REDRAW;
+    st->sel_opt.max_iter = (int)x;
     return TUI_REDRAW | TUI_RESOLVE;
 }
 
 static int maxit_enter(tui_state *st, int i, const char *text)
 {
     (void)i;
-    long n;
-    if (cx_parse_int(text, 1, 100000000, &n)) {
-        tui_msg(st, 1, "max iter '%s': expected a positive integer", text);
+    double x;
+    if (actions_value(st, "max-iter", text, &x))
         return TUI_REDRAW;
-    }
-    st->sel_opt.max_iter = (int)n;
+    st->sel_opt.max_iter = (int)x;
     return TUI_REDRAW | TUI_RESOLVE;
 }
 

@@ -2,6 +2,7 @@
  * running, one step per tick), scripted keys for tests, and restoring the
  * terminal on every way out (q, Ctrl-C, SIGTERM/SIGHUP, a fatal error). */
 #include "tui/tui_impl.h"
+#include "base/opt_solve.h"
 
 #include <signal.h>
 #include <stdio.h>
@@ -14,17 +15,7 @@ static const char tui_usage[] =
     "\n"
     "The explorer: pick a scene, a friction law, a method and its parameters;\n"
     "step the solver and watch the contact set and the error. With no\n"
-    "argument it opens on 'hertz'. Press ? in the explorer for the keys.\n"
-    "\n"
-    "  --level L            mesh level (default: the scene's)\n"
-    "  --method ID          method (default: the scene's first)\n"
-    "  --friction LAW       none | tresca | coulomb (default: the scene's)\n"
-    "  --mono               no colours (also when NO_COLOR is set)\n"
-    "  --ascii              ASCII only (automatic when the locale is not UTF-8)\n"
-    "  --export-dir DIR     where 'e' writes the runs (default: .)\n"
-    "  --keys KEYS          type these keys first, one whenever idle (tests)\n"
-    "  --frames N           draw N frames (one per tick) and quit (tests)\n"
-    "  --stats              on exit, print the median redraw and step times (stderr)\n";
+    "argument it opens on 'hertz'. Press ? in the explorer for the keys.\n";
 
 static volatile sig_atomic_t loop_quit;
 
@@ -44,55 +35,52 @@ static void loop_fatal(const char *msg)
 }
 
 typedef struct {
-    const char *scene, *method, *friction, *keys, *export_dir;
-    int level, frames, mono, ascii, stats;
+    const char *scene, *method, *keys, *export_dir;
+    int friction, level, frames, mono, ascii, stats;
 } loop_args;
 
+static const cx_opt loop_opts[] = {
+    CX_OPT_ROW_LEVEL(loop_args, level),
+    {"method", 0, CX_OPT_STRING, 0, 0, 0, NULL, "ID", "method (default: the scene's first)",
+     offsetof(loop_args, method), NULL},
+    CX_OPT_ROW_FRICTION(loop_args, friction),
+    {"mono", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no colours (also when NO_COLOR is set)",
+     offsetof(loop_args, mono), NULL},
+    {"ascii", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "ASCII only (automatic when the locale is not UTF-8)",
+     offsetof(loop_args, ascii), NULL},
+    {"export-dir", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR", "where 'e' writes the runs (default: .)",
+     offsetof(loop_args, export_dir), NULL},
+    {"keys", 0, CX_OPT_STRING, 0, 0, 0, NULL, "KEYS", "type these keys first, one whenever idle (tests)",
+     offsetof(loop_args, keys), NULL},
+    {"frames", 0, CX_OPT_INT, 1, 1 << 30, 0, NULL, "N", "draw N frames (one per tick) and quit (tests)",
+     offsetof(loop_args, frames), NULL},
+    {"stats", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL,
+     "on exit, print the median redraw and step times (stderr)", offsetof(loop_args, stats), NULL},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
+};
+
+/* -1 to go on, else the exit status: 0 after the help, CX_EXIT_USAGE
+ * after one line for a malformed command line. */
 static int loop_parse(int argc, char **argv, loop_args *a)
 {
     memset(a, 0, sizeof *a);
-    for (int i = 1; i < argc; i++) {
-        const char *o = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        long n;
-        if (strcmp(o, "--help") == 0 || strcmp(o, "-h") == 0) {
-            fputs(tui_usage, stdout);
-            return 0;
-        } else if (strcmp(o, "--mono") == 0) {
-            a->mono = 1;
-        } else if (strcmp(o, "--ascii") == 0) {
-            a->ascii = 1;
-        } else if (strcmp(o, "--stats") == 0) {
-            a->stats = 1;
-        } else if (!v && (strcmp(o, "--level") == 0 || strcmp(o, "--frames") == 0 || strcmp(o, "--method") == 0 ||
-                          strcmp(o, "--friction") == 0 || strcmp(o, "--keys") == 0 ||
-                          strcmp(o, "--export-dir") == 0)) {
-            fprintf(stderr, "signorini tui: option '%s' needs a value\n", o);
-            return 1;
-        } else if (strcmp(o, "--level") == 0 || strcmp(o, "--frames") == 0) {
-            if (cx_parse_int(v, 1, 1 << 30, &n)) {
-                fprintf(stderr, "signorini tui: %s '%s': expected a positive integer\n", o, v);
-                return 1;
-            }
-            *(strcmp(o, "--level") == 0 ? &a->level : &a->frames) = (int)n;
-            i++;
-        } else if (strcmp(o, "--method") == 0) {
-            a->method = argv[++i];
-        } else if (strcmp(o, "--friction") == 0) {
-            a->friction = argv[++i];
-        } else if (strcmp(o, "--keys") == 0) {
-            a->keys = argv[++i];
-        } else if (strcmp(o, "--export-dir") == 0) {
-            a->export_dir = argv[++i];
-        } else if (o[0] == '-') {
-            fprintf(stderr, "signorini tui: unknown option '%s' (see 'signorini tui --help')\n", o);
-            return 1;
-        } else if (a->scene) {
-            fprintf(stderr, "signorini tui: unexpected argument '%s': one scene only\n", o);
-            return 1;
-        } else {
-            a->scene = o;
-        }
+    a->friction = -1;
+    cx_opt_group groups[] = {{loop_opts, a}, {NULL, NULL}};
+    cx_diag d;
+    cx_diag_clear(&d);
+    int r = cx_opt_parse(groups, argc, argv, &a->scene, 1, NULL, &d);
+    if (r == CX_OPT_HELP) {
+        fputs(tui_usage, stdout);
+        fputs("\n  -h, --help           this help\n", stdout);
+        cx_opt_help(loop_opts, stdout);
+        return CX_EXIT_OK;
+    }
+    /* a method id is a word of the registry: a usage error like a bad law */
+    if (!r && a->method && !cx_method_find(a->method))
+        r = cx_diag_set(&d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", a->method);
+    if (r) {
+        fprintf(stderr, "signorini tui: %s%s\n", d.msg, strstr(d.msg, "(see ") ? "" : " (see 'signorini tui --help')");
+        return CX_EXIT_USAGE;
     }
     return -1;
 }
@@ -119,11 +107,7 @@ int tui_main(int argc, char **argv)
     int r = loop_parse(argc, argv, &a);
     if (r >= 0)
         return r;
-    int law = -1;
-    if (a.friction && (law = cx_friction_from_name(a.friction)) < 0) {
-        fprintf(stderr, "signorini tui: --friction '%s': expected none, tresca or coulomb\n", a.friction);
-        return 1;
-    }
+    int law = a.friction;
     tui_state *st = NULL;
     cx_diag d;
     cx_diag_clear(&d);

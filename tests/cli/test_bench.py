@@ -58,9 +58,9 @@ def read_csv(path):
     return meta, rows
 
 
-def one_line_error(code, err, *needles):
+def one_line_error(code, err, *needles, status=1):
     lines = err.strip().splitlines()
-    check(code == 1, f"exit 1 for an error, got {code}: {err!r}")
+    check(code == status, f"exit {status} for an error, got {code}: {err!r}")
     check(len(lines) == 1, f"one line on stderr, got {lines!r}")
     for n in needles:
         check(n in err, f"{n!r} in {err!r}")
@@ -347,7 +347,7 @@ with tempfile.TemporaryDirectory() as tmp:
 
     # ---- errors: one line, nothing written ----
     code, out, err = run("bench", "wp")
-    one_line_error(code, err, "missing SCENE")
+    one_line_error(code, err, "missing SCENE", status=2)
     code, out, err = run("bench", "wp", "hertz", "--level", "4", "--methods", "ssn-tresca,ubr-c",
                          "--png", os.path.join(tmp, "nodir", "x.png"))
     one_line_error(code, err, "nodir")
@@ -358,13 +358,13 @@ with tempfile.TemporaryDirectory() as tmp:
     check(code == 0 and data[:8] == b"\x89PNG\r\n\x1a\n" and b"work-precision: hertz level 4" in data,
           f"the work-precision plot as a PNG with its title chunk: {code} {err!r} {len(data)} bytes")
     code, out, err = run("bench", "scaling", "hertz")
-    one_line_error(code, err, "--levels")
+    one_line_error(code, err, "--levels", status=2)
     code, out, err = run("bench", "scaling", "hertz", "--levels", "8..4")
-    one_line_error(code, err, "--levels '8..4'")
+    one_line_error(code, err, "--levels '8..4'", status=2)
     code, out, err = run("bench", "wp", "hertz", "--methods", "nope")
-    one_line_error(code, err, "unknown method 'nope'")
+    one_line_error(code, err, "unknown method 'nope'", status=2)
     code, out, err = run("bench", "stress", "hertz", "--time-limit", "0")
-    one_line_error(code, err, "--time-limit")
+    one_line_error(code, err, "--time-limit", status=2)
     code, out, err = run("bench", "wp", "hertz", "--level", "8", "--csv", os.path.join(tmp, "no/such/dir.csv"),
                          "--cache", cache)
     one_line_error(code, err, "cannot write")

@@ -14,7 +14,7 @@ import time
 import xml.etree.ElementTree as ET
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, exe, finish, run, one_line_error  # noqa: E402
+from clicheck import check, exe, finish, run, one_line_error, usage_error  # noqa: E402
 
 
 # ---- solve --json on hertz ----
@@ -74,19 +74,19 @@ code, out, err = run("solve", "hertz", "--level", "8")
 check(code == 0 and "converged" in out and "pressure vs Hertz" in out, "text summary")
 
 # ---- bad options: one line, exit 1 ----
-one_line_error(*run("solve", "hertz", "--method", "nope")[::2], "unknown method 'nope'")
+usage_error(*run("solve", "hertz", "--method", "nope")[::2], "unknown method 'nope'")
 one_line_error(*run("solve", "nosuchscene")[::2], "unknown scene 'nosuchscene'")
-one_line_error(*run("solve", "hertz", "--level", "abc")[::2], "--level", "abc")
-one_line_error(*run("solve", "hertz", "--tol", "-1")[::2], "--tol")
-one_line_error(*run("solve", "hertz", "--friction", "sticky")[::2], "--friction", "sticky")
-one_line_error(*run("solve", "hertz", "--method", "ssn-tresca", "--set", "rho=-3")[::2], "rho", "ssn-tresca")
-one_line_error(*run("solve", "hertz", "--set", "zeta=1")[::2], "unknown parameter 'zeta'")
-one_line_error(*run("solve", "hertz", "--bogus")[::2], "unknown option '--bogus'")
-one_line_error(*run("solve", "hertz", "--F")[::2], "--F", "needs a value")
+usage_error(*run("solve", "hertz", "--level", "abc")[::2], "--level", "abc")
+usage_error(*run("solve", "hertz", "--tol", "-1")[::2], "--tol")
+usage_error(*run("solve", "hertz", "--friction", "sticky")[::2], "--friction", "sticky")
+usage_error(*run("solve", "hertz", "--method", "ssn-tresca", "--set", "rho=-3")[::2], "rho", "ssn-tresca")
+usage_error(*run("solve", "hertz", "--set", "zeta=1")[::2], "unknown parameter 'zeta'")
+usage_error(*run("solve", "hertz", "--bogus")[::2], "unknown option '--bogus'")
+usage_error(*run("solve", "hertz", "--F")[::2], "--F", "needs a value")
 one_line_error(*run("solve", "hertz", "--method", "ssn-tresca", "--friction", "coulomb")[::2],
                "does not support Coulomb")
-one_line_error(*run("solve")[::2], "missing SCENE")
-one_line_error(*run("frobnicate")[::2], "unknown command")
+usage_error(*run("solve")[::2], "missing SCENE")
+usage_error(*run("frobnicate")[::2], "unknown command")
 one_line_error(*run("solve", "hertz", "--level", "999999")[::2], "level")
 with tempfile.TemporaryDirectory() as tmp:
     bad = os.path.join(tmp, "bad.ini")
@@ -118,7 +118,7 @@ with tempfile.TemporaryDirectory() as tmp:
           f"--vtu - writes the VTU on stdout ({r.returncode}, {r.stderr!r})")
     check(b"converged" in r.stderr and b"converged" not in r.stdout, "the summary goes to stderr")
     check(os.listdir(tmp) == [], f"no file for '-': {os.listdir(tmp)}")
-    one_line_error(*run("solve", "hertz", "--level", "8", "--json", "--vtu", "-")[::2], "standard output")
+    usage_error(*run("solve", "hertz", "--level", "8", "--json", "--vtu", "-")[::2], "standard output")
     # --csv -: the CSV on standard output
     code, out, err = run("bench", "wp", "hertz", "--level", "4", "--methods", "ssn-tresca",
                          "--csv", "-", "--cache", tmp)

@@ -15,7 +15,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, exe, finish, run, one_line_error  # noqa: E402
+from clicheck import check, exe, finish, run, one_line_error, usage_error  # noqa: E402
 
 SCENES = os.environ.get("SIGNORINI_SCENES", os.path.join(os.path.dirname(__file__), "..", "..", "scenes"))
 IDS = {"converged", "stopped_own", "stalled", "max_iter", "diverged", "breakdown", "refused",
@@ -134,7 +134,7 @@ with tempfile.TemporaryDirectory() as tmp:
     check(code == 3 and j.get("reason") == "time_limit" and j.get("iterations") == 1,
           f"--time-limit cuts the first step: exit {code} {j.get('reason_text')}")
     check(j.get("counts", {}).get("inner_iterations", 10**6) < 10**6, "fewer sweeps than the step asked for")
-    one_line_error(*run("solve", "hertz", "--time-limit", "-1")[::2], "--time-limit")
+    usage_error(*run("solve", "hertz", "--time-limit", "-1")[::2], "--time-limit")
     p = subprocess.Popen([exe, "solve", *slow], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     header = p.stdout.readline() + p.stdout.readline()   # printed (flushed) before the run starts
     p.send_signal(signal.SIGINT)

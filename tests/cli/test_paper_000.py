@@ -31,7 +31,7 @@ check(code == 1 and len(err.strip().splitlines()) == 1 and "Coulomb" in err, f"m
 code, out, err = run("bench", "paper", "000", "--help")
 check(code == 0 and "--rows" in out, "bench paper 000 --help")
 code, out, err = run("bench", "paper", "000", "--rows", "0")
-check(code == 1 and len(err.strip().splitlines()) == 1 and "--rows" in err, f"--rows 0 is refused: {err!r}")
+check(code == 2 and len(err.strip().splitlines()) == 1 and "--rows" in err, f"--rows 0 is refused: {err!r}")
 code, out, err = run("bench", "paper", "000", "--rows", "1")
 check(code == 0, f"bench paper 000 --rows 1 (exit {code}, {err})")
 row = [line for line in out.splitlines() if line.startswith("30600/150")]

@@ -13,7 +13,7 @@ import xml.etree.ElementTree as ET
 import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, exe, finish, run, one_line_error  # noqa: E402
+from clicheck import check, exe, finish, run, one_line_error, usage_error  # noqa: E402
 
 
 def png_info(path):
@@ -138,17 +138,17 @@ with tempfile.TemporaryDirectory() as tmp:
     one_line_error(code, err, "x.vtu")
     check(set(os.listdir(tmp)) == before, "no file or temporary left behind")
     code, out, err = run("render", "hertz", "--quiet")
-    one_line_error(code, err, "--png")
+    usage_error(code, err, "--png")
     code, out, err = run("render", "hertz", "--png", png, "--field", "nope")
-    one_line_error(code, err, "--field", "nope")
+    usage_error(code, err, "--field", "nope")
     code, out, err = run("render", "hertz", "--png", png, "--field", "szz")
     one_line_error(code, err, "szz", "3D")
     code, out, err = run("render", "hertz", "--png", png, "--size", "12x5")
-    one_line_error(code, err, "--size")
+    usage_error(code, err, "--size")
     code, out, err = run("render", "hertz", "--png", png, "--view", "contact")
     one_line_error(code, err, "--view")
     code, out, err = run("render", "hertz", "--png", png, "--scale", "-1")
-    one_line_error(code, err, "--scale")
+    usage_error(code, err, "--scale")
     code, out, err = run("render", "--help")
     check(code == 0 and "--field" in out, "render --help")
 

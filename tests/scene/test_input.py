@@ -42,9 +42,9 @@ def run_bytes(args, stdin=None, timeout=60):
     return r.returncode, r.stdout, r.stderr
 
 
-def one_printable_line(code, out, err, head, says):
+def one_printable_line(code, out, err, head, says, status=1):
     lines = err.rstrip(b"\n").split(b"\n")
-    check(code == 1, f"exit 1, got {code}: {err!r}")
+    check(code == status, f"exit {status}, got {code}: {err!r}")
     check(len(lines) == 1, f"one line on stderr, got {lines!r}")
     check(all(0x20 <= b < 0x7f or b >= 0x80 for b in lines[0]), f"printable: {err!r}")
     check(b"\x1b" not in err and b"\x07" not in err and b"\xc2\x9b" not in err, f"no escape: {err!r}")
@@ -82,7 +82,8 @@ check(code == 0 and b'"scene": "slider"' in out, f"slider through a pipe: {code}
 
 # a terminal escape in an option value and in a path is echoed escaped
 code, out, err = run_bytes(["solve", "slider", "--method", "\x1b[2J"])
-one_printable_line(code, out, err, "--method: ", "unknown method '\\x1b[2J'")
+# a malformed command line: usage status 2
+one_printable_line(code, out, err, "--method: ", "unknown method '\\x1b[2J'", status=2)
 code, out, err = run_bytes(["solve", "x\x1b]0;t\x07.ini"])
 one_printable_line(code, out, err, "x\\x1b]0;t\\x07.ini: ", "cannot open")
 

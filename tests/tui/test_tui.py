@@ -143,16 +143,18 @@ def exited_cleanly(how):
         check(pane("#{alternate_on}") == "0", f"the terminal left the alternate screen after {how}")
 
 
-# ---- bad options: one line on stderr, exit 1, before the screen opens ----
-for args, needle in [(["tui", "--nope"], "unknown option '--nope'"),
-                     (["tui", "--level"], "'--level' needs a value"),
-                     (["tui", "hertz", "--level", "99999"], "allows 1 to 2048"),
-                     (["tui", "nope"], "unknown scene 'nope'"),
-                     (["tui", "--method", "nope"], "unknown method 'nope'"),
-                     (["tui", "--friction", "x"], "expected none, tresca or coulomb")]:
+# ---- bad options: one line on stderr, before the screen opens; exit 2 for
+# a malformed command line, 1 for an error of the run ----
+for args, needle, want in [(["tui", "--nope"], "unknown option '--nope'", 2),
+                             (["tui", "--level"], "'--level' needs a value", 2),
+                             (["tui", "hertz", "--level", "99999"], "allows 1 to 2048", 1),
+                             (["tui", "nope"], "unknown scene 'nope'", 1),
+                             (["tui", "--method", "nope"], "unknown method 'nope'", 2),
+                             (["tui", "--friction", "x"], "expected none, tresca or coulomb", 2)]:
     r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL)
     lines = r.stderr.strip().splitlines()
-    check(r.returncode == 1 and len(lines) == 1 and needle in r.stderr, f"{args}: {r.returncode} {r.stderr!r}")
+    check(r.returncode == want and len(lines) == 1 and needle in r.stderr,
+          f"{args}: {r.returncode} {r.stderr!r}")
 # with no terminal, no argument prints the usage
 r = subprocess.run([exe], capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL)
 check(r.returncode == 0 and "usage:" in r.stdout, f"no argument without a terminal: {r.stdout!r}")
