@@ -49,11 +49,9 @@ const char *tui_state_method_reason(const tui_state *st, int index, char *buf, s
     if (!m || !st->have_info)
         return buf;
     /* the law the pickers select, on the session's problem */
-    cx_problem info = st->info;
-    info.friction = st->sel_law;
     cx_diag d;
     cx_diag_clear(&d);
-    if (cx_method_check(m, &info, &d) != CX_OK)
+    if (cx_method_check(m, st->info, st->sel_law, &d) != CX_OK)
         snprintf(buf, len, "%s", d.msg);
     else if (index < TUI_MAX_METHODS && st->refused[index][st->sel_law][0])
         snprintf(buf, len, "%s", st->refused[index][st->sel_law]);
@@ -216,7 +214,7 @@ static void state_snapshot(tui_state *st)
                                                        : NAN;
         /* the friction force on the body, -lT t, in the x, y plane */
         double fx = 0, fy = 0;
-        if (p->friction != CX_FRICTION_NONE)
+        if (cx_session_friction(s)->law != CX_FRICTION_NONE)
             for (int r = 0; r < dim - 1; r++) {
                 const double *t = c->tangent + dim * ((dim - 1) * i + r);
                 fx -= it->lT[(dim - 1) * i + r] * t[0];
@@ -273,7 +271,7 @@ static int outline_cmp(const void *a, const void *b)
  * view draws when the mesh is too fine to show every edge. */
 static void state_outline(tui_state *st)
 {
-    const cx_mesh *mesh = st->info.mesh;
+    const cx_mesh *mesh = st->info->mesh;
     st->noutline = 0;
     if (!mesh)
         return;
@@ -319,17 +317,29 @@ static void state_outline(tui_state *st)
 /* After a job: what the session now is. */
 static void state_take_session(tui_state *st)
 {
-    const cx_problem *p = cx_session_problem(st->session);
-    st->info = *p;
+    const cx_friction_state *fr = cx_session_friction(st->session);
+    st->info = cx_session_problem(st->session);
     st->have_info = 1;
     st->cur_method = cx_session_method(st->session);
     st->cur_params = *cx_session_params(st->session);
     st->cur_opt = *cx_session_options(st->session);
-    st->cur_law = p->friction;
-    st->cur_coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
+    st->cur_law = fr->law;
+    st->cur_coef = fr->law == CX_FRICTION_COULOMB ? fr->F : fr->slip_bound;
 }
 
 static void state_after_step(tui_state *st, int status, const cx_diag *d);
+
+/* The pickers' law and its one value (the slip bound or F, by the law)
+ * over base's other scalar, as a friction state. */
+static cx_friction_state state_friction(cx_friction law, double coef, const cx_friction_state *base)
+{
+    cx_friction_state fr = {law, base->slip_bound, base->F, NULL, NULL};
+    if (law == CX_FRICTION_TRESCA)
+        fr.slip_bound = coef;
+    else if (law == CX_FRICTION_COULOMB)
+        fr.F = coef;
+    return fr;
+}
 
 /* ---- jobs ---------------------------------------------------------------- */
 
@@ -342,13 +352,16 @@ static void job_run(tui_state *st)
     j->status = CX_OK;
     if (j->kind == TUI_JOB_BUILD) {
         cx_problem *p = NULL;
+        cx_friction_state fr;
         atomic_store(&j->phase, TUI_PHASE_ASSEMBLE);
-        j->status = cx_scene_build(&st->scene, j->level, &p, &j->diag);
-        if (j->status == CX_OK)
-            j->status = cx_problem_set_friction(p, j->law, j->coef, &j->diag);
+        j->status = cx_scene_build(&st->scene, j->level, &p, &fr, &j->diag);
         if (j->status == CX_OK)
             j->status = cx_session_create(&j->session, &p, &j->diag);
         cx_problem_destroy(&p);
+        if (j->status == CX_OK) {
+            fr = state_friction(j->law, j->coef, &fr);
+            j->status = cx_session_set_friction(j->session, &fr, &j->diag);
+        }
         if (j->status == CX_OK) {
             atomic_store(&j->phase, TUI_PHASE_FACTORISE);
             j->status = cx_session_set_method(j->session, j->method, &j->params, &j->opt, &j->diag);
@@ -360,18 +373,18 @@ static void job_run(tui_state *st)
             j->status = cx_session_complete_iterate(st->session, &j->diag);
     } else if (j->kind == TUI_JOB_RESOLVE) {
         cx_session *s = st->session;
-        const cx_problem *p = cx_session_problem(s);
-        double coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
+        cx_friction_state old = *cx_session_friction(s), fr = state_friction(j->law, j->coef, &old);
+        double coef = old.law == CX_FRICTION_COULOMB ? old.F : old.slip_bound;
+        old.s = old.Fi = NULL;   /* restored from the scalars, as they were set */
         atomic_store(&j->phase, TUI_PHASE_FACTORISE);
-        cx_friction law0 = p->friction;
-        if (j->law != p->friction || j->coef != coef)
-            j->status = cx_session_set_friction(s, j->law, j->coef, &j->diag);
+        if (j->law != old.law || j->coef != coef)
+            j->status = cx_session_set_friction(s, &fr, &j->diag);
         if (j->status == CX_OK)
             j->status = cx_session_set_method(s, j->method, &j->params, &j->opt, &j->diag);
         if (j->status != CX_OK && st->cur_method) {
             /* refused (e.g. at init): the session goes back to what it was,
              * so the explorer always has a method to step */
-            cx_session_set_friction(s, law0, coef, NULL);
+            cx_session_set_friction(s, &old, NULL);
             cx_session_set_method(s, st->cur_method, &st->cur_params, &st->cur_opt, NULL);
         }
     }
@@ -456,7 +469,7 @@ int tui_state_poll(tui_state *st)
             state_clear_runs(st);
             memset(st->refused, 0, sizeof st->refused);
             st->m = -1;
-            st->info = *cx_session_problem(st->session);
+            st->info = cx_session_problem(st->session);
             state_outline(st);
         } else if (st->session) {
             /* the build failed: the old session stays, and so does its scene */
@@ -491,7 +504,7 @@ int tui_state_poll(tui_state *st)
         tui_msg(st, 1, "%s", cx_diag_msg(&j->diag, j->status));
     else if (kind == TUI_JOB_BUILD)
         tui_msg(st, 0, "%s level %d: %d dofs, %d contact points, built in %.2f s", st->scene.id,
-                st->level, st->info.n, st->info.m, st->build_time);
+                st->level, st->info->n, st->info->m, st->build_time);
     else
         tui_msg(st, 0, "%s ready (nothing reassembled)", st->cur_method ? st->cur_method->id : "-");
     state_after_job(st);
@@ -672,7 +685,7 @@ void tui_state_reset(tui_state *st)
 
 double tui_mesh_auto_scale(const tui_state *st)
 {
-    const cx_mesh *mesh = st->info.mesh;
+    const cx_mesh *mesh = st->info->mesh;
     if (!mesh || !st->uall)
         return 1;
     int dim = mesh->dim;
@@ -692,10 +705,14 @@ double tui_mesh_auto_scale(const tui_state *st)
 
 /* ---- life ---------------------------------------------------------------- */
 
+/* What the views read before the first build: no system (sizes zero). */
+static const cx_problem state_no_problem;
+
 int tui_state_init(tui_state *st, const char *scene, int level, const char *method, int law,
                    int sync, cx_diag *d)
 {
     memset(st, 0, sizeof *st);
+    st->info = &state_no_problem;
     st->sync = sync;
     st->m = -1;
     snprintf(st->export_dir, sizeof st->export_dir, ".");

@@ -32,7 +32,8 @@ static void check_built(const cx_scene *s)
     for (int L = 1; L <= 5; L++) {
         cx_problem *p = NULL;
         cx_diag d;
-        CX_CHECK_OK(cx_scene_build(s, L, &p, &d));
+        cx_friction_state fr;
+        CX_CHECK_OK(cx_scene_build(s, L, &p, &fr, &d));
         if (!p)
             continue;
         int c[3], active = 0;
@@ -49,7 +50,7 @@ static void check_built(const cx_scene *s)
         CX_CHECK(active == table_contact[L]);          /* off the clamped face */
         CX_CHECK(p->nc == 3 * table_contact[L]);
         CX_CHECK(p->n == 3 * (table_nodes[L] - (c[1] + 1) * (c[2] + 1)));
-        CX_CHECK(p->friction == CX_FRICTION_TRESCA);
+        CX_CHECK(fr.law == CX_FRICTION_TRESCA);
         cx_problem_destroy(&p);
     }
 }
