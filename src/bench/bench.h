@@ -37,7 +37,11 @@ typedef struct bench_problem_spec {
 
 /* Build the problem of spec (assembly timed into *t_assemble, may be NULL). */
 int bench_build(const bench_problem_spec *spec, cx_problem **p, double *t_assemble, cx_diag *d);
-/* Build the problem of spec and a new session on it (*s NULL on failure). */
+/* The friction state of spec: its law with its value, the scene's other
+ * scalar (no per-point values). */
+void bench_friction(const bench_problem_spec *spec, cx_friction_state *fr);
+/* Build the problem of spec and a new session on it, with spec's friction
+ * (*s NULL on failure). */
 int bench_session(const bench_problem_spec *spec, cx_session **s, double *t_assemble, cx_diag *d);
 
 /* ---- the reference solution (DESIGN.md §3) -------------------------- */
@@ -58,7 +62,7 @@ typedef struct bench_ref {
 
 /* The reference method for a problem: the first registered entry of a
  * small table per friction law that supports p (see bench_ref.c). */
-const cx_method *bench_ref_method(const cx_problem *p);
+const cx_method *bench_ref_method(const cx_problem *p, cx_friction law);
 
 /* Key of a reference: FNV-1a over a canonical serialisation of the
  * parsed scene (every field that changes the problem; see bench_ref.c),
@@ -145,14 +149,14 @@ void bench_run_paired(const bench_problem_spec *spec, const cx_method *m, const 
 int bench_baseline(const cx_problem *p, int n, double *seconds, cx_diag *d);
 
 /* Errors of (u, lN, lT) against ref on problem p. */
-void bench_errors(const cx_problem *p, const bench_ref *ref, const double *u, const double *lN,
-                  const double *lT, double *err_u, double *err_l);
+void bench_errors(const cx_problem *p, cx_friction law, const bench_ref *ref, const double *u,
+                  const double *lN, const double *lT, double *err_u, double *err_l);
 
 /* The methods to run on p: the ids in list ("a,b,c"; NULL: every
  * registered method supporting p's law, dimension and bodies: none is
  * CX_EUNSUPPORTED). An unknown id is an error naming it. */
-int bench_methods(const char *list, const cx_problem *p, const cx_method **out, int max,
-                  int *count, cx_diag *d);
+int bench_methods(const char *list, const cx_problem *p, cx_friction law, const cx_method **out,
+                  int max, int *count, cx_diag *d);
 
 /* ---- tables ------------------------------------------------------------ */
 

@@ -138,8 +138,6 @@ int perturb_duplicate_contact(cx_problem *p, const void *arg, cx_diag *d)
     int st;
     if ((st = perturb_append_rows(&p->N, &i, 1)) || (st = perturb_append_rows(&p->T, trows, dt)) ||
         (st = perturb_grow((void **)&p->g, m, sizeof(double), i)) ||
-        (st = perturb_grow((void **)&p->s, m, sizeof(double), i)) ||
-        (st = perturb_grow((void **)&p->Fi, m, sizeof(double), i)) ||
         (st = perturb_grow((void **)&c->node, m, sizeof(int), i)) ||
         (st = perturb_grow((void **)&c->x, m, sizeof(double) * (size_t)dim, i)) ||
         (st = perturb_grow((void **)&c->weight, m, sizeof(double), i)) ||
@@ -147,6 +145,8 @@ int perturb_duplicate_contact(cx_problem *p, const void *arg, cx_diag *d)
         (st = perturb_grow((void **)&c->tangent, m, sizeof(double) * (size_t)(dim * dt), i)) ||
         (st = perturb_grow((void **)&c->gap, m, sizeof(double), i)))
         return cx_diag_set(d, st, "out of memory");
+    /* no friction values here: the session expands them per point from
+     * the scalars and the weights, the copy's weight included */
     p->g[m] += eps;
     c->gap[m] += eps;
     p->m = c->m = m + 1;

@@ -34,12 +34,12 @@ static const struct {
 #define REF_TOL_FLOOR 1e-9
 
 /* Candidates in order: the table's rows for the law, then the registry. */
-static int ref_candidates(const cx_problem *p, const cx_method **out, int max)
+static int ref_candidates(const cx_problem *p, cx_friction law, const cx_method **out, int max)
 {
     int n = 0;
     for (size_t k = 0; k < sizeof ref_table / sizeof ref_table[0] && n < max; k++) {
         const cx_method *m = cx_method_find(ref_table[k].id);
-        if (ref_table[k].law == p->friction && m && cx_method_check(m, p, NULL) == CX_OK)
+        if (ref_table[k].law == law && m && cx_method_check(m, p, law, NULL) == CX_OK)
             out[n++] = m;
     }
     for (int k = 0; k < cx_method_count() && n < max; k++) {
@@ -47,16 +47,16 @@ static int ref_candidates(const cx_problem *p, const cx_method **out, int max)
         int seen = 0;
         for (int j = 0; j < n; j++)
             seen |= out[j] == m;
-        if (!seen && cx_method_check(m, p, NULL) == CX_OK)
+        if (!seen && cx_method_check(m, p, law, NULL) == CX_OK)
             out[n++] = m;
     }
     return n;
 }
 
-const cx_method *bench_ref_method(const cx_problem *p)
+const cx_method *bench_ref_method(const cx_problem *p, cx_friction law)
 {
     const cx_method *m[1];
-    return ref_candidates(p, m, 1) ? m[0] : NULL;
+    return ref_candidates(p, law, m, 1) ? m[0] : NULL;
 }
 
 /* ---- the key: a canonical serialisation of the parsed scene ----------
@@ -303,10 +303,10 @@ static int ref_compute(const bench_problem_spec *spec, const cx_problem *p, doub
                        bench_ref *r, cx_diag *d)
 {
     const cx_method *cand[16];
-    int nc = ref_candidates(p, cand, 16);
+    int nc = ref_candidates(p, spec->law, cand, 16);
     if (nc == 0)
         return cx_diag_set(d, CX_EUNSUPPORTED, "no registered method solves %s friction here",
-                           cx_friction_name(p->friction));
+                           cx_friction_name(spec->law));
     cx_options opt;
     cx_options_default(&opt);
     opt.tol = REF_TOL;
@@ -395,7 +395,7 @@ int bench_ref_get(bench_cache *cache, const bench_problem_spec *spec, const cx_p
     double l2 = 0;
     for (int i = 0; i < p->m; i++)
         l2 += r->lN[i] * r->lN[i];
-    for (int i = 0; p->friction != CX_FRICTION_NONE && i < p->nt; i++)
+    for (int i = 0; spec->law != CX_FRICTION_NONE && i < p->nt; i++)
         l2 += r->lT[i] * r->lT[i];
     r->lnorm = sqrt(l2);
     return CX_OK;

@@ -8,21 +8,31 @@
 #include <stdlib.h>
 #include <string.h>
 
+void bench_friction(const bench_problem_spec *spec, cx_friction_state *fr)
+{
+    /* spec->value is the value of spec->law; the other scalar stays the
+     * scene's */
+    const cx_scene *sc = spec->scene;
+    *fr = (cx_friction_state){spec->law, sc->slip_bound, sc->F, NULL, NULL};
+    if (spec->law == CX_FRICTION_COULOMB)
+        fr->F = spec->value;
+    else if (spec->law == CX_FRICTION_TRESCA)
+        fr->slip_bound = spec->value;
+}
+
 int bench_build(const bench_problem_spec *spec, cx_problem **p, double *t_assemble, cx_diag *d)
 {
     double t0 = cx_clock_now();
-    CX_TRY(cx_scene_build(spec->scene, spec->level, p, d));
-    int st = cx_problem_set_friction(*p, spec->law, spec->value, d);
+    CX_TRY(cx_scene_build(spec->scene, spec->level, p, NULL, d));
+    cx_friction_state fr;
+    bench_friction(spec, &fr);
+    int st = cx_friction_check(&fr, 0, d);
     if (st == CX_OK && spec->perturb)
         st = spec->perturb(*p, spec->perturb_arg, d);
     if (st != CX_OK) {
         cx_problem_destroy(p);
         return st;
     }
-    if (spec->law == CX_FRICTION_COULOMB)
-        (*p)->F = spec->value;
-    else if (spec->law == CX_FRICTION_TRESCA)
-        (*p)->slip_bound = spec->value;
     if (t_assemble)
         *t_assemble = cx_clock_now() - t0;
     return CX_OK;
@@ -35,6 +45,15 @@ int bench_session(const bench_problem_spec *spec, cx_session **s, double *t_asse
     CX_TRY(bench_build(spec, &p, t_assemble, d));
     int st = cx_session_create(s, &p, d);
     cx_problem_destroy(&p);
+    if (st != CX_OK)
+        return st;
+    /* the friction state goes to the session; per point it is expanded
+     * from the scalars over the problem's contact points, a point
+     * duplicated by a perturbation included */
+    cx_friction_state fr;
+    bench_friction(spec, &fr);
+    if ((st = cx_session_set_friction(*s, &fr, d)) != CX_OK)
+        cx_session_destroy(s);
     return st;
 }
 
@@ -46,8 +65,8 @@ static double run_energy(const cx_problem *p, const double *e, double *work)
     return sqrt(q > 0 ? q : 0);
 }
 
-void bench_errors(const cx_problem *p, const bench_ref *ref, const double *u, const double *lN,
-                  const double *lT, double *err_u, double *err_l)
+void bench_errors(const cx_problem *p, cx_friction law, const bench_ref *ref, const double *u,
+                  const double *lN, const double *lT, double *err_u, double *err_l)
 {
     *err_u = *err_l = NAN;
     if (!ref || ref->n != p->n || ref->m != p->m)
@@ -62,7 +81,7 @@ void bench_errors(const cx_problem *p, const bench_ref *ref, const double *u, co
     double el = 0;
     for (int i = 0; i < p->m; i++)
         el += (lN[i] - ref->lN[i]) * (lN[i] - ref->lN[i]);
-    for (int i = 0; p->friction != CX_FRICTION_NONE && i < p->nt; i++)
+    for (int i = 0; law != CX_FRICTION_NONE && i < p->nt; i++)
         el += (lT[i] - ref->lT[i]) * (lT[i] - ref->lT[i]);
     el = sqrt(el);
     *err_u = ref->uK > 0 ? eu / ref->uK : eu;
@@ -128,7 +147,8 @@ void bench_run(cx_session *s, const cx_method *m, const cx_param_values *pv,
     else
         r->msg[0] = '\0';
     if (!r->nonfinite && it->iter > 0)
-        bench_errors(p, ref, it->u, it->lN, it->lT, &r->err_u, &r->err_l);
+        bench_errors(p, cx_session_friction(s)->law, ref, it->u, it->lN, it->lT, &r->err_u,
+                     &r->err_l);
 }
 
 void bench_set_result(bench_table *t, int r, const bench_result *res)
@@ -151,18 +171,18 @@ void bench_set_result(bench_table *t, int r, const bench_result *res)
         bench_set_str(t, r, "message", "%s", res->msg);
 }
 
-int bench_methods(const char *list, const cx_problem *p, const cx_method **out, int max,
-                  int *count, cx_diag *d)
+int bench_methods(const char *list, const cx_problem *p, cx_friction law, const cx_method **out,
+                  int max, int *count, cx_diag *d)
 {
     *count = 0;
     if (!list) {
         for (int k = 0; k < cx_method_count() && *count < max; k++)
-            if (cx_method_check(cx_method_at(k), p, NULL) == CX_OK)
+            if (cx_method_check(cx_method_at(k), p, law, NULL) == CX_OK)
                 out[(*count)++] = cx_method_at(k);
         if (*count == 0)
             return cx_diag_set(d, CX_EUNSUPPORTED,
                                "no registered method supports %s friction in %dD%s (see 'signorini list')",
-                               cx_friction_name(p->friction), p->dim,
+                               cx_friction_name(law), p->dim,
                                p->mesh && p->mesh->nbodies > 1 ? " with several bodies" : "");
         return CX_OK;
     }

@@ -215,7 +215,7 @@ int bench_scaling(int argc, char **argv)
         const cx_method *methods[64];
         int nm;
         if (scaling_level_costs(&spec, a.c.repeat, &t_asm, &t_base, &fmb, &p, &d) ||
-            bench_methods(a.c.methods, p, methods, 64, &nm, &d)) {
+            bench_methods(a.c.methods, p, spec.law, methods, 64, &nm, &d)) {
             cx_problem_destroy(&p);
             code = bench_fail("bench scaling", d.msg);
             break;

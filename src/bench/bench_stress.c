@@ -140,6 +140,7 @@ static void stress_units_check(bench_table *t, int r, const cx_session *s, const
                                double L, double P)
 {
     const cx_problem *p = cx_session_problem(s);
+    cx_friction law = cx_session_friction(s)->law;
     const cx_iterate *it = cx_session_iterate(s);
     if (!nom->ran || it->iter == 0)
         return;
@@ -149,11 +150,11 @@ static void stress_units_check(bench_table *t, int r, const cx_session *s, const
         du = fmax(du, fabs(it->u[k] - L * nom->u[k]));
     for (int k = 0; k < p->m; k++)
         dl = fmax(dl, fabs(it->lN[k] - fs * nom->lN[k]));
-    for (int k = 0; p->friction != CX_FRICTION_NONE && k < p->nt; k++)
+    for (int k = 0; law != CX_FRICTION_NONE && k < p->nt; k++)
         dl = fmax(dl, fabs(it->lT[k] - fs * nom->lT[k]));
     double nu = stress_maxabs(p->n, nom->u, L);
     double nl = fmax(stress_maxabs(p->m, nom->lN, fs),
-                     p->friction != CX_FRICTION_NONE ? stress_maxabs(p->nt, nom->lT, fs) : 0);
+                     law != CX_FRICTION_NONE ? stress_maxabs(p->nt, nom->lT, fs) : 0);
     double err = fmax(nu > 0 ? du / nu : du, nl > 0 ? dl / nl : dl);
     double dkkt = fabs(it->kkt - nom->kkt);
     bench_set_num(t, r, "dkkt", dkkt);
@@ -216,7 +217,7 @@ static void stress_case(stress_args *a, const stress_row_ctx *x, const bench_pro
         char label[128];
         snprintf(label, sizeof label, "%s %s %s", x->sc->id, x->case_id, methods[k]->id);
         bench_progress_case((*done)++, label);
-        if (cx_method_check(methods[k], cp, NULL) != CX_OK && case_kind != S_NOMINAL &&
+        if (cx_method_check(methods[k], cp, spec->law, NULL) != CX_OK && case_kind != S_NOMINAL &&
             !a->c.methods)
             continue;   /* not asked for, and cannot: no row */
         cx_options opt;
@@ -243,7 +244,7 @@ static void stress_case(stress_args *a, const stress_row_ctx *x, const bench_pro
         bench_set_str(x->t, r, "converged", "n/a");
         bench_set_str(x->t, r, "reason", "n/a");
         bench_set_str(x->t, r, "message", "no registered method supports %s friction in %dD",
-                      cx_friction_name(cp->friction), cp->dim);
+                      cx_friction_name(spec->law), cp->dim);
     }
     bench_ref_clear(&ref);
     cx_session_destroy(&s);
@@ -310,7 +311,8 @@ static int stress_scene(stress_args *a, const char *id, bench_table *t, int *don
     int nm = 0;
     int st = bench_build(&nominal_spec, &p0, NULL, &d);
     if (st == CX_OK)
-        st = bench_methods(a->c.methods, p0, methods, STRESS_MAX_METHODS, &nm, &d);
+        st = bench_methods(a->c.methods, p0, nominal_spec.law, methods, STRESS_MAX_METHODS, &nm,
+                           &d);
     cx_problem_destroy(&p0);
     if (st != CX_OK && st != CX_EUNSUPPORTED)
         return bench_fail("bench stress", d.msg);

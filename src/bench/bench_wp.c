@@ -194,7 +194,8 @@ int bench_wp(int argc, char **argv)
     double baseline;
     bench_ref ref;
     uint64_t shash = bench_scene_hash(&sc);
-    if (bench_build(&spec, &p, &t_asm, &d) || bench_methods(a.c.methods, p, methods, 64, &nm, &d) ||
+    if (bench_build(&spec, &p, &t_asm, &d) ||
+        bench_methods(a.c.methods, p, spec.law, methods, 64, &nm, &d) ||
         bench_baseline(p, a.c.repeat < 3 ? 3 : a.c.repeat, &baseline, &d)) {
         cx_problem_destroy(&p);
         return bench_fail("bench wp", d.msg);

@@ -83,7 +83,8 @@ static int p000_row(const cx_scene *sc, int row, double slip, int repeat, p000_r
     cx_problem *p = NULL;
     cx_session *s = NULL;
     double t0 = cx_clock_now();
-    CX_TRY(cx_scene_build(sc, 50 + 5 * row, &p, d));
+    cx_friction_state fr;
+    CX_TRY(cx_scene_build(sc, 50 + 5 * row, &p, &fr, d));
     *t_asm = cx_clock_now() - t0;
     int st = bench_baseline(p, repeat > 3 ? repeat : 3, t_base, d);
     if (st) {
@@ -93,7 +94,8 @@ static int p000_row(const cx_scene *sc, int row, double slip, int repeat, p000_r
     *n = p->n;
     *m = p->m;
     CX_TRY(cx_session_create(&s, &p, d));
-    if (slip > 0 && (st = cx_session_set_friction(s, CX_FRICTION_TRESCA, slip, d)))
+    if ((st = cx_session_set_friction(s, &fr, d)) ||
+        (slip > 0 && (st = cx_session_set_tresca(s, slip, d))))
         goto done;
     /* warm the operator cache: factor of K, b, alpha_max */
     t0 = cx_clock_now();

@@ -93,7 +93,8 @@ static int p001_level(const cx_scene *sc, int level, int repeat, int solves, p00
     row->level = level;
 
     double t0 = cx_clock_now();
-    CX_TRY(cx_scene_build(sc, level, &p, d));
+    cx_friction_state fr;
+    CX_TRY(cx_scene_build(sc, level, &p, &fr, d));
     row->assembly = cx_clock_now() - t0;
     row->nodes = p->mesh->nnodes;
     unsigned char *hit = CX_NEW(unsigned char, p->m > 0 ? p->m : 1);
@@ -113,7 +114,7 @@ static int p001_level(const cx_scene *sc, int level, int repeat, int solves, p00
         return st;
     }
 
-    if ((st = cx_session_create(&s, &p, d)))
+    if ((st = cx_session_create(&s, &p, d)) || (st = cx_session_set_friction(s, &fr, d)))
         goto done;
     const cx_problem *pp = cx_session_problem(s);
     cx_schur *S = NULL;

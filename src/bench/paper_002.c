@@ -49,7 +49,8 @@ static int p2_open(p2_case *c, const char *scene, int level, int baseline, cx_di
     cx_problem *p = NULL;
     double t0 = cx_clock_now();
     CX_TRY(cx_scene_open(scene, &c->sc, d));
-    CX_TRY(cx_scene_build(&c->sc, level, &p, d));
+    cx_friction_state fr;
+    CX_TRY(cx_scene_build(&c->sc, level, &p, &fr, d));
     c->t_assemble = cx_clock_now() - t0;
     c->level = level;
     c->nodes = p->mesh->nnodes;
@@ -58,6 +59,8 @@ static int p2_open(p2_case *c, const char *scene, int level, int baseline, cx_di
     int st = baseline ? bench_baseline(p, 3, &c->t_base, d) : CX_OK;
     if (!st)
         st = cx_session_create(&c->s, &p, d);
+    if (!st && (st = cx_session_set_friction(c->s, &fr, d)))
+        cx_session_destroy(&c->s);
     if (st)
         cx_problem_destroy(&p);
     return st;
@@ -160,7 +163,7 @@ static int p2_hertz(int nlev, int tables, cx_diag *d)
         }
         if (!st && (tables & 8)) {
             cx_session_clear_method(s);
-            st = cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, d);
+            st = cx_session_set_coulomb(s, 0.6, d);
             if (!st)
                 st = p2_run(s, "cf-fp", "inner=ubr-tf inner_set=r=0.29", 1, 0, 200, &r4[k], d);
             if (!st)
@@ -240,7 +243,7 @@ static int p2_ball(int nlev, int tables, cx_diag *d)
                 st = p2_run(s, "ubr-tf", "r=2.75", 1, 0, 20000, &r6[k], d);
             if (!st)
                 cx_session_clear_method(s);
-            st = cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, d);
+            st = cx_session_set_coulomb(s, 0.6, d);
             if (!st)
                 st = p2_run(s, "cf-fp", "inner=ubr-tf inner_set=r=6.25", 1, 0, 200, &r7[k], d);
         }

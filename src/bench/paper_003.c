@@ -104,14 +104,16 @@ static void p003_solve(const cx_scene *sc, int level, const p003_table *tb, doub
     cx_problem *p = NULL;
     cx_session *s = NULL;
     memset(r, 0, sizeof *r);
-    if (cx_scene_build(sc, level, &p, &d) || bench_baseline(p, 3, &r->base, &d)) {
+    cx_friction_state fr;
+    if (cx_scene_build(sc, level, &p, &fr, &d) || bench_baseline(p, 3, &r->base, &d)) {
         snprintf(r->why, sizeof r->why, "%s", d.msg);
         cx_problem_destroy(&p);
         return;
     }
-    if (cx_session_create(&s, &p, &d)) {
+    if (cx_session_create(&s, &p, &d) || cx_session_set_friction(s, &fr, &d)) {
         snprintf(r->why, sizeof r->why, "%s", d.msg);
         cx_problem_destroy(&p);
+        cx_session_destroy(&s);
         return;
     }
     const cx_method *m = cx_method_find(tb->method);
@@ -170,7 +172,7 @@ static int p003_sizes(const cx_scene *sc, int g, int max_build)
         }
         cx_problem *p = NULL;
         cx_diag d;
-        if (cx_scene_build(sc, N, &p, &d)) {
+        if (cx_scene_build(sc, N, &p, NULL, &d)) {
             fprintf(stderr, "signorini bench: %s\n", d.msg);
             return CX_EXIT_ERROR;
         }

@@ -175,7 +175,8 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
     memset(rec, 0, sizeof rec);
     char title[200];
     snprintf(title, sizeof title, "%s level %d, friction %s: %s", sc->id, level,
-             cx_friction_name(cx_session_problem(s)->friction), work ? "work-precision" : "convergence");
+             cx_friction_name(cx_session_friction(s)->law),
+             work ? "work-precision" : "convergence");
     cx_plot pl;
     cx_plot_init(&pl, title, work ? "time [s] (setup included)" : "iteration", "kkt error");
     pl.logy = 1;
@@ -185,21 +186,19 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
     const cx_problem *p0 = cx_session_problem(s);
     for (int k = 0; k < sc->nmethods && rc == CX_OK; k++) {
         const cx_method *m = cx_method_find(sc->methods[k]);
-        if (!m || cx_method_check(m, p0, NULL) != CX_OK)
+        if (!m || cx_method_check(m, p0, cx_session_friction(s)->law, NULL) != CX_OK)
             continue;
         /* work-precision: a fresh session per method, so that each pays
          * for its own factorisations (the session's cache would hide them) */
         cx_session *run = s, *fresh = NULL;
         if (work) {
             cx_problem *q = NULL;
-            double value = p0->friction == CX_FRICTION_COULOMB ? p0->F : p0->slip_bound;
-            if ((rc = cx_scene_build(sc, level, &q, d)) != CX_OK)
+            if ((rc = cx_scene_build(sc, level, &q, NULL, d)) != CX_OK)
                 break;
-            q->F = p0->F;
-            q->slip_bound = p0->slip_bound;
-            if ((rc = cx_problem_set_friction(q, p0->friction, value, d)) != CX_OK ||
-                (rc = cx_session_create(&fresh, &q, d)) != CX_OK) {
+            if ((rc = cx_session_create(&fresh, &q, d)) != CX_OK ||
+                (rc = cx_session_set_friction(fresh, cx_session_friction(s), d)) != CX_OK) {
                 cx_problem_destroy(&q);
+                cx_session_destroy(&fresh);
                 break;
             }
             run = fresh;

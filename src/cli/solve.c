@@ -229,16 +229,17 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     }
 
     cx_problem *p = NULL;
-    if (cx_scene_build(&sc, a.s.level, &p, &d))
+    if (cx_scene_build(&sc, a.s.level, &p, NULL, &d))
         return cli_fail(cmd, d.msg);
     double t_assemble = cx_clock_now() - t0;
     if (cli_render_check(&a.render, p->dim, &d)) {
         cx_problem_destroy(&p);
         return cli_fail(cmd, d.msg);
     }
-    p->F = F;
-    p->slip_bound = slip;
-    if (cx_problem_set_friction(p, (cx_friction)law, law == CX_FRICTION_COULOMB ? F : slip, &d)) {
+    /* the scene's friction with the command line's law and values: the
+     * session's, set once it exists */
+    cx_friction_state fr = {(cx_friction)law, slip, F, NULL, NULL};
+    if (cx_friction_check(&fr, 0, &d)) {
         cx_problem_destroy(&p);
         return cli_fail(cmd, d.msg);
     }
@@ -257,6 +258,10 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         return cli_fail(cmd, d.msg);
     }
     int code = CX_EXIT_ERROR;
+    if (cx_session_set_friction(s, &fr, &d)) {
+        cli_fail(cmd, d.msg);
+        goto done;
+    }
     if (cx_session_set_method(s, m, &pv, &opt, &d)) {
         cli_fail(cmd, d.msg);
         goto done;
@@ -269,7 +274,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
             snprintf(clamped, sizeof clamped, ", %d clamped", cp->contact.nclamped);
         fprintf(summary, "%s level %d: %dD, %d dofs, %d contact points%s; %s%s, friction %s\n", sc.id,
                 a.s.level > 0 ? a.s.level : sc.level, cp->dim, cp->n, cp->m, clamped, m->id,
-                is_auto ? " (auto)" : "", cx_friction_name(cp->friction));
+                is_auto ? " (auto)" : "", cx_friction_name(cx_session_friction(s)->law));
         fprintf(summary, "  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
         fflush(summary);   /* the run may be long: show where it is */
     }

@@ -72,9 +72,13 @@ void cx_result_destroy(cx_result **r)
     *r = NULL;
 }
 
-int cx_result_create(cx_result **r, const cx_problem *p, const double *u, const double *lN,
-                     const double *lT, const unsigned char *status, cx_diag *d)
+int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state *fr,
+                     const double *u, const double *lN, const double *lT,
+                     const unsigned char *status, cx_diag *d)
 {
+    const cx_friction_state none = {CX_FRICTION_NONE, 0, 0, NULL, NULL};
+    if (!fr)
+        fr = &none;
     *r = NULL;
     cx_result *x = CX_NEW(cx_result, 1);
     if (!x)
@@ -111,13 +115,13 @@ int cx_result_create(cx_result **r, const cx_problem *p, const double *u, const 
     for (int i = 0; i < p->m; i++)
         for (int k = 0; k < dim; k++) {
             x->f_contact[k] -= x->lN[i] * c->normal[dim * i + k];
-            if (p->friction != CX_FRICTION_NONE)
+            if (fr->law != CX_FRICTION_NONE)
                 for (int q = 0; q < dt; q++)
                     x->f_contact[k] -= x->lT[dt * i + q] * c->tangent[dim * (dt * i + q) + k];
         }
-    x->run.friction = p->friction;
-    x->run.F = p->F;
-    x->run.slip_bound = p->slip_bound;
+    x->run.friction = fr->law;
+    x->run.F = fr->F;
+    x->run.slip_bound = fr->slip_bound;
     x->run.own = NAN;
     for (int i = 0; i < p->m; i++) {
         int s = x->status[i];
@@ -140,7 +144,8 @@ int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *s
     if (m && it->u_partial)
         return cx_diag_set(d, CX_EINVAL, "result: the iterate is partial (complete it first)");
     cx_result *x = NULL;
-    CX_TRY(cx_result_create(&x, p, it->u, it->lN, it->lT, m ? it->status : NULL, d));
+    CX_TRY(cx_result_create(&x, p, cx_session_friction(s), it->u, it->lN, it->lT,
+                            m ? it->status : NULL, d));
     cx_run_record *run = &x->run;
     if (sc) {
         snprintf(run->scene, sizeof run->scene, "%s", sc->id);

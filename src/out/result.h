@@ -75,10 +75,12 @@ typedef struct cx_result {
 } cx_result;
 
 /* A result for the solution (u: the n free dofs, lN: m, lT: nt or NULL for
- * zero, status: m or NULL for all free) of problem p; the run record holds
- * p's friction and zeros. Everything is copied. */
-int cx_result_create(cx_result **r, const cx_problem *p, const double *u, const double *lN,
-                     const double *lT, const unsigned char *status, cx_diag *d);
+ * zero, status: m or NULL for all free) of problem p under the friction
+ * state fr (NULL: frictionless); the run record holds fr's law and values
+ * and zeros. Everything is copied. */
+int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state *fr,
+                     const double *u, const double *lN, const double *lT,
+                     const unsigned char *status, cx_diag *d);
 /* A result for the session's current iterate and its run (method,
  * parameters, options, outcome, counters, setup and solve times). sc (may
  * be NULL) gives the scene id, title, obstacle and Hertz's pressure error;

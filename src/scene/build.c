@@ -83,7 +83,8 @@ static int build_masonry_contact(const cx_scene *s, int level, const cx_mesh *m,
     return cx_contact_masonry(cs, m, settle, base, joints, &ob, d);
 }
 
-int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
+int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_state *fr,
+                   cx_diag *d)
 {
     cx_mesh *m = NULL;
     cx_material *mats = NULL;
@@ -178,6 +179,9 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
     if ((st = cx_contact_drop_clamped(&cs, &map)))
         goto fail;
 
+    /* the scene's friction defaults (both values; the law) go beside the
+     * problem, not into it: the session that solves it owns them */
+    cx_friction_state defaults = {s->friction, s->slip_bound, s->F, NULL, NULL};
     if ((st = cx_problem_create(pp, &m, &mats, &map, &cs, &K, f, d)))
         goto fail;
     cx_problem *p = *pp;
@@ -189,14 +193,12 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_diag *d)
         cx_problem_destroy(pp);
         goto fail;
     }
-    /* both friction values are kept; the law is the scene's default */
-    p->slip_bound = s->slip_bound;
-    p->F = s->F;
-    if ((st = cx_problem_set_friction(p, s->friction,
-                                      s->friction == CX_FRICTION_COULOMB ? s->F : s->slip_bound, d))) {
+    if ((st = cx_friction_check(&defaults, 0, d))) {
         cx_problem_destroy(pp);
         goto fail;
     }
+    if (fr)
+        *fr = defaults;
     cx_csc_clear(&K);
     cx_free(f);
     return CX_OK;

@@ -132,12 +132,15 @@ void cx_scene_cells(const cx_scene *s, int level, int cells[3]);
 void cx_scene_cells_lower(const cx_scene *s, int level, int cells[3]);
 
 /* Generate the mesh, assemble, apply supports and loads, build contact:
- * the problem at a level (level <= 0: the scene's default). The contact
+ * the problem at a level (level <= 0: the scene's default), and beside it
+ * the scene's friction defaults in *fr (may be NULL; its law, slip bound
+ * and F, no per-point values), for cx_session_set_friction. The contact
  * points are those with a free normal dof (p->contact.nclamped counts the
  * others). A NaN or Inf in the mesh, K, f, the gap or the rows is
  * CX_EINVAL "file:line: section [...]: ..." naming the section it comes
  * from (the loader's ranges keep a scene's values from getting there). */
-int cx_scene_build(const cx_scene *s, int level, cx_problem **p, cx_diag *d);
+int cx_scene_build(const cx_scene *s, int level, cx_problem **p, cx_friction_state *fr,
+                   cx_diag *d);
 
 /* Hertz pressure p(x) = 2P/(pi b^2) sqrt(b^2 - x^2) of the scene (0 if
  * none) and the half-width b. */

@@ -112,7 +112,8 @@ static int cffp_init(void *state, cx_session *s, const cx_param_values *params, 
     if (status == CX_OK)
         status = cx_session_set_slip_bounds(st->child, st->sb, d);
     if (status == CX_OK) {
-        status = cx_method_check(st->inner, cx_session_problem(st->child), d);
+        status = cx_method_check(st->inner, cx_session_problem(st->child),
+                                     cx_session_friction(st->child)->law, d);
         if (status != CX_OK)
             status = cx_diag_set(d, CX_EUNSUPPORTED, "method 'cf-fp': inner %s", cx_diag_msg(d, status));
     }
@@ -138,11 +139,12 @@ static int cffp_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
 {
     cffp_state *st = state;
     const cx_problem *p = cx_session_problem(s);
+    const cx_friction_state *fr = cx_session_friction(s);
     int m = p->m, fp = it->iter + 1;   /* fixed-point step, from 1 */
 
     /* the Tresca problem of this step: s = F lN of the last iterate */
     for (int i = 0; i < m; i++)
-        st->sb[i] = p->Fi[i] * (it->lN[i] > 0 ? it->lN[i] : 0);
+        st->sb[i] = fr->Fi[i] * (it->lN[i] > 0 ? it->lN[i] : 0);
     double eps_m = fmax(pow(0.1, fp), st->eps_min);
     cx_options o;
     cx_options_default(&o);
@@ -176,7 +178,7 @@ static int cffp_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     /* the paper's |s^(m+1) - s^m|^2 / |s^(m+1)|^2 < eps_fp^2 */
     double num = 0, den = 0;
     for (int i = 0; i < m; i++) {
-        st->snew[i] = p->Fi[i] * (it->lN[i] > 0 ? it->lN[i] : 0);
+        st->snew[i] = fr->Fi[i] * (it->lN[i] > 0 ? it->lN[i] : 0);
         num += (st->snew[i] - st->sb[i]) * (st->snew[i] - st->sb[i]);
         den += st->snew[i] * st->snew[i];
     }

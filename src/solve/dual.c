@@ -144,12 +144,12 @@ void cx_dual_recover(const cx_dual *D, const double *z, double *u)
         u[i] = D->uf[i] - z[i];
 }
 
-void cx_dual_bounds(const cx_problem *p, int tangential, double *lo, double *hi)
+void cx_dual_bounds(const cx_problem *p, const double *s, int tangential, double *lo, double *hi)
 {
     for (int i = 0; i < p->m; i++)
         lo[i] = 0, hi[i] = INFINITY;
     for (int i = 0; tangential && i < p->nt; i++)
-        lo[p->m + i] = -p->s[i], hi[p->m + i] = p->s[i];
+        lo[p->m + i] = -s[i], hi[p->m + i] = s[i];
 }
 
 void cx_dual_project(int nd, const double *lo, const double *hi, double *x)

@@ -43,9 +43,9 @@ int cx_dual_amax(cx_dual *D, int tangential, double *amax, cx_diag *d);
 void cx_dual_recover(const cx_dual *D, const double *z, double *u);
 
 /* The box Lambda of paper 000: lN >= 0 and, with the tangential rows,
- * -s <= lT <= s, s the problem's per-point slip bounds (read now, so
- * that an outer fixed point may change them between runs). */
-void cx_dual_bounds(const cx_problem *p, int tangential, double *lo, double *hi);
+ * -s <= lT <= s, s the session's per-point slip bounds (m; read now,
+ * so that an outer fixed point may change them between runs). */
+void cx_dual_bounds(const cx_problem *p, const double *s, int tangential, double *lo, double *hi);
 
 /* x := P_[lo,hi](x). */
 void cx_dual_project(int nd, const double *lo, const double *hi, double *x);

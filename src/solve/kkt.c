@@ -13,8 +13,8 @@ static double norminf(int n, const double *x)
     return s;
 }
 
-void cx_kkt_scales(const cx_problem *p, const double *u, const double *lN, const double *lT,
-                   double *mult, double *disp)
+void cx_kkt_scales(const cx_problem *p, cx_friction law, const double *u, const double *lN,
+                   const double *lT, double *mult, double *disp)
 {
     /* multiplier scale: the largest nodal force, applied or of contact;
      * displacement scale: the largest displacement, floored by the
@@ -22,7 +22,7 @@ void cx_kkt_scales(const cx_problem *p, const double *u, const double *lN, const
      * zero iterate still gets a finite rho. */
     double L = norminf(p->n, p->f);
     L = fmax(L, norminf(p->m, lN));
-    if (p->friction != CX_FRICTION_NONE)
+    if (law != CX_FRICTION_NONE)
         L = fmax(L, norminf(p->nt, lT));
     double k = p->kscale > 0 ? p->kscale : 1;
     if (L == 0)
@@ -33,14 +33,14 @@ void cx_kkt_scales(const cx_problem *p, const double *u, const double *lN, const
 
 /* The natural-map residuals of the contact and friction conditions, into
  * k->contact and k->friction; work: m + nt doubles. */
-static void kkt_maps(const cx_problem *p, const double *u, const double *lN, const double *lT,
-                     double *work, cx_kkt *k)
+static void kkt_maps(const cx_problem *p, const cx_friction_state *fr, const double *u,
+                     const double *lN, const double *lT, double *work, cx_kkt *k)
 {
     int m = p->m, dim = p->dim;
-    int fric = p->friction != CX_FRICTION_NONE;
+    int fric = fr->law != CX_FRICTION_NONE;
     double *Nu = work, *Tu = work + m;
     double L, U;
-    cx_kkt_scales(p, u, lN, lT, &L, &U);
+    cx_kkt_scales(p, fr->law, u, lN, lT, &L, &U);
     double rho = L / U;
     cx_csc_gemv(&p->N, 1.0, u, 0.0, Nu);
     double rc = 0;
@@ -53,7 +53,7 @@ static void kkt_maps(const cx_problem *p, const double *u, const double *lN, con
         cx_csc_gemv(&p->T, 1.0, u, 0.0, Tu);
         int dt = dim - 1;
         for (int i = 0; i < m; i++) {
-            double z[2], nz = 0, s = cx_problem_slip_bound(p, i, lN[i]);
+            double z[2], nz = 0, s = cx_friction_slip_bound(fr, i, lN[i]);
             for (int c = 0; c < dt; c++) {
                 z[c] = lT[dt * i + c] + rho * Tu[dt * i + c];
                 nz += z[c] * z[c];
@@ -69,10 +69,10 @@ static void kkt_maps(const cx_problem *p, const double *u, const double *lN, con
 }
 
 /* r = N' lN + T' lT (n); false if an input is not finite. */
-static int kkt_contact_forces(const cx_problem *p, const double *u, const double *lN, const double *lT,
-                              double *r)
+static int kkt_contact_forces(const cx_problem *p, cx_friction law, const double *u,
+                              const double *lN, const double *lT, double *r)
 {
-    int fric = p->friction != CX_FRICTION_NONE;
+    int fric = law != CX_FRICTION_NONE;
     if (!cx_vec_finite(p->n, u) || !cx_vec_finite(p->m, lN) || (fric && !cx_vec_finite(p->nt, lT)))
         return 0;
     cx_csc_gemv_t(&p->N, 1.0, lN, 0.0, r);
@@ -83,13 +83,14 @@ static int kkt_contact_forces(const cx_problem *p, const double *u, const double
 
 static double kkt_ratio(double num, double den) { return den > 0 ? num / den : (num > 0 ? 1.0 : 0.0); }
 
-double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, const double *lT,
-                    double *work, cx_counters *cnt, cx_kkt *parts)
+double cx_kkt_error(const cx_problem *p, const cx_friction_state *fr, const double *u,
+                    const double *lN, const double *lT, double *work, cx_counters *cnt,
+                    cx_kkt *parts)
 {
     int n = p->n;
     cx_kkt k = {INFINITY, INFINITY, INFINITY, INFINITY};
     double *r = work;
-    if (!kkt_contact_forces(p, u, lN, lT, r)) {
+    if (!kkt_contact_forces(p, fr->law, u, lN, lT, r)) {
         if (parts)
             *parts = k;
         return INFINITY;
@@ -101,19 +102,20 @@ double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, cons
         cnt->matvecs++;
     cx_vec_axpy(n, -1.0, p->f, r);
     k.equilibrium = kkt_ratio(norminf(n, r), nf + nB);
-    kkt_maps(p, u, lN, lT, work + n, &k);
+    kkt_maps(p, fr, u, lN, lT, work + n, &k);
     if (parts)
         *parts = k;
     return k.total;
 }
 
-double cx_kkt_error_condensed(const cx_problem *p, const double *S, const double *fc, const double *u,
-                              const double *lN, const double *lT, double *work, cx_kkt *parts)
+double cx_kkt_error_condensed(const cx_problem *p, const cx_friction_state *fr, const double *S,
+                              const double *fc, const double *u, const double *lN,
+                              const double *lT, double *work, cx_kkt *parts)
 {
     int n = p->n, nc = p->nc;
     cx_kkt k = {INFINITY, INFINITY, INFINITY, INFINITY};
     double *r = work;
-    if (!kkt_contact_forces(p, u, lN, lT, r)) {
+    if (!kkt_contact_forces(p, fr->law, u, lN, lT, r)) {
         if (parts)
             *parts = k;
         return INFINITY;
@@ -128,7 +130,7 @@ double cx_kkt_error_condensed(const cx_problem *p, const double *S, const double
         nr = fmax(nr, fabs(sum));
     }
     k.equilibrium = kkt_ratio(nr, nf + nB);
-    kkt_maps(p, u, lN, lT, work + n, &k);
+    kkt_maps(p, fr, u, lN, lT, work + n, &k);
     if (parts)
         *parts = k;
     return k.total;

@@ -120,8 +120,7 @@ fail:
 
 int cx_lcp_get(cx_session *s, cx_lcp_map **map, cx_diag *d)
 {
-    const cx_problem *p = cx_session_problem(s);
-    if (p->friction != CX_FRICTION_NONE)
+    if (cx_session_friction(s)->law != CX_FRICTION_NONE)
         return cx_diag_set(d, CX_EUNSUPPORTED, "the LCP methods of paper 003 are frictionless");
     void *obj = NULL;
     CX_TRY(cx_session_cache_get(s, "lcp003:full", lcp_build_map, NULL, lcp_map_destroy, &obj, d));

@@ -72,11 +72,11 @@ static int mprgp_init(void *state, cx_session *s, const cx_param_values *params,
 {
     mprgp_state *st = state;
     const cx_problem *p = cx_session_problem(s);
-    if (p->friction == CX_FRICTION_COULOMB)
+    if (cx_session_friction(s)->law == CX_FRICTION_COULOMB)
         return cx_diag_set(d, CX_EUNSUPPORTED,
                            "method 'mprgp' solves a bound-constrained dual (Tresca or frictionless); "
                            "for Coulomb friction use the fixed-point wrapper cf-fp with --set inner=mprgp");
-    st->tangential = p->friction == CX_FRICTION_TRESCA;
+    st->tangential = cx_session_friction(s)->law == CX_FRICTION_TRESCA;
     CX_TRY(cx_dual_get(s, &st->D, d));
     st->nd = cx_dual_size(st->D, st->tangential);
     int nd = st->nd;
@@ -108,7 +108,7 @@ static int mprgp_init(void *state, cx_session *s, const cx_param_values *params,
     for (int i = 0; i < nd; i++)
         st->g[i] = -b[i];
     st->bnorm = cx_vec_norm2(nd, b);
-    cx_dual_bounds(p, st->tangential, st->lo, st->hi);
+    cx_dual_bounds(p, cx_session_friction(s)->s, st->tangential, st->lo, st->hi);
     double gp2, b2, rp;
     mprgp_gradients(st, &gp2, &b2, &rp);
     memcpy(st->p, st->phi, sizeof(double) * (size_t)nd);

@@ -1,61 +1,23 @@
-/* Nested sessions (solve.h): a child session over a view of its parent's
- * problem, sharing the parent's operator cache and counters, so that a
- * wrapper method (cf-fp) runs any registered inner method through the
- * ordinary stepping with all its bookkeeping. Also per-point slip bounds
- * and warm starts, which the wrapper needs and which work on any session. */
+/* Nested sessions (solve.h): a child session over its parent's system,
+ * with its own friction state, sharing the parent's operator cache and
+ * counters, so that a wrapper method (cf-fp) runs any registered inner
+ * method through the ordinary stepping with all its bookkeeping. Also warm
+ * starts, which the wrapper needs and which work on any session. Depends
+ * on session.c (cx_session_create_), never the other way. */
 #include "solve/session_impl.h"
 
-#include <math.h>
 #include <string.h>
-
-void cx_session_view_free_(cx_problem *p)
-{
-    if (!p)
-        return;
-    cx_free(p->s);
-    cx_free(p->Fi);
-    cx_free(p);
-}
 
 int cx_session_nested_create(cx_session **child, cx_session *parent, cx_diag *d)
 {
-    const cx_problem *pp = parent->p;
-    cx_problem *view = CX_NEW(cx_problem, 1);
-    if (!view)
-        return cx_diag_set(d, CX_ENOMEM, "out of memory");
-    *view = *pp;   /* shares K, f, N, T, g, mesh, contact: the parent owns them */
-    view->s = CX_NEW(double, pp->m);
-    view->Fi = CX_NEW(double, pp->m);
-    if (!view->s || !view->Fi) {
-        cx_session_view_free_(view);
-        return cx_diag_set(d, CX_ENOMEM, "out of memory");
-    }
-    view->friction = CX_FRICTION_TRESCA;
-    view->slip_bound = 0;
-    view->F = 0;
+    /* the parent's system itself, not a copy: the parent owns it and
+     * outlives the child; the child has its own friction state (Tresca,
+     * zero bounds until the wrapper sets them) */
     cx_session *s = NULL;
-    int st = cx_session_create_(&s, &view, parent, d);
-    if (st != CX_OK) {
-        cx_session_view_free_(view);   /* NULL once the session took it: destroy freed it */
-        return st;
-    }
+    CX_TRY(cx_session_create_(&s, parent->p, parent, d));
+    s->fr.law = CX_FRICTION_TRESCA;
     *child = s;
     return CX_OK;
-}
-
-int cx_session_set_slip_bounds(cx_session *s, const double *sb, cx_diag *d)
-{
-    cx_problem *p = s->p;
-    for (int i = 0; i < p->m; i++)
-        if (!(sb[i] >= 0) || !isfinite(sb[i]))
-            return cx_diag_set(d, CX_EINVAL, "slip bound of contact point %d: expected a finite "
-                               "value >= 0, got %g", i, sb[i]);
-    memcpy(p->s, sb, sizeof(double) * (size_t)p->m);
-    p->friction = CX_FRICTION_TRESCA;
-    if (!s->method)
-        return CX_OK;
-    cx_param_values params = s->params;
-    return cx_session_set_method(s, s->method, &params, NULL, d);
 }
 
 int cx_session_set_start(cx_session *s, const double *u, const double *lN, const double *lT,

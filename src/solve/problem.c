@@ -1,5 +1,5 @@
 /* The discrete problem: the assembled system reduced to the free dofs, the
- * contact rows mapped to them, and the friction data. */
+ * contact rows mapped to them; and the check of a friction state. */
 #include "solve/problem.h"
 
 #include <math.h>
@@ -31,8 +31,6 @@ void cx_problem_destroy(cx_problem **pp)
     cx_free(p->f);
     cx_free(p->g);
     cx_free(p->cdofs);
-    cx_free(p->s);
-    cx_free(p->Fi);
     cx_mesh_destroy(&p->mesh);
     cx_free(p->mats);
     cx_dofmap_clear(&p->map);
@@ -90,11 +88,9 @@ int cx_problem_create(cx_problem **pp, cx_mesh **mesh, cx_material **mats, cx_do
     p->nt = (p->dim - 1) * p->m;
     p->f = CX_NEW(double, p->n);
     p->g = CX_NEW(double, p->m);
-    p->s = CX_NEW(double, p->m);
-    p->Fi = CX_NEW(double, p->m);
     shift = CX_NEW(double, p->nt > p->m ? p->nt : p->m);
     touched = CX_NEW(unsigned char, p->n);
-    if (!p->f || !p->g || !p->s || !p->Fi || !shift || !touched) {
+    if (!p->f || !p->g || !shift || !touched) {
         status = CX_ENOMEM;
         goto fail;
     }
@@ -163,23 +159,23 @@ fail:
     return status;
 }
 
-int cx_problem_set_friction(cx_problem *p, cx_friction law, double value, cx_diag *d)
+int cx_friction_check(const cx_friction_state *fr, int m, cx_diag *d)
 {
-    if ((unsigned)law > CX_FRICTION_COULOMB)
-        return cx_diag_set(d, CX_EINVAL, "unknown friction law %d", (int)law);
-    if (!(value >= 0) || !isfinite(value))
-        return cx_diag_set(d, CX_EINVAL, "%s: expected a non-negative %s, got %g",
-                           cx_friction_name(law), law == CX_FRICTION_COULOMB ? "coefficient F" : "slip bound", value);
-    p->friction = law;
-    if (law == CX_FRICTION_TRESCA)
-        p->slip_bound = value;
-    else if (law == CX_FRICTION_COULOMB)
-        p->F = value;
-    /* slip bounds are nodal forces: the traction bound times the lumped
-     * measure of the contact boundary at the point */
-    for (int i = 0; i < p->m; i++) {
-        p->s[i] = p->slip_bound * p->contact.weight[i];
-        p->Fi[i] = p->F;
-    }
+    if ((unsigned)fr->law > CX_FRICTION_COULOMB)
+        return cx_diag_set(d, CX_EINVAL, "unknown friction law %d", (int)fr->law);
+    if (!(fr->slip_bound >= 0) || !isfinite(fr->slip_bound))
+        return cx_diag_set(d, CX_EINVAL, "tresca: expected a non-negative slip bound, got %g",
+                           fr->slip_bound);
+    if (!(fr->F >= 0) || !isfinite(fr->F))
+        return cx_diag_set(d, CX_EINVAL, "coulomb: expected a non-negative coefficient F, got %g",
+                           fr->F);
+    for (int i = 0; fr->s && i < m; i++)
+        if (!(fr->s[i] >= 0) || !isfinite(fr->s[i]))
+            return cx_diag_set(d, CX_EINVAL, "slip bound of contact point %d: expected a finite "
+                               "value >= 0, got %g", i, fr->s[i]);
+    for (int i = 0; fr->Fi && i < m; i++)
+        if (!(fr->Fi[i] >= 0) || !isfinite(fr->Fi[i]))
+            return cx_diag_set(d, CX_EINVAL, "friction coefficient of contact point %d: expected "
+                               "a finite value >= 0, got %g", i, fr->Fi[i]);
     return CX_OK;
 }

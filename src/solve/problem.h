@@ -4,8 +4,12 @@
  *     |lT_i| <= s_i, |lT_i| < s_i => (T u)_i = 0, |lT_i| = s_i => (T u)_i = c lT_i
  * over the n free dofs (Dirichlet dofs eliminated) and m contact points.
  * s_i is the Tresca slip bound (a nodal force) or F_i lN_i for Coulomb.
- * The problem also keeps the geometry it came from (mesh, dof map, contact
- * points) for output. It owns everything it points to. */
+ * The problem is the assembled system and the geometry it came from (mesh,
+ * dof map, contact points, for output): it owns everything it points to and
+ * is not changed after cx_problem_create (every later user holds it const).
+ * The friction state (law, F_i, s_i) is not part of it: it belongs to the
+ * session (cx_session_friction, solve.h), so that one system serves any law
+ * and a nested session can share the system with its own bounds. */
 #ifndef CX_PROBLEM_H
 #define CX_PROBLEM_H
 
@@ -24,6 +28,24 @@ typedef enum cx_friction {
 const char *cx_friction_name(cx_friction f);   /* "none", "tresca", "coulomb" */
 int cx_friction_from_name(const char *name);    /* -1 if unknown */
 
+/* The friction state: the law and its values, one field per meaning.
+ * slip_bound and F are the scalars a scene or a command line gives; s and
+ * Fi the per-point values the kkt error and the methods read. In a
+ * session's state (cx_session_friction) s and Fi point to m values the
+ * session owns; given to a setter, NULL means "from the scalar"
+ * (s_i = slip_bound * weight_i, F_i = F). */
+typedef struct cx_friction_state {
+    cx_friction law;
+    double slip_bound;  /* Tresca bound as a traction (force / area) */
+    double F;           /* Coulomb coefficient */
+    const double *s;    /* m: Tresca slip bound per point (nodal force), or NULL */
+    const double *Fi;   /* m: Coulomb coefficient per point, or NULL */
+} cx_friction_state;
+
+/* CX_EINVAL unless the law is known and slip_bound, F (and s, Fi where
+ * given, m values) are finite and non-negative. */
+int cx_friction_check(const cx_friction_state *fr, int m, cx_diag *d);
+
 typedef struct cx_problem {
     int dim;
     int n;              /* free dofs */
@@ -36,12 +58,6 @@ typedef struct cx_problem {
     double *g;          /* m, initial gap (prescribed dofs folded in) */
     int nc;             /* dofs touched by N or T */
     int *cdofs;         /* nc ascending free-dof indices */
-
-    cx_friction friction;
-    double slip_bound;  /* Tresca bound as a traction (force / area) */
-    double F;           /* Coulomb coefficient */
-    double *s;          /* m: Tresca slip bound per point (nodal force) = slip_bound * weight */
-    double *Fi;         /* m: Coulomb coefficient per point */
 
     double kscale;      /* max diagonal entry of K: the stiffness scale */
 
@@ -62,10 +78,6 @@ int cx_problem_create(cx_problem **p, cx_mesh **mesh, cx_material **mats,
                       const cx_csc *Kall, const double *fall, cx_diag *d);
 void cx_problem_destroy(cx_problem **p);
 
-/* Change the friction law and its value (Tresca: slip bound as a traction;
- * Coulomb: F). Nothing is reassembled. CX_EINVAL for a negative value. */
-int cx_problem_set_friction(cx_problem *p, cx_friction law, double value, cx_diag *d);
-
 /* DESIGN.md §3: the solver-independent, dimensionless error, the largest of
  * the relative equilibrium residual and the natural-map residuals of the
  * contact and friction conditions. Zero exactly at a solution; +inf if an
@@ -77,8 +89,9 @@ typedef struct cx_kkt {
     double contact;
     double friction;
 } cx_kkt;
-double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, const double *lT,
-                    double *work, cx_counters *cnt, cx_kkt *parts);
+double cx_kkt_error(const cx_problem *p, const cx_friction_state *fr, const double *u,
+                    const double *lN, const double *lT, double *work, cx_counters *cnt,
+                    cx_kkt *parts);
 
 /* The same error for an iterate whose u is exact on the contact dofs and
  * whose other dofs solve their equilibrium rows (u_i = K_ii^-1 (f_i -
@@ -86,21 +99,23 @@ double cx_kkt_error(const cx_problem *p, const double *u, const double *lN, cons
  * p->cdofs order) and the condensed load fc: the equilibrium rows of the
  * other dofs are zero, those of the contact dofs are S u_c - fc + (N'lN +
  * T'lT)_c. u's other dofs enter only the displacement scale. */
-double cx_kkt_error_condensed(const cx_problem *p, const double *S, const double *fc, const double *u,
-                              const double *lN, const double *lT, double *work, cx_kkt *parts);
+double cx_kkt_error_condensed(const cx_problem *p, const cx_friction_state *fr, const double *S,
+                              const double *fc, const double *u, const double *lN,
+                              const double *lT, double *work, cx_kkt *parts);
 
 /* The scales used by cx_kkt_error, exposed for methods that need a
- * consistent rho: multiplier scale, displacement scale, rho = mult / disp. */
-void cx_kkt_scales(const cx_problem *p, const double *u, const double *lN, const double *lT,
-                   double *mult, double *disp);
+ * consistent rho: multiplier scale, displacement scale, rho = mult / disp.
+ * lT counts unless the law is CX_FRICTION_NONE. */
+void cx_kkt_scales(const cx_problem *p, cx_friction law, const double *u, const double *lN,
+                   const double *lT, double *mult, double *disp);
 
 /* Slip bound of point i at the current normal multiplier. */
-static inline double cx_problem_slip_bound(const cx_problem *p, int i, double lNi)
+static inline double cx_friction_slip_bound(const cx_friction_state *fr, int i, double lNi)
 {
-    if (p->friction == CX_FRICTION_TRESCA)
-        return p->s[i];
-    if (p->friction == CX_FRICTION_COULOMB)
-        return p->Fi[i] * (lNi > 0 ? lNi : 0);
+    if (fr->law == CX_FRICTION_TRESCA)
+        return fr->s[i];
+    if (fr->law == CX_FRICTION_COULOMB)
+        return fr->Fi[i] * (lNi > 0 ? lNi : 0);
     return 0;
 }
 

@@ -58,13 +58,13 @@ const cx_method *cx_method_find(const char *id)
     return NULL;
 }
 
-int cx_method_check(const cx_method *m, const cx_problem *p, cx_diag *d)
+int cx_method_check(const cx_method *m, const cx_problem *p, cx_friction law, cx_diag *d)
 {
     static const unsigned law_flag[] = {CX_FRICTIONLESS, CX_TRESCA, CX_COULOMB};
     static const char *const law_text[] = {"frictionless contact", "Tresca friction", "Coulomb friction"};
-    if (!(m->supports & law_flag[p->friction]))
+    if (!(m->supports & law_flag[law]))
         return cx_diag_set(d, CX_EUNSUPPORTED, "method '%s' does not support %s",
-                           m->id, law_text[p->friction]);
+                           m->id, law_text[law]);
     if (!(m->supports & (p->dim == 2 ? CX_2D : CX_3D)))
         return cx_diag_set(d, CX_EUNSUPPORTED, "method '%s' does not support %dD problems", m->id, p->dim);
     if (p->mesh && p->mesh->nbodies > 1 && !(m->supports & CX_MULTIBODY))

@@ -1,6 +1,7 @@
-/* The session: a problem, its cache of shared operators, the current method
- * with its private state, and the iterate. Switching method, parameters or
- * friction keeps the cache (DESIGN.md §5: assemble and factorise once). */
+/* The session: a problem, its friction state, its cache of shared
+ * operators, the current method with its private state, and the iterate.
+ * Switching method, parameters or friction keeps the cache (DESIGN.md §5:
+ * assemble and factorise once). */
 #include "solve/session_impl.h"
 
 #include <math.h>
@@ -25,16 +26,14 @@ static void session_free_iterate(cx_iterate *it)
     cx_free(it->changed);
 }
 
-int cx_session_create_(cx_session **sp, cx_problem **pp, cx_session *parent, cx_diag *d)
+int cx_session_create_(cx_session **sp, const cx_problem *p, cx_session *parent, cx_diag *d)
 {
     cx_session *s = CX_NEW(cx_session, 1);
     if (!s)
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
-    cx_problem *p = *pp;
     s->p = p;
     s->parent = parent;
     atomic_init(&s->cancel, 0);
-    *pp = NULL;
     cx_options_default(&s->opt);
     s->it.u = CX_NEW(double, p->n);
     s->it.lN = CX_NEW(double, p->m);
@@ -43,10 +42,14 @@ int cx_session_create_(cx_session **sp, cx_problem **pp, cx_session *parent, cx_
     s->it.changed = CX_NEW(unsigned char, p->m);
     s->work = CX_NEW(double, p->n + p->m + p->nt);
     s->uc = CX_NEW(double, p->nc);
-    if (!s->it.u || !s->it.lN || !s->it.lT || !s->it.status || !s->it.changed || !s->work || !s->uc) {
+    s->s = CX_NEW(double, p->m);
+    s->Fi = CX_NEW(double, p->m);
+    if (!s->it.u || !s->it.lN || !s->it.lT || !s->it.status || !s->it.changed || !s->work ||
+        !s->uc || !s->s || !s->Fi) {
         cx_session_destroy(&s);
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
+    s->fr = (cx_friction_state){CX_FRICTION_NONE, 0, 0, s->s, s->Fi};
     *sp = s;
     return CX_OK;
 }
@@ -62,7 +65,10 @@ static void session_drop_method(cx_session *s)
 
 int cx_session_create(cx_session **sp, cx_problem **pp, cx_diag *d)
 {
-    return cx_session_create_(sp, pp, NULL, d);
+    CX_TRY(cx_session_create_(sp, *pp, NULL, d));
+    (*sp)->own = *pp;
+    *pp = NULL;
+    return CX_OK;
 }
 
 void cx_session_destroy(cx_session **sp)
@@ -83,15 +89,15 @@ void cx_session_destroy(cx_session **sp)
     session_free_iterate(&s->it);
     cx_free(s->work);
     cx_free(s->start);
-    if (s->parent)
-        cx_session_view_free_(s->p);   /* a view: the parent owns what it shares */
-    else
-        cx_problem_destroy(&s->p);
+    cx_free(s->s);
+    cx_free(s->Fi);
+    cx_problem_destroy(&s->own);   /* NULL in a nested session: the parent owns the system */
     cx_free(s);
     *sp = NULL;
 }
 
 const cx_problem *cx_session_problem(const cx_session *s) { return s->p; }
+const cx_friction_state *cx_session_friction(const cx_session *s) { return &s->fr; }
 const cx_counters *cx_session_cache_counters(const cx_session *s)
 {
     while (s->parent)   /* a nested session shares its root's cache */
@@ -296,7 +302,7 @@ static void session_clear_run(cx_session *s)
 int cx_session_set_method(cx_session *s, const cx_method *m, const cx_param_values *params,
                           const cx_options *opt, cx_diag *d)
 {
-    CX_TRY(cx_method_check(m, s->p, d));
+    CX_TRY(cx_method_check(m, s->p, s->fr.law, d));
     cx_param_values values;
     if (params)
         values = *params;
@@ -344,20 +350,80 @@ int cx_session_reset(cx_session *s, cx_diag *d)
     return cx_session_set_method(s, s->method, &params, NULL, d);
 }
 
-int cx_session_set_friction(cx_session *s, cx_friction law, double value, cx_diag *d)
+/* Make fr the session's friction state (checked): the scalars, and the
+ * per-point values given or expanded from them (slip bounds are nodal
+ * forces: the traction bound times the lumped measure of the contact
+ * boundary at the point). */
+static void session_put_friction(cx_session *s, const cx_friction_state *fr)
 {
-    cx_friction old_law = s->p->friction;
-    double old_value = old_law == CX_FRICTION_COULOMB ? s->p->F : s->p->slip_bound;
+    const cx_problem *p = s->p;
+    for (int i = 0; i < p->m; i++) {
+        s->s[i] = fr->s ? fr->s[i] : fr->slip_bound * p->contact.weight[i];
+        s->Fi[i] = fr->Fi ? fr->Fi[i] : fr->F;
+    }
+    s->fr = (cx_friction_state){fr->law, fr->slip_bound, fr->F, s->s, s->Fi};
+}
+
+/* Re-init the current method (a new run) after a friction change; if it
+ * refuses the new state and old is given (the state before, with its
+ * per-point values), restore old and the method. */
+static int session_refriction(cx_session *s, const cx_friction_state *old, cx_diag *d)
+{
     const cx_method *m = s->method;
-    cx_param_values params = s->params;
-    CX_TRY(cx_problem_set_friction(s->p, law, value, d));
     if (!m)
         return CX_OK;
+    cx_param_values params = s->params;
     int st = cx_session_set_method(s, m, &params, NULL, d);
-    if (st != CX_OK) {
-        /* the method refuses the new law: keep the old law and method */
-        cx_problem_set_friction(s->p, old_law, old_value, NULL);
+    if (st != CX_OK && old) {
+        session_put_friction(s, old);
         cx_session_set_method(s, m, &params, NULL, NULL);
     }
     return st;
+}
+
+int cx_session_set_friction(cx_session *s, const cx_friction_state *fr, cx_diag *d)
+{
+    const cx_problem *p = s->p;
+    CX_TRY(cx_friction_check(fr, p->m, d));
+    /* the old state, to restore if the method refuses the new law */
+    double *keep = s->method ? CX_NEW(double, 2 * (size_t)p->m + 1) : NULL;
+    if (s->method && !keep)
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    cx_friction_state old = s->fr;
+    if (keep) {
+        memcpy(keep, s->s, sizeof(double) * (size_t)p->m);
+        memcpy(keep + p->m, s->Fi, sizeof(double) * (size_t)p->m);
+        old.s = keep;
+        old.Fi = keep + p->m;
+    }
+    session_put_friction(s, fr);
+    int st = session_refriction(s, &old, d);
+    cx_free(keep);
+    return st;
+}
+
+int cx_session_set_tresca(cx_session *s, double slip_bound, cx_diag *d)
+{
+    cx_friction_state fr = {CX_FRICTION_TRESCA, slip_bound, s->fr.F, NULL, NULL};
+    return cx_session_set_friction(s, &fr, d);
+}
+
+int cx_session_set_coulomb(cx_session *s, double F, cx_diag *d)
+{
+    cx_friction_state fr = {CX_FRICTION_COULOMB, s->fr.slip_bound, F, NULL, NULL};
+    return cx_session_set_friction(s, &fr, d);
+}
+
+int cx_session_set_frictionless(cx_session *s, cx_diag *d)
+{
+    cx_friction_state fr = {CX_FRICTION_NONE, s->fr.slip_bound, s->fr.F, NULL, NULL};
+    return cx_session_set_friction(s, &fr, d);
+}
+
+int cx_session_set_slip_bounds(cx_session *s, const double *sb, cx_diag *d)
+{
+    cx_friction_state fr = {CX_FRICTION_TRESCA, s->fr.slip_bound, s->fr.F, sb, s->Fi};
+    CX_TRY(cx_friction_check(&fr, s->p->m, d));
+    session_put_friction(s, &fr);
+    return session_refriction(s, NULL, d);
 }

@@ -16,7 +16,10 @@ typedef struct cx_cache_entry {
 } cx_cache_entry;
 
 struct cx_session {
-    cx_problem *p;               /* owned */
+    const cx_problem *p;         /* the system: the root's own, a nested session's parent's */
+    cx_problem *own;             /* the problem this session owns and frees (NULL when nested) */
+    cx_friction_state fr;        /* the friction state; fr.s and fr.Fi point to s and Fi */
+    double *s, *Fi;              /* m each: per-point slip bounds and coefficients */
     cx_schur *schur;             /* operator cache: K condensed onto p->cdofs, lazy ... */
     double *schur_load;          /* ... and f condensed with it (nc) */
     double *uc;                  /* nc: scratch to expand a partial iterate */
@@ -44,12 +47,9 @@ struct cx_session {
     double *start;               /* n + m + nt: warm start for the next run (u, lN, lT), or NULL */
 };
 
-/* cx_session_create with a parent (nested.c): on failure, a nested
- * session's view is freed as a view. */
-int cx_session_create_(cx_session **sp, cx_problem **pp, cx_session *parent, cx_diag *d);
-
-/* Frees a nested session's problem view (nested.c). */
-void cx_session_view_free_(cx_problem *p);
+/* A session over p, which it does not own (nested.c: the parent's
+ * system), frictionless until a setter says otherwise. */
+int cx_session_create_(cx_session **sp, const cx_problem *p, cx_session *parent, cx_diag *d);
 
 /* The root of a chain of nested sessions (s itself if not nested). */
 static inline cx_session *cx_session_root_(cx_session *s)

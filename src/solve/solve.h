@@ -153,19 +153,40 @@ typedef struct cx_method {
 int cx_method_count(void);
 const cx_method *cx_method_at(int i);
 const cx_method *cx_method_find(const char *id);    /* NULL if unknown */
-/* CX_OK if m supports p (law, dimension, bodies), else CX_EUNSUPPORTED with
- * the reason ("method 'x' does not support Coulomb friction"). */
-int cx_method_check(const cx_method *m, const cx_problem *p, cx_diag *d);
+/* CX_OK if m supports p under the friction law (law, dimension, bodies),
+ * else CX_EUNSUPPORTED with the reason ("method 'x' does not support
+ * Coulomb friction"). */
+int cx_method_check(const cx_method *m, const cx_problem *p, cx_friction law, cx_diag *d);
 
 /* ---- the session --------------------------------------------------------- */
 
-/* Takes ownership of *p (set to NULL). */
+/* Takes ownership of *p (set to NULL); frictionless (slip bound and F 0)
+ * until a friction setter says otherwise. */
 int cx_session_create(cx_session **s, cx_problem **p, cx_diag *d);
 void cx_session_destroy(cx_session **s);
 
+/* The system: not changed by anything after build. */
 const cx_problem *cx_session_problem(const cx_session *s);
-/* Change friction law/value: keeps the operator cache, resets the run. */
-int cx_session_set_friction(cx_session *s, cx_friction law, double value, cx_diag *d);
+
+/* ---- the friction state ------------------------------------------------
+ *
+ * The session's law, scalars and per-point values (cx_friction_state,
+ * problem.h; s and Fi always point to m values). Valid until the next
+ * friction setter. The kkt error, the classification and the methods read
+ * it here. */
+const cx_friction_state *cx_session_friction(const cx_session *s);
+/* Every setter checks its values (CX_EINVAL, nothing changed), keeps the
+ * operator cache and re-inits the current method (a new run).
+ * cx_session_set_friction: the whole state (law, both scalars; s, Fi per
+ * point or NULL: from the scalars). If the current method refuses the new
+ * law, its error is returned and the old state and method are kept. */
+int cx_session_set_friction(cx_session *s, const cx_friction_state *fr, cx_diag *d);
+/* Tresca with the traction bound slip_bound at every point (s_i =
+ * slip_bound x the point's lumped weight); Coulomb with coefficient F at
+ * every point; frictionless. The other scalar is kept. As set_friction. */
+int cx_session_set_tresca(cx_session *s, double slip_bound, cx_diag *d);
+int cx_session_set_coulomb(cx_session *s, double F, cx_diag *d);
+int cx_session_set_frictionless(cx_session *s, cx_diag *d);
 /* Counters of the operator cache (factorisations done for the session). */
 const cx_counters *cx_session_cache_counters(const cx_session *s);
 
@@ -271,8 +292,8 @@ void cx_session_set_clock(cx_session *s, cx_clock_fn now, void *ctx);
  * A wrapper such as cf-fp (002 CF-FP: Coulomb by successive Tresca
  * problems) runs any registered Tresca method as its inner method through
  * a nested session: cx_session_nested_create gives a child session whose
- * problem is a view of the parent's (the same K, f, N, T, g, mesh; its own
- * friction law, Tresca, and per-point slip bounds), which shares the
+ * problem is the parent's own (the same cx_problem, not a copy; its own
+ * friction state: Tresca with per-point slip bounds), which shares the
  * parent's operator cache (a factorisation built by the first inner run is
  * reused by every later one and by the parent) and counts all its work in
  * the parent's run counters (so the parent's 'factorizations', 'solves'
@@ -292,7 +313,7 @@ void cx_session_set_clock(cx_session *s, cx_clock_fn now, void *ctx);
  * u_partial with u, or calls cx_session_complete_iterate(child). The child
  * must be destroyed before the parent. */
 int cx_session_nested_create(cx_session **child, cx_session *parent, cx_diag *d);
-/* Tresca friction with per-point slip bounds sb (m nodal forces >= 0; e.g.
+/* (session.c) Tresca friction with per-point slip bounds sb (m nodal forces >= 0; e.g.
  * s_i = F_i lN_i of a fixed-point step, or a bound times Hertz's pressure
  * times the lumped length). Keeps the operator cache; re-inits the current
  * method (a new run). If that method refuses Tresca, its error is returned

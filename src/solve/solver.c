@@ -97,21 +97,22 @@ char *cx_session_outcome(const cx_session *s, char *buf, size_t len)
 static void solver_classify(cx_session *s)
 {
     const cx_problem *p = s->p;
+    const cx_friction_state *fr = &s->fr;
     cx_iterate *it = &s->it;
     int m = p->m, dt = p->dim - 1;
     double *Nu = s->work, *Tu = s->work + m;
     double L, U;
-    cx_kkt_scales(p, it->u, it->lN, it->lT, &L, &U);
+    cx_kkt_scales(p, fr->law, it->u, it->lN, it->lT, &L, &U);
     double rho = L / U;
     cx_csc_gemv(&p->N, 1.0, it->u, 0.0, Nu);
-    if (p->friction != CX_FRICTION_NONE)
+    if (fr->law != CX_FRICTION_NONE)
         cx_csc_gemv(&p->T, 1.0, it->u, 0.0, Tu);
     it->nfree = it->ncontact = it->nstick = it->nslip = it->nchanged = 0;
     for (int i = 0; i < m; i++) {
         unsigned char st = CX_PT_FREE;
         /* a relative margin keeps exactly-grazing points (lN = 0, gap = 0) free */
         if (it->lN[i] + rho * (Nu[i] - p->g[i]) > 1e-12 * L) {
-            if (p->friction == CX_FRICTION_NONE) {
+            if (fr->law == CX_FRICTION_NONE) {
                 st = CX_PT_CONTACT;
             } else {
                 double z[2], nz = 0;
@@ -119,7 +120,7 @@ static void solver_classify(cx_session *s)
                     z[c] = it->lT[dt * i + c] + rho * Tu[dt * i + c];
                     nz += z[c] * z[c];
                 }
-                double sb = cx_problem_slip_bound(p, i, it->lN[i]);
+                double sb = cx_friction_slip_bound(fr, i, it->lN[i]);
                 if (sqrt(nz) <= sb * (1 + 1e-12))
                     st = CX_PT_STICK;
                 else
@@ -141,14 +142,15 @@ static int solver_kkt(cx_session *s, cx_diag *d)
 {
     cx_iterate *it = &s->it;
     if (!it->u_partial) {
-        it->kkt = cx_kkt_error(s->p, it->u, it->lN, it->lT, s->work, cx_session_counters(s), &it->kkt_parts);
+        it->kkt = cx_kkt_error(s->p, &s->fr, it->u, it->lN, it->lT, s->work, cx_session_counters(s),
+                               &it->kkt_parts);
         return CX_OK;
     }
     cx_schur *S;
     const double *fc;
     CX_TRY(cx_session_schur(s, &S, &fc, d));
-    it->kkt = cx_kkt_error_condensed(s->p, cx_schur_matrix(S), fc, it->u, it->lN, it->lT, s->work,
-                                     &it->kkt_parts);
+    it->kkt = cx_kkt_error_condensed(s->p, &s->fr, cx_schur_matrix(S), fc, it->u, it->lN, it->lT,
+                                     s->work, &it->kkt_parts);
     return CX_OK;
 }
 

@@ -62,6 +62,7 @@ typedef struct {
     double kappa;         /* multiplier scaling */
     double eps;
     int first;            /* the bonded start is still to be done */
+    const double *Fi;     /* m: the session's coefficients (fixed until the next init) */
 } coul_state;
 
 static const cx_param coul_params[] = {
@@ -109,10 +110,11 @@ static int coul_init(void *state, cx_session *s, const cx_param_values *params, 
 {
     coul_state *st = state;
     const cx_problem *p = cx_session_problem(s);
-    if (p->friction != CX_FRICTION_COULOMB)
+    const cx_friction_state *fr = cx_session_friction(s);
+    if (fr->law != CX_FRICTION_COULOMB)
         return cx_diag_set(d, CX_EUNSUPPORTED,
                            "method 'ssn-coulomb' solves Coulomb friction only (use ssn-tresca for %s)",
-                           p->friction == CX_FRICTION_TRESCA ? "Tresca" : "frictionless contact");
+                           fr->law == CX_FRICTION_TRESCA ? "Tresca" : "frictionless contact");
     int n = p->n, m = p->m, nt = p->nt, nc = p->nc, ns = nc + m + nt, status = CX_ENOMEM;
     if (ns > COUL_MAX_DENSE)
         return cx_diag_set(d, CX_EUNSUPPORTED,
@@ -121,6 +123,7 @@ static int coul_init(void *state, cx_session *s, const cx_param_values *params, 
     st->nc = nc;
     st->kappa = p->kscale > 0 ? p->kscale : 1;
     st->rho = cx_param_get(params, "rho") * st->kappa;
+    st->Fi = fr->Fi;
     st->eps = cx_param_get(params, "eps");
     st->uc = CX_NEW(double, nc + 1);
     st->uprev = CX_NEW(double, nc + 1);
@@ -173,7 +176,7 @@ static void coul_sets(coul_state *st, const cx_problem *p, const cx_iterate *it)
     for (int i = 0; i < p->m; i++)
         st->setN[i] = it->lN[i] + st->rho * (st->Nu[i] - p->g[i]) > 0;
     for (int i = 0; i < p->nt; i++) {
-        double z = it->lT[i] + st->rho * st->Tu[i], b = p->Fi[i] * it->lN[i];
+        double z = it->lT[i] + st->rho * st->Tu[i], b = st->Fi[i] * it->lN[i];
         st->setT[i] = z > b ? 1 : (z < -b ? -1 : 0);
     }
 }
@@ -194,11 +197,11 @@ static int coul_active(coul_state *st, const cx_problem *p)
 
 /* The factor c_i of lT_i = c_i lN_i on a slip row whose normal row is
  * active (the substituted coupling), else 0. */
-static double coul_slip(const coul_state *st, const cx_problem *p, int i)
+static double coul_slip(const coul_state *st, int i)
 {
     if (st->setT[i] == 0 || coul_empty(&st->Tr, i) || st->aidx[i] < 0)
         return 0;
-    return st->setT[i] * p->Fi[i];
+    return st->setT[i] * st->Fi[i];
 }
 
 /* The condensed Newton system with the active rows' multipliers (scaled by
@@ -222,7 +225,7 @@ static int coul_solve_full(coul_state *st, const cx_problem *p, int na, cx_count
         st->x[nc + a] = r < m ? k * p->g[r] : 0.0;
     }
     for (int i = 0; i < p->nt; i++) {
-        double c = coul_slip(st, p, i);
+        double c = coul_slip(st, i);
         for (int q = st->Tr.p[i]; c != 0 && q < st->Tr.p[i + 1]; q++)
             M[(size_t)ns * (nc + st->aidx[i]) + st->Tr.i[q]] += k * c * st->Tr.x[q];
     }
@@ -251,7 +254,7 @@ static int coul_pin(coul_state *st, const cx_problem *p, int na)
         st->up[R->i[q]] = (r < m ? p->g[r] : 0.0) / R->x[q];
     }
     for (int i = 0; i < p->nt; i++)
-        for (int q = st->Tr.p[i]; coul_slip(st, p, i) != 0 && q < st->Tr.p[i + 1]; q++)
+        for (int q = st->Tr.p[i]; coul_slip(st, i) != 0 && q < st->Tr.p[i + 1]; q++)
             if (st->pin[st->Tr.i[q]] >= 0)
                 return CX_EUNSUPPORTED;
     return CX_OK;
@@ -290,7 +293,7 @@ static int coul_solve_pinned(coul_state *st, const cx_problem *p, cx_counters *c
     for (int a = 0; a < nf; a++)
         rhs[a] = coul_pinned_rhs(st, S, st->fdof[a], nf);
     for (int i = 0; i < p->nt; i++) {
-        double c = coul_slip(st, p, i);
+        double c = coul_slip(st, i);
         if (c == 0)
             continue;
         int qn = st->Nr.p[i], cn = st->Nr.i[qn];
@@ -342,7 +345,7 @@ static int coul_solve(coul_state *st, const cx_problem *p, cx_iterate *it, cx_co
             it->lT[r - m] = st->lam[a];
     }
     for (int i = 0; i < p->nt; i++) {
-        double c = coul_slip(st, p, i);
+        double c = coul_slip(st, i);
         if (c != 0)
             it->lT[i] = c * it->lN[i];
     }

@@ -63,6 +63,7 @@ typedef struct {
     double rho;           /* natural-map parameter (stiffness units) */
     double kappa;         /* row scaling: the stiffness scale */
     int tangential;       /* 1 if Tresca rows take part */
+    const double *sb;     /* m: the session's slip bounds (fixed until the next init) */
     int dt;               /* tangential rows per point (dim - 1) */
     double *q;            /* nt: 3D slip direction per point (its two tangential rows) */
     double *beta;         /* m: 3D linearised tangential stiffness of a slip point */
@@ -168,7 +169,8 @@ static int ssn_init(void *state, cx_session *s, const cx_param_values *params, c
     ssn_state *st = state;
     const cx_problem *p = cx_session_problem(s);
     st->dt = p->dim - 1;
-    st->tangential = p->friction == CX_FRICTION_TRESCA;
+    st->tangential = cx_session_friction(s)->law == CX_FRICTION_TRESCA;
+    st->sb = cx_session_friction(s)->s;
     st->nc = p->nc;
     st->nrow = p->m + (st->tangential ? p->nt : 0);
     int ns = st->nc + st->nrow;
@@ -238,7 +240,7 @@ static void ssn_predict(ssn_state *st, const cx_problem *p, const cx_iterate *it
         st->set[i] = it->lN[i] + st->rho * (st->Bu[i] - p->g[i]) > 0;
     for (int i = 0; st->tangential && st->dt == 1 && i < p->m; i++) {
         double z = it->lT[i] + st->rho * st->Bu[p->m + i];
-        st->set[p->m + i] = z > p->s[i] ? 1 : (z < -p->s[i] ? -1 : 0);
+        st->set[p->m + i] = z > st->sb[i] ? 1 : (z < -st->sb[i] ? -1 : 0);
     }
     for (int i = 0; st->tangential && st->dt == 2 && i < p->m; i++) {
         /* the disc: slip along q = z/|z| beyond it, linearised (header) */
@@ -246,11 +248,11 @@ static void ssn_predict(ssn_state *st, const cx_problem *p, const cx_iterate *it
         double z0 = it->lT[2 * i] + st->rho * st->Bu[r];
         double z1 = it->lT[2 * i + 1] + st->rho * st->Bu[r + 1];
         double nz = sqrt(z0 * z0 + z1 * z1);
-        int slip = nz > p->s[i];
+        int slip = nz > st->sb[i];
         st->set[r] = st->set[r + 1] = (signed char)slip;
         st->q[2 * i] = slip ? z0 / nz : 0;
         st->q[2 * i + 1] = slip ? z1 / nz : 0;
-        st->beta[i] = slip ? p->s[i] * st->rho / (nz - p->s[i]) : 0;
+        st->beta[i] = slip ? st->sb[i] * st->rho / (nz - st->sb[i]) : 0;
     }
 }
 
@@ -266,7 +268,7 @@ static void ssn_add_slip3d(ssn_state *st, const cx_problem *p, int ns)
         double P[2][2] = {{1 - q[0] * q[0], -q[0] * q[1]}, {-q[1] * q[0], 1 - q[1] * q[1]}};
         for (int a = 0; a < 2; a++) {
             for (int qa = st->rp[r + a]; qa < st->rp[r + a + 1]; qa++) {
-                st->x[st->rc[qa]] -= st->rv[qa] * p->s[i] * q[a];
+                st->x[st->rc[qa]] -= st->rv[qa] * st->sb[i] * q[a];
                 for (int b = 0; b < 2; b++)
                     for (int qb = st->rp[r + b]; qb < st->rp[r + b + 1]; qb++)
                         st->M[(size_t)ns * st->rc[qb] + st->rc[qa]] +=
@@ -286,8 +288,8 @@ static void ssn_slip3d_multipliers(ssn_state *st, const cx_problem *p, cx_iterat
         const double *q = st->q + 2 * i;
         double t0 = ssn_row_dot(st, r, st->uc), t1 = ssn_row_dot(st, r + 1, st->uc);
         double qt = q[0] * t0 + q[1] * t1;
-        it->lT[2 * i] = p->s[i] * q[0] + st->beta[i] * (t0 - qt * q[0]);
-        it->lT[2 * i + 1] = p->s[i] * q[1] + st->beta[i] * (t1 - qt * q[1]);
+        it->lT[2 * i] = st->sb[i] * q[0] + st->beta[i] * (t0 - qt * q[0]);
+        it->lT[2 * i + 1] = st->sb[i] * q[1] + st->beta[i] * (t1 - qt * q[1]);
     }
 }
 
@@ -395,7 +397,7 @@ static int ssn_solve(ssn_state *st, const cx_problem *p, cx_iterate *it, cx_diag
         int r = m + i;
         if (st->set[r] == 0)
             continue;
-        double lt = st->set[r] * p->s[i];
+        double lt = st->set[r] * st->sb[i];
         for (int q = st->rp[r]; q < st->rp[r + 1]; q++)
             st->x[st->rc[q]] -= st->rv[q] * lt;
     }
@@ -416,7 +418,7 @@ static int ssn_solve(ssn_state *st, const cx_problem *p, cx_iterate *it, cx_diag
     /* ---- the new iterate ---- */
     memset(it->lN, 0, sizeof(double) * (size_t)m);
     for (int i = 0; st->tangential && st->dt == 1 && i < m; i++)
-        it->lT[i] = st->set[m + i] * p->s[i];
+        it->lT[i] = st->set[m + i] * st->sb[i];
     if (st->tangential && st->dt == 2) {
         memset(it->lT, 0, sizeof(double) * (size_t)p->nt);
         ssn_slip3d_multipliers(st, p, it);

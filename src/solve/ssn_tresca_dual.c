@@ -86,11 +86,11 @@ static int sdual_init(void *state, cx_session *s, const cx_param_values *params,
 {
     sdual_state *st = state;
     const cx_problem *p = cx_session_problem(s);
-    if (p->friction == CX_FRICTION_COULOMB)
+    if (cx_session_friction(s)->law == CX_FRICTION_COULOMB)
         return cx_diag_set(d, CX_EUNSUPPORTED,
                            "method 'ssn-tresca-dual' solves Tresca (or frictionless) problems; for Coulomb "
                            "friction use cf-fp with --set inner=ssn-tresca-dual, or ssn-coulomb");
-    st->tangential = p->friction == CX_FRICTION_TRESCA;
+    st->tangential = cx_session_friction(s)->law == CX_FRICTION_TRESCA;
     CX_TRY(cx_dual_get(s, &st->D, d));
     int nd = st->nd = cx_dual_size(st->D, st->tangential), ok = 1;
     double **v[] = {&st->lambda, &st->lprev, &st->g, &st->p, &st->Ap, &st->dl, &st->lo, &st->hi};
@@ -160,7 +160,7 @@ static int sdual_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     int nd = st->nd, n = p->n;
     (void)d;
 
-    cx_dual_bounds(p, st->tangential, st->lo, st->hi);
+    cx_dual_bounds(p, cx_session_friction(s)->s, st->tangential, st->lo, st->hi);
     memcpy(st->lprev, st->lambda, sizeof(double) * (size_t)nd);
     /* the outer residual for the forcing term: ||l - P(l - g)||, the
      * projected gradient in its natural-map form */

@@ -65,11 +65,11 @@ static int glob_init(void *state, cx_session *s, const cx_param_values *params, 
 {
     glob_state *st = state;
     const cx_problem *p = cx_session_problem(s);
-    if (p->friction == CX_FRICTION_COULOMB)
+    if (cx_session_friction(s)->law == CX_FRICTION_COULOMB)
         return cx_diag_set(d, CX_EUNSUPPORTED,
                            "method 'ssn-tresca-glob' solves Tresca (or frictionless) problems; for Coulomb "
                            "friction use cf-fp with --set inner=ssn-tresca-glob, or ssn-coulomb");
-    st->tangential = p->friction == CX_FRICTION_TRESCA;
+    st->tangential = cx_session_friction(s)->law == CX_FRICTION_TRESCA;
     CX_TRY(cx_dual_get(s, &st->D, d));
     int nd = st->nd = cx_dual_size(st->D, st->tangential), ok = 1;
     double **v[] = {&st->lambda, &st->lprev, &st->g, &st->p, &st->Ap, &st->phi, &st->trial, &st->lo, &st->hi};
@@ -138,7 +138,7 @@ static int glob_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     int nd = st->nd, n = p->n;
     double dq, gp2, b2, rp;
 
-    cx_dual_bounds(p, st->tangential, st->lo, st->hi);
+    cx_dual_bounds(p, cx_session_friction(s)->s, st->tangential, st->lo, st->hi);
     memcpy(st->lprev, st->lambda, sizeof(double) * (size_t)nd);
 
     /* 1. the SSN sets by the projection with rho; monotone safeguard */

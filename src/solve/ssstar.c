@@ -237,6 +237,7 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
 {
     ssstar_state *st = state;
     const cx_problem *p = cx_session_problem(s);
+    const cx_friction_state *fr = cx_session_friction(s);
     if (p->nc > SSSTAR_MAX_DENSE)
         return cx_diag_set(d, CX_EUNSUPPORTED,
                            "method 'ssstar': %d contact dofs (limit %d); use a coarser level",
@@ -287,7 +288,7 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
     st->fscale = cx_vec_norminf(nv, st->b);
     for (int k = 0; k < np; k++) {
         st->gap[k] = p->g[st->pt[k]];
-        st->sb[k] = p->friction == CX_FRICTION_TRESCA ? p->s[st->pt[k]] : 0.0;
+        st->sb[k] = fr->law == CX_FRICTION_TRESCA ? fr->s[st->pt[k]] : 0.0;
         st->fscale = fmax(st->fscale, st->sb[k]);
         st->kp[k] = 0;
         for (int a = -1; a < st->dt; a++) {

@@ -202,7 +202,7 @@ int ubr_core_init(ubr_core *c, cx_session *s, const cx_param_values *params, int
     for (int i = 0; i < c->m; i++) {
         c->lamN[i] = it->lN[i] / c->w[i];
         c->phiN[i] = fmin(c->phiN[i], p->g[i]);
-        c->sb[i] = tangential ? p->s[i] / c->w[i] : 0;
+        c->sb[i] = tangential ? cx_session_friction(s)->s[i] / c->w[i] : 0;
     }
     if (mt) {
         cx_csc_gemv(&p->T, 1.0, it->u, 0.0, c->phiT);

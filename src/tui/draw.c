@@ -63,7 +63,7 @@ static void draw_header(const tui_state *st, int cols)
         snprintf(left, sizeof left, " signorini %s %s %s building level %d", bar, st->scene.id, bar, st->sel_level);
     else
         snprintf(left, sizeof left, " signorini %s %s L%d %dD %d dofs %d pts %s %s %s", bar, st->scene.id, st->level,
-             st->info.dim, st->info.n, st->info.m, bar, run ? run->method : "-", cx_friction_name(st->cur_law));
+             st->info->dim, st->info->n, st->info->m, bar, run ? run->method : "-", cx_friction_name(st->cur_law));
     /* the counter that shows nothing was refactorised stays visible */
     int rw = snprintf(right, sizeof right, " %s factorised: %ld ", bar, st->cache.factorizations);
     snprintf(pad, sizeof pad, "%-*s", cols, left);
@@ -188,10 +188,10 @@ static void draw_pickers(const tui_state *st, tui_box b)
     if (y <= b.y)
         return;
     tui_rule(y++, b.x, b.w, "session");
-    tui_put(y++, b.x, TUI_C_NORMAL, b.w, "%dD %s, %d bod%s", st->info.dim,
-        st->info.mesh ? cx_elem_name(st->info.mesh->etype) : "-", st->info.mesh ? st->info.mesh->nbodies : 0,
-        st->info.mesh && st->info.mesh->nbodies > 1 ? "ies" : "y");
-    tui_put(y++, b.x, TUI_C_NORMAL, b.w, "%d dofs, %d points", st->info.n, st->info.m);
+    tui_put(y++, b.x, TUI_C_NORMAL, b.w, "%dD %s, %d bod%s", st->info->dim,
+        st->info->mesh ? cx_elem_name(st->info->mesh->etype) : "-", st->info->mesh ? st->info->mesh->nbodies : 0,
+        st->info->mesh && st->info->mesh->nbodies > 1 ? "ies" : "y");
+    tui_put(y++, b.x, TUI_C_NORMAL, b.w, "%d dofs, %d points", st->info->n, st->info->m);
     tui_put(y++, b.x, st->cache.factorizations == 1 ? TUI_C_OK : TUI_C_WARN, b.w, "cache %d op%s, %ld fact.",
         st->cache_size, st->cache_size == 1 ? "" : "s", st->cache.factorizations);
 }
@@ -252,7 +252,7 @@ void tui_draw(const tui_state *st, int rows, int cols, int utf8)
     w -= mesh_w ? mesh_w + 1 : 0;
     int big = h >= 34;
     int steps_h = big ? 12 : 6;
-    int contact_h = st->info.dim == 3 ? (big ? 10 : 5) : (big ? 6 : 4);
+    int contact_h = st->info->dim == 3 ? (big ? 10 : 5) : (big ? 6 : 4);
     int runs_h = mesh_w ? 0 : big ? 8 : 4;
     int plot_h = h - steps_h - contact_h - runs_h;
     if (plot_h < 5) {

@@ -52,9 +52,9 @@ static void export_json(const tui_state *st, FILE *f)
     cx_json_object(&j, NULL);
     cx_json_str(&j, "scene", st->scene.id);
     cx_json_int(&j, "level", st->level);
-    cx_json_int(&j, "dim", st->info.dim);
-    cx_json_int(&j, "dofs", st->info.n);
-    cx_json_int(&j, "contact_points", st->info.m);
+    cx_json_int(&j, "dim", st->info->dim);
+    cx_json_int(&j, "dofs", st->info->n);
+    cx_json_int(&j, "contact_points", st->info->m);
     cx_json_array(&j, "runs");
     for (int r = 0; r < tui_state_nruns(st); r++) {
         const tui_run *run = tui_state_run_at(st, r);

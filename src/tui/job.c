@@ -7,6 +7,18 @@
 
 /* Runs on the worker (or inline): touches only the job, the scene (read)
  * and, for a resolve, the session, which the main thread leaves alone. */
+/* The pickers' law and its one value (the slip bound or F, by the law)
+ * over base's other scalar, as a friction state. */
+static cx_friction_state state_friction(cx_friction law, double coef, const cx_friction_state *base)
+{
+    cx_friction_state fr = {law, base->slip_bound, base->F, NULL, NULL};
+    if (law == CX_FRICTION_TRESCA)
+        fr.slip_bound = coef;
+    else if (law == CX_FRICTION_COULOMB)
+        fr.F = coef;
+    return fr;
+}
+
 static void job_run(tui_state *st)
 {
     tui_job *j = &st->job;
@@ -14,13 +26,16 @@ static void job_run(tui_state *st)
     j->status = CX_OK;
     if (j->kind == TUI_JOB_BUILD) {
         cx_problem *p = NULL;
+        cx_friction_state fr;
         atomic_store(&j->phase, TUI_PHASE_ASSEMBLE);
-        j->status = cx_scene_build(&st->scene, j->level, &p, &j->diag);
-        if (j->status == CX_OK)
-            j->status = cx_problem_set_friction(p, j->law, j->coef, &j->diag);
+        j->status = cx_scene_build(&st->scene, j->level, &p, &fr, &j->diag);
         if (j->status == CX_OK)
             j->status = cx_session_create(&j->session, &p, &j->diag);
         cx_problem_destroy(&p);
+        if (j->status == CX_OK) {
+            fr = state_friction(j->law, j->coef, &fr);
+            j->status = cx_session_set_friction(j->session, &fr, &j->diag);
+        }
         if (j->status == CX_OK) {
             atomic_store(&j->phase, TUI_PHASE_FACTORISE);
             j->status = cx_session_set_method(j->session, j->method, &j->params, &j->opt, &j->diag);
@@ -32,18 +47,18 @@ static void job_run(tui_state *st)
             j->status = cx_session_complete_iterate(st->session, &j->diag);
     } else if (j->kind == TUI_JOB_RESOLVE) {
         cx_session *s = st->session;
-        const cx_problem *p = cx_session_problem(s);
-        double coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
+        cx_friction_state old = *cx_session_friction(s), fr = state_friction(j->law, j->coef, &old);
+        double coef = old.law == CX_FRICTION_COULOMB ? old.F : old.slip_bound;
+        old.s = old.Fi = NULL;   /* restored from the scalars, as they were set */
         atomic_store(&j->phase, TUI_PHASE_FACTORISE);
-        cx_friction law0 = p->friction;
-        if (j->law != p->friction || j->coef != coef)
-            j->status = cx_session_set_friction(s, j->law, j->coef, &j->diag);
+        if (j->law != old.law || j->coef != coef)
+            j->status = cx_session_set_friction(s, &fr, &j->diag);
         if (j->status == CX_OK)
             j->status = cx_session_set_method(s, j->method, &j->params, &j->opt, &j->diag);
         if (j->status != CX_OK && st->cur_method) {
             /* refused (e.g. at init): the session goes back to what it was,
              * so the explorer always has a method to step */
-            cx_session_set_friction(s, law0, coef, NULL);
+            cx_session_set_friction(s, &old, NULL);
             cx_session_set_method(s, st->cur_method, &st->cur_params, &st->cur_opt, NULL);
         }
     }

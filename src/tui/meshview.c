@@ -47,7 +47,7 @@ const int *tui_state_outline(const tui_state *st, int *n)
 
 double tui_mesh_auto_scale(const tui_state *st)
 {
-    const cx_mesh *mesh = st->info.mesh;
+    const cx_mesh *mesh = st->info->mesh;
     if (!mesh || !st->uall)
         return 1;
     int dim = mesh->dim;

@@ -144,7 +144,7 @@ static void draw_pressure(const tui_state *st, int y, int x, int w, int h)
 /* 3D: a grid of the contact face (x right, y up), slip as arrows. */
 static void draw_face_3d(const tui_state *st, int y, int x, int w, int h)
 {
-    const cx_contact_set *cs = &st->info.contact;
+    const cx_contact_set *cs = &st->info->contact;
     int m = st->m;
     if (m == 0 || h <= 0)
         return;
@@ -193,25 +193,25 @@ void tui_panel_contact(const tui_state *st, tui_box b)
 {
     int y = b.y;
     char legend[160];
-    snprintf(legend, sizeof legend, "contact %s", st->info.dim == 3 ? "face" : "strip");
+    snprintf(legend, sizeof legend, "contact %s", st->info->dim == 3 ? "face" : "strip");
     tui_rule(y, b.x, b.w, legend);
     /* legend on the rule's right */
     int lx = b.x + 16;
     const int roles[] = {TUI_C_FREE, TUI_C_CONTACT, TUI_C_STICK, TUI_C_SLIP, TUI_C_CHANGED};
     const char *names[] = {"free", "contact", "stick", "slip", "changed"};
     const char *glyphs[] = {status_glyph(CX_PT_FREE), status_glyph(CX_PT_CONTACT), status_glyph(CX_PT_STICK),
-                            st->info.dim == 3 ? tui_sym("→", ">") : tui_sym("▶◀", "><"), tui_sym("▒", "%")};
+                            st->info->dim == 3 ? tui_sym("→", ">") : tui_sym("▶◀", "><"), tui_sym("▒", "%")};
     for (int k = 0; k < 5 && lx < b.x + b.w - 8; k++) {
         tui_put(y, lx - 1, TUI_C_LABEL, 1, " ");
         tui_put(y, lx, roles[k], b.w - (lx - b.x), "%s", glyphs[k]);
-        lx += k == 3 && st->info.dim != 3 ? 2 : 1;
+        lx += k == 3 && st->info->dim != 3 ? 2 : 1;
         tui_put(y, lx, TUI_C_LABEL, b.w - (lx - b.x), "%s ", names[k]);
         lx += (int)strlen(names[k]) + 2;
     }
     y++;
     if (st->m <= 0)
         return;
-    if (st->info.dim == 3) {
+    if (st->info->dim == 3) {
         draw_face_3d(st, y, b.x, b.w, b.h - 1);
         return;
     }
@@ -315,7 +315,7 @@ static void project(int dim, const double *x, double *px, double *py)
 
 void tui_panel_mesh(const tui_state *st, tui_box b)
 {
-    const cx_mesh *mesh = st->info.mesh;
+    const cx_mesh *mesh = st->info->mesh;
     double scale = st->disp_scale > 0 ? st->disp_scale : tui_mesh_auto_scale(st);
     char title[96];
     snprintf(title, sizeof title, "deformed mesh, displacement x%.3g", scale);
@@ -369,7 +369,7 @@ void tui_panel_mesh(const tui_state *st, tui_box b)
                             (y1 - P[2 * bb + 1]) * s, TUI_C_NORMAL);
         }
     }
-    const cx_contact_set *cs = &st->info.contact;
+    const cx_contact_set *cs = &st->info->contact;
     for (int i = 0; i < st->m && cs->node; i++) {
         int k = cs->node[i];
         tui_canvas_dot(&c, (int)lround((P[2 * k] - x0) * s), (int)lround((y1 - P[2 * k + 1]) * s),

@@ -58,11 +58,9 @@ const char *tui_state_method_reason(const tui_state *st, int index, char *buf, s
     if (!m || !st->have_info)
         return buf;
     /* the law the pickers select, on the session's problem */
-    cx_problem info = st->info;
-    info.friction = st->sel_law;
     cx_diag d;
     cx_diag_clear(&d);
-    if (cx_method_check(m, &info, &d) != CX_OK)
+    if (cx_method_check(m, st->info, st->sel_law, &d) != CX_OK)
         snprintf(buf, len, "%s", d.msg);
     else if (st->refused && st->refused[index][st->sel_law][0])
         snprintf(buf, len, "%s", st->refused[index][st->sel_law]);
@@ -174,7 +172,7 @@ static void state_snapshot(tui_state *st)
                                                        : NAN;
         /* the friction force on the body, -lT t, in the x, y plane */
         double fx = 0, fy = 0;
-        if (p->friction != CX_FRICTION_NONE)
+        if (cx_session_friction(s)->law != CX_FRICTION_NONE)
             for (int r = 0; r < dim - 1; r++) {
                 const double *t = c->tangent + dim * ((dim - 1) * i + r);
                 fx -= it->lT[(dim - 1) * i + r] * t[0];
@@ -194,14 +192,14 @@ static void state_snapshot(tui_state *st)
 /* After a job: what the session now is. */
 static void state_take_session(tui_state *st)
 {
-    const cx_problem *p = cx_session_problem(st->session);
-    st->info = *p;
+    const cx_friction_state *fr = cx_session_friction(st->session);
+    st->info = cx_session_problem(st->session);
     st->have_info = 1;
     st->cur_method = cx_session_method(st->session);
     st->cur_params = *cx_session_params(st->session);
     st->cur_opt = *cx_session_options(st->session);
-    st->cur_law = p->friction;
-    st->cur_coef = p->friction == CX_FRICTION_COULOMB ? p->F : p->slip_bound;
+    st->cur_law = fr->law;
+    st->cur_coef = fr->law == CX_FRICTION_COULOMB ? fr->F : fr->slip_bound;
 }
 
 int tui_state_busy(const tui_state *st)
@@ -245,8 +243,8 @@ int tui_state_poll(tui_state *st)
             tui_history_clear(st->history);
             memset(st->refused, 0, sizeof st->refused[0] * (size_t)cx_method_count());
             st->m = -1;
-            st->info = *cx_session_problem(st->session);
-            tui_meshview_update(&st->mesh_view, st->info.mesh);
+            st->info = cx_session_problem(st->session);
+            tui_meshview_update(&st->mesh_view, st->info->mesh);
         } else if (st->session) {
             /* the build failed: the old session stays, and so does its scene */
             st->scene = st->prev_scene;
@@ -280,7 +278,7 @@ int tui_state_poll(tui_state *st)
         tui_msg(st, 1, "%s", cx_diag_msg(&j->diag, j->status));
     else if (kind == TUI_JOB_BUILD)
         tui_msg(st, 0, "%s level %d: %d dofs, %d contact points, built in %.2f s", st->scene.id,
-                st->level, st->info.n, st->info.m, st->build_time);
+                st->level, st->info->n, st->info->m, st->build_time);
     else
         tui_msg(st, 0, "%s ready (nothing reassembled)", st->cur_method ? st->cur_method->id : "-");
     state_after_job(st);
@@ -459,10 +457,14 @@ void tui_state_reset(tui_state *st)
 
 /* ---- life ---------------------------------------------------------------- */
 
+/* What the views read before the first build: no system (sizes zero). */
+static const cx_problem state_no_problem;
+
 int tui_state_init(tui_state *st, const char *scene, int level, const char *method, int law,
                    int sync, cx_diag *d)
 {
     memset(st, 0, sizeof *st);
+    st->info = &state_no_problem;
     st->sync = sync;
     st->history = tui_history_create();
     st->refused = tui_xalloc(NULL, sizeof st->refused[0] * (size_t)(cx_method_count() + 1));

@@ -88,7 +88,7 @@ struct tui_state {
     cx_options sel_opt;
 
     /* what the session now runs (copied after each job) */
-    cx_problem info;          /* shallow copy: sizes, geometry (never changes) */
+    const cx_problem *info;   /* the session's system (sizes, geometry): read, never copied */
     int have_info;
     const cx_method *cur_method;
     cx_param_values cur_params;

@@ -16,8 +16,9 @@ static cx_session *solve_hertz(cx_scene *sc, int level)
     cx_diag d;
     cx_problem *p = NULL;
     cx_session *s = NULL;
-    if (cx_scene_open("hertz", sc, &d) || cx_scene_build(sc, level, &p, &d) ||
-        cx_session_create(&s, &p, &d) ||
+    cx_friction_state fr;
+    if (cx_scene_open("hertz", sc, &d) || cx_scene_build(sc, level, &p, &fr, &d) ||
+        cx_session_create(&s, &p, &d) || cx_session_set_friction(s, &fr, &d) ||
         cx_session_set_method(s, cx_method_find("ssn-tresca"), NULL, NULL, &d) ||
         cx_solver_solve(s, NULL, NULL, &d)) {
         fprintf(stderr, "hertz level %d: %s\n", level, d.msg);

@@ -30,9 +30,11 @@ static void solve_scene(solved *o, const char *id, int level)
     char path[512];
     cx_diag d;
     cx_problem *p = NULL;
+    cx_friction_state fr;
     memset(o, 0, sizeof *o);
     if (cx_scene_resolve(id, path, sizeof path, &d) || cx_scene_load(&o->sc, path, &d) ||
-        cx_scene_build(&o->sc, level, &p, &d) || cx_session_create(&o->s, &p, &d) ||
+        cx_scene_build(&o->sc, level, &p, &fr, &d) || cx_session_create(&o->s, &p, &d) ||
+        cx_session_set_friction(o->s, &fr, &d) ||
         cx_session_set_method(o->s, cx_method_find(o->sc.methods[0]), NULL, NULL, &d) ||
         cx_solver_solve(o->s, NULL, NULL, &d)) {
         fprintf(stderr, "%s level %d: %s\n", id, level, d.msg);
@@ -354,7 +356,7 @@ static void test_multibody(void)
     for (int k = 0; k < p->mesh->nnodes; k++)
         u[2 * k] = 0.01 * (p->mesh->body ? p->mesh->body[k / NPB * EPB] + 1 : 1) * p->mesh->x[2 * k];
     cx_result *st = NULL;
-    CX_CHECK_OK(cx_result_create(&st, p, u, lN, NULL, NULL, &d));
+    CX_CHECK_OK(cx_result_create(&st, p, NULL, u, lN, NULL, NULL, &d));
     st->has_obstacle = 1;
     st->obstacle = ob;
     snprintf(st->run.scene, sizeof st->run.scene, "six blocks");

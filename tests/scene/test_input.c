@@ -165,12 +165,12 @@ static void check_build_overflow(void)
     cx_diag d;
     CX_CHECK_OK(cx_scene_load(&s, "good/minimal.ini", &d));
     CX_CHECK(s.line_mesh == 6 && s.line_material == 11 && s.line_contact == 15);
-    CX_CHECK_OK(cx_scene_build(&s, 1, &p, &d));
+    CX_CHECK_OK(cx_scene_build(&s, 1, &p, NULL, &d));
     cx_problem_destroy(&p);
 
     cx_scene big = s;
     big.mat.E = 1.7e308;   /* lambda + 2 mu overflows */
-    CX_CHECK(cx_scene_build(&big, 1, &p, &d) == CX_EINVAL && !p);
+    CX_CHECK(cx_scene_build(&big, 1, &p, NULL, &d) == CX_EINVAL && !p);
     CX_CHECK(strncmp(d.msg, "good/minimal.ini:11: section [material]: E = 1.7e+308", 53) == 0);
     cx_problem_destroy(&p);
 
@@ -182,13 +182,13 @@ static void check_build_overflow(void)
     strcpy(big.tractions[0].name, "press");
     big.tractions[0].line = 21;
     big.tractions[0].t.t0[1] = -1e308;
-    CX_CHECK(cx_scene_build(&big, 1, &p, &d) == CX_EINVAL && !p);
+    CX_CHECK(cx_scene_build(&big, 1, &p, NULL, &d) == CX_EINVAL && !p);
     CX_CHECK(strcmp(d.msg, "good/minimal.ini:21: section [traction press]: the loads (overflow: "
                            "Inf or NaN; rescale the units)") == 0);
 
     big = s;
     big.lo[0] = -1e308, big.hi[0] = 1e308;   /* hi - lo = Inf */
-    CX_CHECK(cx_scene_build(&big, 1, &p, &d) == CX_EINVAL && !p);
+    CX_CHECK(cx_scene_build(&big, 1, &p, NULL, &d) == CX_EINVAL && !p);
     CX_CHECK(strcmp(d.msg, "good/minimal.ini:6: section [mesh]: the node coordinates (overflow: "
                            "Inf or NaN; rescale the units)") == 0);
 }

@@ -34,7 +34,8 @@ static void check_built(const cx_scene *s)
     for (int L = 1; L <= 5; L++) {
         cx_problem *p = NULL;
         cx_diag d;
-        CX_CHECK_OK(cx_scene_build(s, L, &p, &d));
+        cx_friction_state fr;
+        CX_CHECK_OK(cx_scene_build(s, L, &p, &fr, &d));
         if (!p)
             continue;
         int c[3], active = 0;
@@ -56,7 +57,7 @@ static void check_built(const cx_scene *s)
             CX_CHECK(p->contact.x[3 * i] > 0);
         CX_CHECK(p->nc == 3 * table_contact[L]);
         CX_CHECK(p->n == 3 * (table_nodes[L] - (c[1] + 1) * (c[2] + 1)));
-        CX_CHECK(p->friction == CX_FRICTION_TRESCA);
+        CX_CHECK(fr.law == CX_FRICTION_TRESCA);
         cx_problem_destroy(&p);
     }
 }
@@ -71,11 +72,11 @@ static void check_active_set_methods(const cx_scene *s)
         cx_session *ss = NULL;
         cx_diag d;
         cx_options o;
-        CX_CHECK_OK(cx_scene_build(s, 2, &p, &d));
+        CX_CHECK_OK(cx_scene_build(s, 2, &p, NULL, &d));
         CX_CHECK_OK(cx_session_create(&ss, &p, &d));
         if (!ss)
             continue;
-        CX_CHECK_OK(cx_session_set_friction(ss, CX_FRICTION_NONE, 0, &d));
+        CX_CHECK_OK(cx_session_set_frictionless(ss, &d));
         cx_options_default(&o);
         int st = cx_session_set_method(ss, cx_method_find(ids[k]), NULL, &o, &d);
         CX_CHECK_OK(st);

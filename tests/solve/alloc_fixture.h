@@ -18,11 +18,18 @@ static int alloc_attempt(const cx_scene *sc, const char *method, cx_friction law
     cx_session *s = NULL;
     long live = cx_alloc_live();
     cx_alloc_fail_after(budget);
-    int st = cx_scene_build(sc, 2, &p, &d);
+    cx_friction_state fr;
+    int st = cx_scene_build(sc, 2, &p, &fr, &d);
     if (!st)
         st = cx_session_create(&s, &p, &d);
-    if (!st)
-        st = cx_session_set_friction(s, law, value, &d);
+    if (!st) {
+        fr.law = law;   /* value is the law's: the slip bound or F */
+        if (law == CX_FRICTION_COULOMB)
+            fr.F = value;
+        else if (law == CX_FRICTION_TRESCA)
+            fr.slip_bound = value;
+        st = cx_session_set_friction(s, &fr, &d);
+    }
     if (!st)
         st = cx_session_set_method(s, cx_method_find(method), NULL, NULL, &d);
     if (!st)

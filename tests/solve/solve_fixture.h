@@ -23,7 +23,9 @@ static inline cx_session *fixture_session_edited(const char *id, int level, cx_s
     }
     if (edit)
         edit(sc);
-    if (cx_scene_build(sc, level, &p, &d) || cx_session_create(&s, &p, &d)) {
+    cx_friction_state fr;
+    if (cx_scene_build(sc, level, &p, &fr, &d) || cx_session_create(&s, &p, &d) ||
+        cx_session_set_friction(s, &fr, &d)) {
         fprintf(stderr, "fixture %s level %d: %s\n", id, level, d.msg);
         exit(2);
     }

@@ -12,7 +12,7 @@ static void check_hertz_coulomb(void)
     cx_diag d;
     cx_session *s = fixture_session("hertz", 20, &sc);
     const cx_problem *p = cx_session_problem(s);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, &d));
+    CX_CHECK_OK(cx_session_set_coulomb(s, 0.6, &d));
 
     /* the paper's run: inner ubr-tf at r = 0.29E, its criteria */
     CX_CHECK_OK(fixture_run(s, "cf-fp", "inner=ubr-tf inner_set=r=0.29", 1, 0, 100, &d));
@@ -65,7 +65,7 @@ static void check_halfball_coulomb(void)
     cx_diag d;
     cx_session *s = fixture_session("halfball", 4, &sc);
     const cx_problem *p = cx_session_problem(s);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, &d));
+    CX_CHECK_OK(cx_session_set_coulomb(s, 0.6, &d));
     CX_CHECK_OK(fixture_run(s, "cf-fp", "inner=ubr-tf inner_set=r=4,eps=1e-12 eps_min=1e-12 eps_fp=1e-12", 0, 1e-8, 100, &d));
     const cx_iterate *it = cx_session_iterate(s);
     fprintf(stderr, "halfball 4 coulomb: cf-fp %d steps, %ld Tresca iterations, kkt %.2e, %d stick %d slip\n",
@@ -91,7 +91,7 @@ static void check_refusals(void)
     cx_scene sc;
     cx_diag d;
     cx_session *s = fixture_session("hertz", 8, &sc);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.6, &d));
+    CX_CHECK_OK(cx_session_set_coulomb(s, 0.6, &d));
     const char *bad[] = {"inner=ubr-c", "inner=nosuch", "inner=cf-fp", "inner_set=rr=1"};
     for (int k = 0; k < 4; k++) {
         int st = fixture_run(s, "cf-fp", bad[k], 1, 0, 10, &d);
@@ -99,7 +99,7 @@ static void check_refusals(void)
         CX_CHECK(st != CX_OK && d.msg[0]);
     }
     /* frictionless: cf-fp refuses */
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_NONE, 0, &d));
+    CX_CHECK_OK(cx_session_set_frictionless(s, &d));
     CX_CHECK(fixture_run(s, "cf-fp", "", 1, 0, 10, &d) == CX_EUNSUPPORTED);
     cx_session_destroy(&s);
 }
@@ -116,7 +116,7 @@ static void check_nested(void)
     int cached = cx_session_cache_size(s);
     cx_session *child = NULL;
     CX_CHECK_OK(cx_session_nested_create(&child, s, &d));
-    CX_CHECK(cx_session_problem(child)->friction == CX_FRICTION_TRESCA);
+    CX_CHECK(cx_session_friction(child)->law == CX_FRICTION_TRESCA);
     CX_CHECK(cx_session_problem(child)->K.x == p->K.x);   /* a view, not a copy */
     double *sb = malloc(sizeof(double) * (size_t)p->m);
     for (int i = 0; i < p->m; i++)
@@ -132,9 +132,9 @@ static void check_nested(void)
     /* the same Tresca problem on the parent: the same answer */
     double *uc = fixture_copy_u(child);
     /* ubr-c refuses Tresca: select no method first */
-    CX_CHECK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 20, &d) == CX_EUNSUPPORTED);
+    CX_CHECK(cx_session_set_tresca(s, 20, &d) == CX_EUNSUPPORTED);
     cx_session_clear_method(s);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 20, &d));
+    CX_CHECK_OK(cx_session_set_tresca(s, 20, &d));
     CX_CHECK_OK(fixture_run(s, "ssn-tresca", "", 1, 1e-13, 50, &d));
     CX_CHECK_LE(fixture_energy_diff(p, uc, cx_session_iterate(s)->u), 1e-6);
     cx_session_destroy(&child);

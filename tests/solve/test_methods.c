@@ -90,7 +90,9 @@ static void run_case(const method_case *c)
     cx_diag d;
     case_gap = c->gap_h;
     cx_session *s = fixture_session_edited(c->scene, c->level, &sc, c->gap_h > 0 ? set_case_gap : NULL);
-    CX_CHECK_OK(cx_session_set_friction(s, c->law, c->value, &d));
+    CX_CHECK_OK(c->law == CX_FRICTION_TRESCA    ? cx_session_set_tresca(s, c->value, &d)
+                : c->law == CX_FRICTION_COULOMB ? cx_session_set_coulomb(s, c->value, &d)
+                                                : cx_session_set_frictionless(s, &d));
     const cx_problem *p = cx_session_problem(s);
 
     /* the reference */
@@ -124,7 +126,7 @@ static void run_case(const method_case *c)
         }
         double cache_before = (double)cx_session_cache_counters(s)->factorizations;
         int st = cx_session_set_method(s, m, &pv, &om, &d);
-        if (cx_method_check(m, p, NULL) != CX_OK || st == CX_EUNSUPPORTED) {
+        if (cx_method_check(m, p, cx_session_friction(s)->law, NULL) != CX_OK || st == CX_EUNSUPPORTED) {
             if (st == CX_EUNSUPPORTED)
                 fprintf(stderr, "%s level %d %s: %s refused: %s\n", c->scene, c->level,
                         cx_friction_name(c->law), m->id, d.msg);

@@ -293,7 +293,7 @@ static void test_limits_counted(void)
     /* a nested run (cf-fp over ssn-tresca) ends as cancelled too */
     cx_session_destroy(&s);
     s = fixture_session("hertz", 8, &sc);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.3, &d));
+    CX_CHECK_OK(cx_session_set_coulomb(s, 0.3, &d));
     CX_CHECK_OK(cx_session_set_method(s, cx_method_find("cf-fp"), NULL, &o, &d));
     cx_session_cancel(s);
     CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
@@ -348,8 +348,8 @@ static void test_auto_converges(void)
                 continue;
             }
             CX_CHECK((sc.laws >> sc.friction) & 1u);
-            double v = law == CX_FRICTION_COULOMB ? sc.F : sc.slip_bound;
-            CX_CHECK_OK(cx_session_set_friction(s, (cx_friction)law, v, &d));
+            cx_friction_state fr = {(cx_friction)law, sc.slip_bound, sc.F, NULL, NULL};
+            CX_CHECK_OK(cx_session_set_friction(s, &fr, &d));
             const char *sets;
             const char *id = cx_scene_auto_method(&sc, 0, cx_session_problem(s), (cx_friction)law, &sets);
             cx_options o;

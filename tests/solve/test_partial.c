@@ -27,7 +27,7 @@ static void check_condensed_kkt(cx_friction law)
     cx_session *s = fixture_session("hertz", 12, &sc);
     const cx_problem *p = cx_session_problem(s);
     if (law != CX_FRICTION_NONE)
-        CX_CHECK_OK(cx_session_set_friction(s, law, 20, &d));
+        CX_CHECK_OK(cx_session_set_friction(s, &(cx_friction_state){law, 20, 20, NULL, NULL}, &d));
     cx_schur *S;
     const double *fc;
     CX_CHECK_OK(cx_session_schur(s, &S, &fc, &d));
@@ -46,8 +46,8 @@ static void check_condensed_kkt(cx_friction law)
         }
         CX_CHECK_OK(cx_schur_expand(S, p->f, uc, u));
         cx_kkt full, cond;
-        cx_kkt_error(p, u, lN, lT, work, NULL, &full);
-        cx_kkt_error_condensed(p, cx_schur_matrix(S), fc, u, lN, lT, work, &cond);
+        cx_kkt_error(p, cx_session_friction(s), u, lN, lT, work, NULL, &full);
+        cx_kkt_error_condensed(p, cx_session_friction(s), cx_schur_matrix(S), fc, u, lN, lT, work, &cond);
         fprintf(stderr, "hertz 12 %s: kkt full %.6e (%.3e %.3e %.3e) condensed %.6e (%.3e)\n",
                 cx_friction_name(law), full.total, full.equilibrium, full.contact, full.friction, cond.total,
                 cond.equilibrium);
@@ -71,7 +71,7 @@ static void check_ssn_run(void)
     cx_diag d;
     cx_session *s = fixture_session("hertz", 32, &sc);
     const cx_problem *p = cx_session_problem(s);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 20, &d));
+    CX_CHECK_OK(cx_session_set_tresca(s, 20, &d));
     const cx_iterate *it = cx_session_iterate(s);
 
     /* the run as a library user makes it */
@@ -85,7 +85,7 @@ static void check_ssn_run(void)
     double *u1 = fixture_copy_u(s);
     cx_kkt check;
     double *work = calloc((size_t)(p->n + p->m + p->nt), sizeof(double));
-    CX_CHECK_NEAR(cx_kkt_error(p, it->u, it->lN, it->lT, work, NULL, &check), kkt1, 1e-12, 0);
+    CX_CHECK_NEAR(cx_kkt_error(p, cx_session_friction(s), it->u, it->lN, it->lT, work, NULL, &check), kkt1, 1e-12, 0);
     CX_CHECK_LE(kkt1, 1e-10);
 
     /* step by step, completing each iterate as the explorer does */
@@ -98,7 +98,7 @@ static void check_ssn_run(void)
         int was_partial = it->u_partial;
         CX_CHECK_OK(cx_session_complete_iterate(s, &d));
         CX_CHECK(it->u_partial == 0);
-        double kkt_full = cx_kkt_error(p, it->u, it->lN, it->lT, work, NULL, &check);
+        double kkt_full = cx_kkt_error(p, cx_session_friction(s), it->u, it->lN, it->lT, work, NULL, &check);
         CX_CHECK_NEAR(it->kkt, kkt_full, 1e-12, 1e-15);
         /* the equilibrium part is exact on the condensed system; the rest
          * differs only through the displacement scale */
@@ -133,7 +133,7 @@ static void check_cffp_coulomb(void)
     cx_scene sc;
     cx_diag d;
     cx_session *s = fixture_session("hertz", 32, &sc);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.3, &d));
+    CX_CHECK_OK(cx_session_set_coulomb(s, 0.3, &d));
     const cx_iterate *it = cx_session_iterate(s);
     CX_CHECK_OK(fixture_run(s, "cf-fp", "", 0, 1e-9, 40, &d));
     fprintf(stderr, "hertz 32 coulomb: cf-fp %d steps, %ld inner iterations, kkt %.2e, %ld factorisations, "

@@ -51,7 +51,7 @@ static void test_slider(void)
     cx_scene sc;
     cx_diag d;
     cx_session *s = fixture_session("slider", 0, &sc);
-    CX_CHECK(cx_session_problem(s)->friction == CX_FRICTION_TRESCA);
+    CX_CHECK(cx_session_friction(s)->law == CX_FRICTION_TRESCA);
     CX_CHECK_OK(cx_session_set_method(s, ssn(), NULL, NULL, &d));
     CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
     const cx_iterate *it = cx_session_iterate(s);
@@ -65,18 +65,18 @@ static void test_slider(void)
     const cx_problem *p = cx_session_problem(s);
     for (int i = 0; i < p->m; i++)
         if (it->status[i] == CX_PT_SLIP_POS || it->status[i] == CX_PT_SLIP_NEG)
-            CX_CHECK_NEAR(fabs(it->lT[i]), p->s[i], 1e-10, 0);
+            CX_CHECK_NEAR(fabs(it->lT[i]), cx_session_friction(s)->s[i], 1e-10, 0);
 
     /* Coulomb is refused with the reason, the session keeps its law */
-    CX_CHECK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.3, &d) == CX_EUNSUPPORTED);
+    CX_CHECK(cx_session_set_coulomb(s, 0.3, &d) == CX_EUNSUPPORTED);
     CX_CHECK(strstr(d.msg, "does not support Coulomb friction") != NULL);
-    CX_CHECK(cx_session_problem(s)->friction == CX_FRICTION_TRESCA);
+    CX_CHECK(cx_session_friction(s)->law == CX_FRICTION_TRESCA);
 
     /* friction off and on again, method re-selected: still one factorisation */
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_NONE, 0, &d));
+    CX_CHECK_OK(cx_session_set_frictionless(s, &d));
     CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
     CX_CHECK(cx_session_iterate(s)->nstick == 0);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 1e9, &d));
+    CX_CHECK_OK(cx_session_set_tresca(s, 1e9, &d));
     CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
     it = cx_session_iterate(s);
     CX_CHECK(it->nslip == 0 && it->nstick > 0);   /* a huge bound sticks everywhere in contact */
@@ -103,12 +103,12 @@ static void test_block3d(void)
     CX_CHECK_NEAR(sum, -p->f_applied[2], 1e-9, 0);
     /* 3D Tresca (disc slip bound): converges, and the tangential
      * multipliers stay in the disc */
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 1, &d));
+    CX_CHECK_OK(cx_session_set_tresca(s, 1, &d));
     CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
     CX_CHECK(it->reason > 0);
     CX_CHECK_LE(it->kkt, 1e-10);
     for (int i = 0; i < p->m; i++)
-        CX_CHECK_LE(hypot(it->lT[2 * i], it->lT[2 * i + 1]), p->s[i] * (1 + 1e-9));
+        CX_CHECK_LE(hypot(it->lT[2 * i], it->lT[2 * i + 1]), cx_session_friction(s)->s[i] * (1 + 1e-9));
     cx_session_destroy(&s);
 }
 

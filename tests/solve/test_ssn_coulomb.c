@@ -22,7 +22,7 @@ static cx_session *coul_run(const coul_case *c)
     cx_scene sc;
     cx_diag d;
     cx_session *s = fixture_session(c->scene, c->level, &sc);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.3, &d));
+    CX_CHECK_OK(cx_session_set_coulomb(s, 0.3, &d));
     CX_CHECK_OK(fixture_run(s, "ssn-coulomb", "", 1, 1e-11, 50, &d));
     const cx_iterate *it = cx_session_iterate(s);
     fprintf(stderr, "%s %d coulomb 0.3: ssn-coulomb %d iterations (before: %d), kkt %.2e, %ld sparse and %ld "
@@ -71,7 +71,7 @@ static void check_fixed_point(const coul_case *c)
     const cx_iterate *it = cx_session_iterate(s);
     double *u = fixture_copy_u(s), *sb = malloc(sizeof(double) * (size_t)p->m);
     for (int i = 0; i < p->m; i++)
-        sb[i] = p->Fi[i] * it->lN[i];
+        sb[i] = cx_session_friction(s)->Fi[i] * it->lN[i];
     cx_session_clear_method(s);
     CX_CHECK_OK(cx_session_set_slip_bounds(s, sb, &d));
     CX_CHECK_OK(fixture_run(s, "ssn-tresca", "", 1, 1e-11, 50, &d));

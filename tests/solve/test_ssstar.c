@@ -127,9 +127,9 @@ static void check_extremes(void)
     const cx_problem *p = cx_session_problem(s);
     double *uref = NULL, *u = NULL;
 
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_NONE, 0, &d));
+    CX_CHECK_OK(cx_session_set_frictionless(s, &d));
     run(s, "ssn-tresca", 1e-13, &uref);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 0, &d));
+    CX_CHECK_OK(cx_session_set_tresca(s, 0, &d));
     const cx_iterate *it = run(s, "ssstar", 1e-30, &u);
     CX_CHECK(cx_reason_criterion_met(it->reason));
     CX_CHECK_LE(it->kkt, 1e-10);
@@ -139,7 +139,7 @@ static void check_extremes(void)
     free(uref);
 
     double *Tu = malloc(sizeof(double) * (size_t)p->nt);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 1e20, &d));
+    CX_CHECK_OK(cx_session_set_tresca(s, 1e20, &d));
     run(s, "ssn-tresca", 1e-13, &uref);
     it = run(s, "ssstar", 1e-30, &u);
     CX_CHECK(cx_reason_criterion_met(it->reason));

@@ -84,12 +84,16 @@ static void run_job(const job *j, outcome *o)
     if (!st)
         st = cx_scene_load(&sc, path, &d);
     if (!st)
-        st = cx_scene_build(&sc, j->level, &p, &d);
+        st = cx_scene_build(&sc, j->level, &p, NULL, &d);
     if (!st)
         st = cx_session_create(&s, &p, &d);
     if (!st) {
-        double value = j->value >= 0 ? j->value : (j->law == CX_FRICTION_COULOMB ? sc.F : sc.slip_bound);
-        st = cx_session_set_friction(s, j->law, value, &d);
+        cx_friction_state fr = {j->law, sc.slip_bound, sc.F, NULL, NULL};
+        if (j->value >= 0 && j->law == CX_FRICTION_COULOMB)
+            fr.F = j->value;
+        else if (j->value >= 0)
+            fr.slip_bound = j->value;
+        st = cx_session_set_friction(s, &fr, &d);
     }
     const cx_method *m = cx_method_find(j->method);
     cx_param_values pv;
@@ -337,7 +341,7 @@ static void *inject_main(void *arg)
         cx_session *s = NULL;
         long live = cx_alloc_live_thread();
         cx_alloc_fail_after(n);
-        int st = cx_scene_build(&sc, 3, &p, &d);
+        int st = cx_scene_build(&sc, 3, &p, NULL, &d);
         if (!st)
             st = cx_session_create(&s, &p, &d);
         cx_alloc_fail_after(-1);
@@ -474,8 +478,10 @@ static void test_render(void)
     }
     CX_CHECK_OK(cx_scene_resolve("hertz", path, sizeof path, &d));
     CX_CHECK_OK(cx_scene_load(&sc, path, &d));
-    CX_CHECK_OK(cx_scene_build(&sc, 16, &p, &d));
+    cx_friction_state fr;
+    CX_CHECK_OK(cx_scene_build(&sc, 16, &p, &fr, &d));
     CX_CHECK_OK(cx_session_create(&s, &p, &d));
+    CX_CHECK_OK(cx_session_set_friction(s, &fr, &d));
     CX_CHECK_OK(cx_session_set_method(s, cx_method_find("ssn-tresca"), NULL, NULL, &d));
     CX_CHECK_OK(cx_solver_solve(s, NULL, NULL, &d));
     cx_result *res[3] = {NULL, NULL, NULL};   /* alone, thread 0, thread 1 */

@@ -2,7 +2,7 @@
  * every dual method against ssn-tresca on a non-matching pair of meshes,
  * action and reaction of the node-to-segment forces, the SNM variants'
  * counters, ssn-coulomb against a fixed point of Tresca problems solved by
- * ssn-tresca-dual (which must read the per-point bounds p->s), stick and
+ * ssn-tresca-dual (which must read the session's per-point bounds), stick and
  * slip under Coulomb F = 0.3, and the refusals. */
 #include "solve_fixture.h"
 #include "check.h"
@@ -52,7 +52,7 @@ static void test_sizes(void)
     /* top: int (-7e7 - 1e7 x / 3) dx over (0, 3); right: int 4e6 (2 - y) + 1.8e7 (y - 1) dy */
     CX_CHECK_NEAR(p->f_applied[1], -2.25e8 + 1.1e7, 1e-12, 0);
     CX_CHECK_NEAR(p->f_applied[0], 0, 0, 1e-6);
-    CX_CHECK_NEAR(p->s[1], 1.7e7 * 3.0 / 150, 1e-12, 0);   /* traction x lumped length */
+    CX_CHECK_NEAR(cx_session_friction(s)->s[1], 1.7e7 * 3.0 / 150, 1e-12, 0);   /* traction x lumped length */
     cx_session_destroy(&s);
 }
 
@@ -68,9 +68,9 @@ static void test_nonmatching(void)
     CX_CHECK_OK(cx_scene_resolve("twoblocks", path, sizeof path, &d));
     CX_CHECK_OK(cx_scene_load(&sc, path, &d));
     sc.cells_lower[0] = 2;
-    CX_CHECK_OK(cx_scene_build(&sc, 3, &pp, &d));
+    CX_CHECK_OK(cx_scene_build(&sc, 3, &pp, NULL, &d));
     CX_CHECK_OK(cx_session_create(&s, &pp, &d));
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 5e7, &d));
+    CX_CHECK_OK(cx_session_set_tresca(s, 5e7, &d));
     const cx_problem *p = cx_session_problem(s);
     CX_CHECK(p->m == 9 && p->n == 2 * (9 * 4 + 6 * 4));
 
@@ -153,13 +153,13 @@ static void test_variants(void)
 }
 
 /* ssn-coulomb against successive Tresca approximations g <- F lN (000 (6))
- * solved by ssn-tresca-dual from the per-point bounds p->s. */
+ * solved by ssn-tresca-dual from the session's per-point bounds. */
 static void test_coulomb(void)
 {
     cx_scene sc;
     cx_diag d;
     cx_session *s = fixture_session("twoblocks", 3, &sc);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.3, &d));
+    CX_CHECK_OK(cx_session_set_coulomb(s, 0.3, &d));
     const cx_problem *p = cx_session_problem(s);
     int n = p->n, m = p->m;
     const cx_iterate *it = run(s, "ssn-coulomb", NULL, 1e-13, 0);
@@ -170,16 +170,17 @@ static void test_coulomb(void)
     memcpy(uc, it->u, sizeof(double) * (size_t)n);
     memcpy(lNc, it->lN, sizeof(double) * (size_t)m);
 
-    /* Tresca with bounds written into the session's problem (test only: a
-     * method reads them from the problem it is given) */
+    /* Tresca with per-point bounds set on the session (a method reads them
+     * from the session's friction state) */
     cx_session_destroy(&s);
     s = fixture_session("twoblocks", 3, &sc);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 0, &d));
+    CX_CHECK_OK(cx_session_set_tresca(s, 0, &d));
     p = cx_session_problem(s);
-    cx_problem *pw = (cx_problem *)p;
+    double *sw = calloc((size_t)m + 1, sizeof(double));
     double change = INFINITY;
     int k = 0;
     for (; k < 60 && change > 1e-12; k++) {
+        CX_CHECK_OK(cx_session_set_slip_bounds(s, sw, &d));
         it = run(s, "ssn-tresca-dual", NULL, 1e-12, 0);
         if (it->reason <= 0)
             fprintf(stderr, "fixed point %d: %s, kkt %.2e after %d\n", k, cx_reason_str(it->reason), it->kkt, it->iter);
@@ -188,12 +189,13 @@ static void test_coulomb(void)
         double ns = 0;
         for (int i = 0; i < m; i++) {
             double snew = 0.3 * it->lN[i];
-            change = fmax(change, fabs(snew - pw->s[i]));
+            change = fmax(change, fabs(snew - sw[i]));
             ns = fmax(ns, snew);
-            pw->s[i] = snew;
+            sw[i] = snew;
         }
         change /= ns;
     }
+    free(sw);
     fprintf(stderr, "coulomb by fixed point: %d Tresca solves, change %.1e\n", k, change);
     CX_CHECK_LE(change, 1e-12);
     CX_CHECK_LE(rel_diff(n, it->u, uc), 1e-9);
@@ -202,7 +204,7 @@ static void test_coulomb(void)
 
     /* Coulomb F = 0.3 on 'slider': both stick and slip */
     s = fixture_session("slider", 2, &sc);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.3, &d));
+    CX_CHECK_OK(cx_session_set_coulomb(s, 0.3, &d));
     it = run(s, "ssn-coulomb", NULL, 1e-12, 0);
     CX_CHECK(it->reason > 0 && it->nstick > 0 && it->nslip > 0);
     fprintf(stderr, "slider coulomb 0.3: %d stick, %d slip\n", it->nstick, it->nslip);
@@ -241,7 +243,7 @@ static void test_glob_monotone(void)
     cx_scene sc;
     cx_diag d;
     cx_session *s = fixture_session("twoblocks", 6, &sc);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 5e7, &d));
+    CX_CHECK_OK(cx_session_set_tresca(s, 5e7, &d));
     const cx_problem *p = cx_session_problem(s);
     double *uf = malloc(sizeof(double) * (size_t)p->n), *w = malloc(sizeof(double) * (size_t)p->n);
     cx_fact *F = NULL;
@@ -273,7 +275,7 @@ static void test_refusals(void)
     cx_scene sc;
     cx_diag d;
     cx_session *s = fixture_session("twoblocks", 2, &sc);
-    CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_COULOMB, 0.3, &d));
+    CX_CHECK_OK(cx_session_set_coulomb(s, 0.3, &d));
     /* the flags refuse first; init itself points to cf-fp */
     CX_CHECK(cx_session_set_method(s, cx_method_find("mprgp"), NULL, NULL, &d) == CX_EUNSUPPORTED);
     const cx_method *mp = cx_method_find("mprgp");

@@ -13,7 +13,7 @@ static void check_against_reference(const char *scene, int level, const char *ub
     cx_session *s = fixture_session(scene, level, &sc);
     const cx_problem *p = cx_session_problem(s);
     if (strcmp(ubr, "ubr-tf") == 0)
-        CX_CHECK_OK(cx_session_set_friction(s, CX_FRICTION_TRESCA, 20, &d));
+        CX_CHECK_OK(cx_session_set_tresca(s, 20, &d));
     CX_CHECK_OK(fixture_run(s, "ssn-tresca", "", 1, 1e-13, 50, &d));
     double *uref = fixture_copy_u(s);
     CX_CHECK_OK(fixture_run(s, ubr, "r=1 eps=1e-5", 0, 1e-9, 5000, &d));

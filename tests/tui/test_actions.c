@@ -48,9 +48,9 @@ static void test_hertz(void)
     CX_CHECK(st.cur_method && strcmp(st.cur_method->id, "ssn-tresca") == 0);
     CX_CHECK(st.cache.factorizations == 1);
     CX_CHECK(tui_state_nruns(&st) == 1 && tui_state_run(&st)->nsteps == 0);
-    CX_CHECK(st.m == st.info.m && st.m > 0);
+    CX_CHECK(st.m == st.info->m && st.m > 0);
     /* Hertz's pressure is there for the profile, zero beyond b ~ 2.72 */
-    CX_CHECK_NEAR(st.hertz[0], cx_scene_hertz_pressure(&st.scene, st.info.contact.x[0]), 1e-12, 0);
+    CX_CHECK_NEAR(st.hertz[0], cx_scene_hertz_pressure(&st.scene, st.info->contact.x[0]), 1e-12, 0);
     CX_CHECK(st.hertz[st.m - 1] == 0);
 
     /* three step keys: three iterations */
@@ -68,7 +68,7 @@ static void test_hertz(void)
     CX_CHECK(run->steps[n - 1].solves >= n);
     /* the pressure snapshot is lN / weight of the session's iterate */
     const cx_iterate *it = cx_session_iterate(st.session);
-    CX_CHECK_NEAR(st.pressure[0], it->lN[0] / st.info.contact.weight[0], 1e-14, 0);
+    CX_CHECK_NEAR(st.pressure[0], it->lN[0] / st.info->contact.weight[0], 1e-14, 0);
     CX_CHECK(count_status(&st, CX_PT_CONTACT, CX_PT_CONTACT) == it->ncontact && it->ncontact > 0);
     /* a step after the end does nothing but say so */
     tui_key(&st, 's');
@@ -100,7 +100,7 @@ static void test_hertz(void)
     r = tui_key(&st, 'f');
     CX_CHECK(r == (TUI_REDRAW | TUI_RESOLVE) && st.sel_law == CX_FRICTION_TRESCA);
     tui_state_apply(&st, r);
-    CX_CHECK(st.cur_law == CX_FRICTION_TRESCA && st.info.friction == CX_FRICTION_TRESCA);
+    CX_CHECK(st.cur_law == CX_FRICTION_TRESCA && cx_session_friction(st.session)->law == CX_FRICTION_TRESCA);
     CX_CHECK_NEAR(st.cur_coef, st.scene.slip_bound, 1e-15, 0);
     CX_CHECK(st.cache.factorizations == 1);
     n = run_to_end(&st, 60);
@@ -216,11 +216,11 @@ static void test_hertz(void)
 #endif
 
     /* the level: the only kind of change (with the scene) that reassembles */
-    int dofs = st.info.n;
+    int dofs = st.info->n;
     r = tui_key(&st, ']');
     CX_CHECK(r == (TUI_REDRAW | TUI_REASSEMBLE));
     tui_state_apply(&st, r);
-    CX_CHECK(st.level == 16 && st.info.n > dofs);
+    CX_CHECK(st.level == 16 && st.info->n > dofs);
     CX_CHECK(tui_state_nruns(&st) == 1 && st.cache.factorizations == 1);
 
     /* help, quit */
@@ -324,7 +324,7 @@ static void test_failed_build(void)
     cx_diag d;
     cx_diag_clear(&d);
     CX_CHECK_OK(tui_state_init(&st, "hertz", 4, NULL, -1, 1, &d));
-    int dofs = st.info.n;
+    int dofs = st.info->n;
     st.field = TUI_F_SCENE;
     tui_key(&st, TUI_KEY_ENTER);
     for (int k = 0; k < 10; k++)
@@ -334,7 +334,7 @@ static void test_failed_build(void)
     tui_state_apply(&st, r);
     CX_CHECK(st.msg_error == 1 && strstr(st.msg, "penetrates the plane obstacle by 0.5") != NULL);
     CX_CHECK(strcmp(st.scene.id, "hertz") == 0 && strcmp(st.scene_ids[st.sel_scene], "hertz") == 0);
-    CX_CHECK(st.info.n == dofs && st.level == 4 && st.sel_level == 4);
+    CX_CHECK(st.info->n == dofs && st.level == 4 && st.sel_level == 4);
     /* and it still steps */
     tui_key(&st, 's');
     CX_CHECK(tui_state_run(&st)->nsteps == 1);
