@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Install what signorini needs on Debian 12 (when missing), then configure
 # and build it in ./build. Safe to run again: it only does what is missing.
 # clang and libclang-rt-14-dev (libclang_rt.fuzzer, and the sanitizer

@@ -1,4 +1,5 @@
 #version 330 core
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The scalar is interpolated and only then mapped to a colour (a 1D
 // colormap texture), so colours between vertices stay on the colormap.
 in vec3 v_normal;

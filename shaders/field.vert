@@ -1,4 +1,5 @@
 #version 330 core
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Body surfaces and lines: position, normal and one scalar per vertex.
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in vec3 a_normal;

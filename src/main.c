@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini: elastic contact problems with and without friction. The
  * program above its three parts, which never call one another: the
  * command line (cli/), the benchmarks (bench/) and the explorer (tui/). */

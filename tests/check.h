@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The tiny assertion helper of the test suite. Every check prints what it
  * compared; the test program returns check_finish(), non-zero if any failed. */
 #ifndef CX_TEST_CHECK_H

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Shared by the end-to-end tests of the program (tests/*/test_*.py): the
 program under test (argv[1]), checks that count, running it, and the
 one-line error every bad input must give."""

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The library's allocator. Every allocation of the library goes through
  * these, so that tests can count live blocks and make the N-th allocation
  * fail (cx_alloc_fail_after) to check that constructors clean up. All of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The option tables: parsing argv and writing the help (see args.h). */
 #include "base/args.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Command-line arguments: the exit statuses of the programs and the option
  * tables. A command declares its options once, as a table of cx_opt rows
  * (name, value type, range, help, where the value goes); cx_opt_parse reads

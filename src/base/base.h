@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* base/: what every layer needs — status codes, the one-line diagnostic,
  * the allocator, parameter tables, strict parsing, the clock and sorting
  * by keys. */

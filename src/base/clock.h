@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Wall-clock time for timing steps and phases. */
 #ifndef CX_CLOCK_H
 #define CX_CLOCK_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cx_diag: the one-line diagnostic that a failing function leaves for the
  * program to print, e.g. "scenes/hertz.ini:14: key 'E': expected a positive
  * number". Functions that can fail on user input take a cx_diag * last; it

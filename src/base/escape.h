@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Quoting input safely: a scene file, an option value or a path may hold
  * bytes a terminal acts on (ESC sequences, BEL, C1 controls) or bytes that
  * are not text. Every message that quotes input passes through cx_escape

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The options of a solve (see opt_solve.h). */
 #include "base/opt_solve.h"
 

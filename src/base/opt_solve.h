@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The options of a solve, in one table: 'signorini solve' and 'render'
  * parse them from it, the benchmarks take their rows for the options they
  * share (the CX_OPT_ROW_* macros), and the explorer's value entry checks

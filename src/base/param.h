@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Parameter tables: a method (or any component) declares its parameters once
  * in a static const cx_param table, terminated by an entry with key NULL.
  * The --set parser, the explorer's parameter panel, 'signorini list' and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Strict parsing of numbers and words, shared by the scene reader, the
  * parameter tables and the command line: the whole text must be consumed,
  * numbers must be finite. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Sorting by keys without a comparator context. qsort's comparator gets no
  * user pointer (qsort_r is a GNU extension), and a file-scope static that
  * hands it the coordinates is shared by every thread: two sessions built

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 #include "base/status.h"
 
 const char *cx_status_str(int status)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Status codes of the library: 0 is success, negative is failure.
  * Codes and their messages come from the one X-macro list below, so
  * cx_status_str() cannot fall out of step with the enum. Not converging is

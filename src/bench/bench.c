@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini bench: the benchmarks. Each kind is a row of the table below;
  * the papers' tables are rows of bench_papers[]. A benchmark prints its
  * tables on stdout; timings live here, never in the test suite.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* bench/: the benchmarks (signorini bench) and the papers' tables. A
  * program layer above render/, not part of the library.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* What every benchmark shares on the command line: the common options,
  * the outputs, the progress bar, Ctrl-C, and the plot data. */
 #define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT) for the thread counts */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The perturbations of 'bench stress', applied in memory: to a copy of the
  * scene (units, material, loads) or to the built problem (gaps, duplicated
  * contact points, moved nodes, material contrast between bodies). */

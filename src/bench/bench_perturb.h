@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The perturbations of 'bench stress' (bench/bench_perturb.c): functions of
  * a scene copy, and bench_perturb_fn's of the built problem. */
 #ifndef CX_BENCH_PERTURB_H

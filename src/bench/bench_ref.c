@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The reference solution of DESIGN.md §3: computed once per scene, level,
  * friction law and value (and stress variant) by the most robust method to
  * kkt < 1e-12, stored on disk under a hash of the parsed scene and those

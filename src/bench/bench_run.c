@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* One benchmark case: build the problem, run a method under a time limit,
  * measure its errors against the reference. A failure is described in the
  * result, never returned as an error of the benchmark. */

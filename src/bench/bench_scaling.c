@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini bench scaling: per mesh level, the size of the problem, the
  * assembly, the baseline (one factorisation + solve of K) and each method's
  * time as a ratio to it, iterations and peak memory against the factor's;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini bench stress: every scene and method under a catalogue of
  * perturbations (bench_perturb.c). For each: converged or the reason,
  * iterations, kkt, the errors against the reference solution of the

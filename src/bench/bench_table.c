@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Result tables of the benchmarks: typed cells, a header of "key: value"
  * lines, and three writers (aligned text; CSV and JSON through out/'s
  * writers and its safe-output helper, so that a failed or interrupted

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini bench wp: work against precision. For each method, a sweep of
  * the tolerance on the kkt error (and of the parameter its paper tunes);
  * each run records time, iterations, solves with K, the kkt error and the

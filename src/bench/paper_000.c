@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini bench paper 000: Tables 1 and 2 of paper 000 on 'twoblocks'.
  *
  * Each row is a level L = m/3 (m = 150, 165, ..., 450 contact nodes,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini bench paper 001: Table 1 of paper 001 (semismooth* Newton for
  * 3D Tresca friction on the prism), our figures beside the paper's MATLAB
  * ones, and our times as ratios to the baseline of the same level (one

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini bench paper 002: Koko's Uzawa block relaxation, Tables 1-6,
  * beside our runs, plus the r = auto table and the performance figures of
  * issue 4. Each row: mesh sizes, iterations (ours and the paper's), our

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini bench paper 003: Ainsworth & Mihai's masonry walls. Tables 1-2
  * (bodies, unknowns n, constraints n_c: ours beside the paper's) and
  * Tables 3-7 (time per method and geometry beside the paper's CPU times,

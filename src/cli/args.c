@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Reporting a command-line failure and writing a command's help (the
  * option tables and their parser are base/args.h). */
 #include "cli/cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The command line: subcommands and their shared option handling. Each
  * subcommand declares its options as cx_opt tables (base/args.h) and
  * returns the process exit status: 0 success, 1 an error of the run (one

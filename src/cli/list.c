@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini list [--json]: scenes and methods, with what each supports and
  * each method's parameters (from the registry and the parameter tables). */
 #include "cli/cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini render SCENE [solve options] --png FILE [...]: solve, then draw
  * (render/); also the --png/--vtu/--plot outputs of 'signorini solve'. */
 #include "cli/cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini solve SCENE [options]: build, solve, report (text or JSON). */
 #include "cli/cli.h"
 #include "out/out.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* contact/: contact constraints from a mesh and an obstacle, without K.
  * A contact set holds m contact points and, in the all-dof numbering of
  * fem/ (node k, component c -> dim k + c), the sparse rows

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* contact/ internals shared by the three builders of a contact set (rigid
  * obstacle, node-to-segment, masonry): the allocation of a set and the
  * lumped weights of its points. */

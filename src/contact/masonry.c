@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Contact rows of a masonry wall (paper 003 §2, §5): Signorini points on
  * the settlement part of the ground, and frictionless node-to-node rows
  * [u_N] <= 0 between the coincident nodes of neighbouring bodies. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Rigid obstacles: gap and normal of a point. */
 #include "contact/contact.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Contact points of a boundary against a rigid obstacle: one point per
  * boundary node, with its normal and tangent rows, gap and lumped weight. */
 #include "contact/contact_impl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Two-body node-to-segment contact rows (paper 000 §3), 2D.
  *
  * Every node x of the slave boundary (body 1 in the paper) that has a free

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The contact set itself: allocation, lumped weights, clearing, and the
  * removal of clamped points (those whose normal displacement is
  * prescribed: the support holds them, there is nothing to solve for). */

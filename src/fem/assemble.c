@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Global assembly: loop over elements (or boundary facets), call the
  * kernel on gathered coordinates, scatter by dof = dim * node + c.
  *

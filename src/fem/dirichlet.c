@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Dirichlet conditions by elimination: a map of the prescribed dofs, the
  * reduced system over the free dofs, and the expansion back. */
 #include "fem/fem.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Element kernels: reference shape functions and quadrature for TRI3,
  * TRI6, QUAD4, HEX8 and TET4, and the element stiffness and body force.
  * Pure functions of the element's coordinates and material: no global

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Boundary facets: consistent nodal forces of a surface traction and the
  * lumped facet measure. A facet is parametrised like an element of one
  * dimension less (2-node and 3-node edges on [-1, 1]; 3-node triangles on

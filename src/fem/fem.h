@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fem/: linear elasticity by finite elements. Element kernels (pure
  * functions of element coordinates and material) apart from the global
  * assembly; Dirichlet elimination as a separate step with expansion back;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Private to fem/: the reference element of a type (shape values and
  * reference gradients at the quadrature points and at the nodes, computed
  * once and then used for every element of a mesh) and the kernels that take

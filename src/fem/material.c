@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Isotropic linear elasticity: the matrix D of sigma = D eps in Voigt
  * notation with engineering shear strains, and the von Mises stress. */
 #include "fem/fem.h"

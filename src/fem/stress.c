@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Nodal stresses, computed only on request: sigma = D B u_e evaluated at
  * each node's reference position inside each element, averaged over the
  * elements that share the node. For P1 elements this is the element's

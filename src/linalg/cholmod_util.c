@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The CHOLMOD glue shared by fact.c and schur.c: a silenced Common whose
  * errors become cx_diag lines, zero-copy views of our arrays, and the
  * checks after every call. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Dense kernels over LAPACK/BLAS (column-major). The Fortran prototypes are
  * declared here rather than through LAPACKE, which Debian ships apart.
  * LAPACK reports only exactly zero pivots; a NaN or Inf in the data goes

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Sparse factorisations: CHOLMOD for symmetric positive definite matrices,
  * UMFPACK for square ones. The symbolic analysis is kept, so that a new
  * numeric factorisation of the same pattern costs only the numeric part;

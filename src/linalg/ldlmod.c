@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* A simplicial LDL' factor whose rows and columns are switched between the
  * matrix's and the identity's by CHOLMOD's row delete / row add (Modify
  * module): the single principal pivots of Lawson-Hanson change the factor

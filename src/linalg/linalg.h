@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* linalg/: sparse and dense linear algebra, the only layer that includes a
  * SuiteSparse header. Triplet and CSC matrices (int indices, double values),
  * a factorisation object over CHOLMOD (symmetric positive definite) and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Private to linalg/: the CHOLMOD set-up shared by fact.c and schur.c
  * (defined in cholmod_util.c). */
 #ifndef CX_LINALG_IMPL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Preconditioned conjugate gradients (Jacobi). The tests are written so
  * that a NaN anywhere ends the iteration as a failure, never as success. */
 #include "linalg/linalg.h"

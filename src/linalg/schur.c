@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Static condensation of a symmetric matrix onto a subset c of its dofs
  * from one sparse Cholesky factorisation (DESIGN.md §5). With the c dofs
  * ordered last, the factor of M = A + D splits as

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The Schur complement the way paper 001 §3 computes it, for comparison
  * with cx_schur_create (the bench times both): factorise A_ii alone
  * (CHOLMOD's default ordering) and solve once per contact dof,

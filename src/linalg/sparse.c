@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Triplet and compressed-column matrices. */
 #include "linalg/linalg.h"
 

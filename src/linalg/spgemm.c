@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Sparse matrix product C = A B (CSC, Gustavson's column-by-column
  * accumulation), used to form congruence transforms T' K T. */
 #include "linalg/linalg.h"

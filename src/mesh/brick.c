@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The brick [lo, hi] with nx x ny x nz cells: trilinear hexahedra, or six
  * tetrahedra per cell by the Kuhn (Freudenthal) split: one tetrahedron per
  * monotone lattice path from the cell's lowest corner to its highest, i.e.

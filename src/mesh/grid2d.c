@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The structured 2D grid behind the rectangle and the Hertz quarter disc:
  * connectivity and boundaries in lattice indices, coordinates left to the
  * caller. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The Hertz quarter disc: the lower-right quarter of the disc of radius R
  * centred at (0, R), touching the plane y = 0 at the origin. The unit
  * square maps onto it by

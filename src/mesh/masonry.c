@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Masonry walls of paper 003 (§5, Fig. 2): stack bond, running bond and
  * laminae on the unit square, every body meshed on its own with P2
  * triangles of size H, coincident nodes on the joints. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The mesh object: element tables, destruction, boundary look-up, and the
  * allocation helpers the generators share. */
 #include "mesh/mesh_impl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* mesh/: meshes and their generators, one generator per geometry. A mesh is
  * nodes, elements of one type, an optional body id per element, and named
  * boundaries (lists of boundary facets). It knows nothing of elasticity.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Private to mesh/: the allocation of a mesh and the structured 2D grid
  * shared by the rectangle and Hertz generators (defined in mesh.c and
  * grid2d.c). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The rectangle [x0,x1] x [y0,y1]: a structured grid, mapped affinely. */
 #include "mesh/mesh_impl.h"
 

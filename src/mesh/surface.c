@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The facets of a mesh and its surface: every element facet (2D edges, 3D
  * faces) once, with the number of elements that share it, and the outline
  * (the edges of the surface facets). The one extraction that the explorer's

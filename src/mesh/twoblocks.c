@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Two stacked rectangles as one mesh with two bodies (paper 000 §7):
  * body 0 (Omega^1) on [x0,x1] x [ym,y1] above body 1 (Omega^2) on
  * [x0,x1] x [y0,ym]. Each block is a structured rectangle with its own cell

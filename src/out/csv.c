@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The CSV writer (see csv.h). */
 #include "out/csv.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* out/csv.h: the one CSV writer (RFC 4180 quoting), for the bench's tables
  * and the explorer's export. Header lines "# key: value" may come first;
  * readers skip lines that start with '#'. A number that is not finite is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* A small streaming JSON writer for --json output: keys in order, commas
  * managed, NaN/Inf written as null (JSON has no NaN). */
 #ifndef CX_OUT_JSON_H

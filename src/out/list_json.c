@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The JSON of 'signorini list --json': scenes and methods, from the scene
  * files and the method registry with its parameter tables. */
 #include "out/out.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* out/: the solution snapshot (out/result.h) and every output format that
  * needs no GL — VTU for ParaView, the JSON of 'solve' and 'list', CSV
  * (out/csv.h), the JSON writer (out/json.h) — and the one safe way to

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The safe-output helper (see outfile.h). */
 #include "out/outfile.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* out/outfile.h: the one way every program writes an output file (VTU,
  * PNG, CSV, JSON, reference caches). A regular file (or a new one) is
  * written under a temporary name beside it and renamed into place when

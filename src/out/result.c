@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The solution snapshot (see result.h). */
 #include "out/result.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* out/result.h: the solution snapshot. A cx_result holds everything the
  * writers (VTU, JSON, text) and the renderer read about one solution —
  * the mesh and the contact geometry, the full displacement, the

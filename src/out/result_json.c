@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The JSON object of 'signorini solve --json' (DESIGN.md §6). */
 #include "out/out.h"
 #include "cx_config.h"

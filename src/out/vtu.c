@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* VTK XML UnstructuredGrid (.vtu) output for ParaView: ASCII, or binary
  * data as base64 with a UInt64 byte-count header per array (uncompressed).
  * Written from a cx_result through out/outfile.h (no GL needed). */

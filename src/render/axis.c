@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Nice ticks: steps of 1, 2 or 5 times a power of ten (linear axes), whole
  * decades (log axes). */
 #include "render/axis.h"

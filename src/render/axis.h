@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* render/axis.h (internal): nice axis ticks and their labels, shared by the
  * plots and the colour bar. */
 #ifndef CX_RENDER_AXIS_H

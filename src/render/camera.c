@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The camera: a rotation into view space and an orthographic fit of the
  * body (and the obstacle near it) into the drawing area of the layout. The
  * same mapping serves GL (cx_render_camera_gl) and the cairo overlays

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Colormaps: a perceptual one for magnitudes (a polynomial fit of
  * matplotlib's viridis) and a diverging one for signed fields (Moreland's
  * cool-warm, control points every 1/8), and the status colours. */

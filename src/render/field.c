@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Field names and nodal values. */
 #include "render/render.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Vertex arrays of an image: the body's triangles (2D: all elements; 3D:
  * the boundary faces, from mesh/surface.c), its edges, the contact faces, and the 3D obstacle. Every body of the mesh
  * goes into the same arrays (one draw call per field). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The OSMesa context (research/toolchain.md §3c, §5): link OSMesa only,
  * request the depth buffer, rows are bottom-up. */
 #define GL_GLEXT_PROTOTYPES 1

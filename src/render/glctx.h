@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* render/glctx.h (internal): the offscreen OpenGL context. The only file
  * that knows OSMesa is glctx.c, so that an EGL (surfaceless) backend can
  * replace it where Mesa no longer ships OSMesa. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The GL pass: shaders read from shaders/ at run time, one vertex buffer
  * per array (one draw call each, whatever the number of bodies), the
  * scalar mapped through a colormap texture, 4x MSAA through a multisample

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* An image of a solved problem: fields, geometry and camera, the GL pass
  * (composited over the 2D obstacle), the cairo overlays, the PNG. */
 #include "render/render_impl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The cairo layer over the GL image: title, colour bar with nice ticks,
  * the undeformed outline, the 2D obstacle, contact points by status (slip
  * with its direction), the pressure along the contact boundary, and notes

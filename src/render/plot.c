@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Line plots with cairo (see plot.h): axes with nice ticks and a grid,
  * series with lines/markers, reference lines, a legend in the emptiest
  * corner, then the PNG through png.c. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* render/plot.h: line plots to PNG, drawn with cairo (no GL, no display).
  *
  * A cx_plot is a plain struct the caller fills: a title, axis labels, linear

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* PNG writing with libpng (see pngfile.h). */
 #include "render/pngfile.h"
 #include "out/outfile.h"

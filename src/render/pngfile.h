@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* render/pngfile.h: PNG files with text chunks, written with libpng to a
  * temporary file in the target's directory and renamed into place, so a
  * failed write leaves nothing behind. No timestamps are written: the same

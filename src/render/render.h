@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* render/: images of a solution snapshot (cx_result, out/result.h): PNG
  * through offscreen Mesa, with text, colour bar and markers drawn by
  * cairo; and line plots (render/plot.h). Files are written through

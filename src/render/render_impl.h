@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* render/render_impl.h (internal): the pieces of an image — geometry
  * (vertex arrays), the camera, the GL pass and the cairo overlays. */
 #ifndef CX_RENDER_IMPL_H

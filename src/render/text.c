@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Anchored text with cairo's toy font API (enough for labels and titles). */
 #include "render/text.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* render/text.h (internal): text with cairo, anchored. One font family
  * (DejaVu Sans through fontconfig), so every image looks the same. */
 #ifndef CX_RENDER_TEXT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* --method auto: which method solves a scene by default.
  *
  * The table holds, for each shipped scene at its default level and each

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* From a scene to a problem at a mesh level: mesh, assembly, supports,
  * loads and contact rows, then the problem over the free dofs. */
 #include "scene/scene.h"

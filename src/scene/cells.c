@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Cell counts of a mesh level: level L refines the scene's base cells
  * along each direction the generator has (hertz: one count; the rectangle
  * two; the brick three); the other entries are 1. The linear rule takes

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Scene ids and paths. The scene directories are searched in order:
  * $SIGNORINI_SCENES (one directory, or several separated by ':'), the
  * source tree's scenes/ (CX_SCENE_DIR_BUILD) and the installed

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Hertz's solution for a long elastic cylinder (radius R, load P per unit
  * length) pressed onto a rigid plane, the reference of paper 002 §7.1
  * (Johnson, Contact Mechanics, §4.2): contact half-width

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Reading a scene file (scene.h). inih splits the file into sections and
  * key = value pairs; every key is checked against the key table of its
  * section (ld_sections below) and the values fill a cx_scene.

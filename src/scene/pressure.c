@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The error of the contact pressure against Hertz's (2D scenes with a
  * [hertz] section): nodal contact force over lumped length, against
  * p(x) on the x axis, in the L2 norm. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* scene/: scene files (scenes/NAME.ini, read with inih) and the building of a
  * problem from a scene at a mesh level. Every key is checked against a table
  * of the section's keys; errors are one line "file:line: key 'E': expected a

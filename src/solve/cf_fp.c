@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cf-fp — Coulomb friction by successive Tresca problems, paper 002 §5
  * (Algorithm CF-FP), 2D and 3D.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The dual operator of paper 000 §5 (dual_impl.h): one Cholesky factor of
  * K per session in the operator cache, products A x = B K^-1 B' x, the
  * right-hand side b, alpha_max, and the box helpers of the dual methods. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Private to solve/: the dual operator of paper 000 §5 and the box helpers
  * shared by the dual methods (mprgp, ssn-tresca-dual, ssn-tresca-glob).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* graves — the principal pivoting simplex method of Graves (1967) on the
  * reduced Schur-complement LCP (paper 003 §4, Step 1-5; Table 7).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The LCP form of paper 003 (lcp.h): the change of variables, the cached
  * full and reduced LCPs, masked solves, the PDAS step and the two-stage
  * driver of the regularised methods. */

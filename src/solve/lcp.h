@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The LCP form of paper 003 (§3, (3.7)-(3.8)) shared by psor, lssnn, pdas,
  * pdpc and graves: find v with
  *     A v + Sigma = b,  v_S >= 0,  Sigma_S <= 0,  Sigma_S' v_S = 0,  Sigma_E = 0,

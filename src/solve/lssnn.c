@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lssnn — linear least squares with (selected) non-negativity constraints,
  * Lawson & Hanson's NNLS (paper 003 §4, single principal pivoting) on the
  * regularised LCP: with A + eps I = R'R and y = R^-T b, the LCP is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* mprgp — Dostál's MPRGP (modified proportioning with reduced gradient
  * projections) on the dual of paper 000 §5: the baseline column of its
  * Tables 1 and 2.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Nested sessions (solve.h): a child session over its parent's system,
  * with its own friction state, sharing the parent's operator cache and
  * counters, so that a wrapper method (cf-fp) runs any registered inner

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* pdas — primal-dual active set (block principal pivoting), paper 003 §4
  * (Hintermüller, Ito & Kunisch), on the regularised LCP A + eps I, then the
  * projection: PDAS again on the unregularised A, started from the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* pdpc — primal-dual predictor-corrector interior point for the LCP
  * (paper 003 §4; Wright, Portugal et al.), on the UNregularised A, then
  * (by default) the projection of §4 to land exactly on the solution.

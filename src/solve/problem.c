@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The discrete problem: the assembled system reduced to the free dofs, the
  * contact rows mapped to them; and the check of a friction state. */
 #include "solve/problem.h"

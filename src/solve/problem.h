@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The discrete contact problem in the one convention of DESIGN.md §2:
  *     K u - f + N' lN + T' lT = 0
  *     N u - g <= 0,  lN >= 0,  lN_i (N u - g)_i = 0

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* psor — projected successive over-relaxation (paper 003 §4; Glowinski,
  * Lions & Trémolières) on the regularised LCP A + eps I, then the
  * projection of §4.

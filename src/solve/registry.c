@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The one list of methods. Adding a method: one file in solve/ with its
  * const cx_method descriptor, one line here. 'signorini list', --method,
  * the explorer and the conformance tests all read this table. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Private to solve/: the session's fields, shared by session.c and
  * solver.c. */
 #ifndef CX_SESSION_IMPL_H

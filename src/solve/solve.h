@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* solve/: the session (a problem, its cache of shared operators, the current
  * method and its history) and the generic stepping of DESIGN.md §4.
  *

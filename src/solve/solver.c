@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The generic step: the method's step, then in one place the kkt error,
  * the contact status and its changes, the timing, and the outcome. */
 #include "solve/session_impl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssn-c — semismooth Newton for frictionless contact with parameter r,
  * paper 002 §7 (Algorithm SSN-C, the paper's comparison method), 2D and 3D.
  *

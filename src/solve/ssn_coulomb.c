@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssn-coulomb — ActiveSetCoulomb (paper 000 §4.1): the semismooth Newton
  * method on G(y) = 0, y = (u, lN, lT), for Coulomb friction in 2D
  * (several bodies included), solved directly, without a fixed point.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssn-tresca — semismooth Newton / primal-dual active set on the saddle-point
  * system, paper 000 §4.2 (Algorithm ActiveSetTresca).
  *

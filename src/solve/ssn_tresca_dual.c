@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssn-tresca-dual — ActiveSetTresca, dual version (paper 000 §5): the
  * semismooth Newton / active-set method on the dual box QP
  *     min q(l) = 1/2 l'A l - l'b,  lN >= 0, |lT| <= s,  A = B K^-1 B',

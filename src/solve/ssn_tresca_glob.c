@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssn-tresca-glob — the globalised inexact ActiveSetTresca of paper 000 §6
  * (SNM4 of its Table 2): frictionless or Tresca, 2D, on the dual box QP
  *     min q(l) = 1/2 l'A l - l'b,  lN >= 0, |lT| <= s,  A = B K^-1 B'.

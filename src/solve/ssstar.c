@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssstar — the semismooth* Newton method of Gfrerer and Outrata for Tresca
  * friction, paper 001 §2–§4 (reconstruction: seed_benchmarks.md §1.3–1.5).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The Uzawa block relaxation core (paper 002 §4.3, §5), shared by ubr-c and
  * ubr-tf. The augmented Lagrangian
  *     1/2 u'Ku - f'u + (lam, Bu - phi)_W + r/2 |Bu - phi|_W^2 + j(phi)

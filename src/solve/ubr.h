@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Private to solve/: the Uzawa block relaxation core shared by ubr-c and
  * ubr-tf (paper 002 §4.3 and §5), so that both methods differ only in what
  * they project. See ubr.c for the algorithm and the r = auto rule. */

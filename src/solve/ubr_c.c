@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ubr-c — Uzawa block relaxation for frictionless contact, paper 002 §4.3
  * (Algorithm UBR-C), 2D and 3D.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ubr-tf — Uzawa block relaxation for Tresca friction, paper 002 §5
  * (Algorithm UBR-TF), 2D and 3D.
  *

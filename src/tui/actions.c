@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Actions: one table maps keys to functions that change the state and
  * return reactions (STYLE.md C12). Only scene and level changes raise
  * TUI_REASSEMBLE; method, parameter, friction and tolerance changes raise

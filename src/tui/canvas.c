@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* A canvas of braille characters: each cell holds 2 x 4 dots (Unicode
  * U+2800 + an 8-bit mask), so a panel of w x h cells plots at 2w x 4h. */
 #include "tui/tui_impl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The screen, drawn from the state only (through term.c): the layout, the
  * header, the pickers, the status line and the help overlay, and the
  * drawing helpers the panels (panels.c) share. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Export of the runs on the current scene: one CSV row per step, and one
  * JSON document with every run and its steps, through out/'s CSV and JSON
  * writers and its safe-output helper (nothing is left half-written). */

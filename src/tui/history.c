@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The history of runs: a fixed table of the last TUI_MAX_RUNS runs on the
  * current scene and level, each with its steps. No curses here. */
 #include "tui/tui_impl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The history of runs on the current scene and level (history.c): one run
  * per method switch or reset, each with its steps, so the convergence plot
  * draws the earlier runs' curves under the current one. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The explorer's jobs: a build, a switch of method or friction, or one
  * step, on a worker thread (inline in the tests). No curses here. */
 #include "tui/tui_impl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The explorer's jobs (job.c): building a level, switching method or
  * friction, and one step run off the UI thread on a worker (inline in the
  * tests). While a job runs the main thread leaves the session alone and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The explorer's program: options, the one loop (a timed getch; while
  * running, one step per tick), scripted keys for tests, and restoring the
  * terminal on every way out (q, Ctrl-C, SIGTERM/SIGHUP, a fatal error). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The mesh view's geometry: the outline of the body (mesh/surface.c), the
  * edges of a 2D element, the automatic displacement scale. No curses
  * here; panels.c draws. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The mesh view's geometry (meshview.c): the outline of the body (the
  * edges of its surface, from mesh/surface.c), the edges of one element,
  * and the automatic displacement scale. Drawing is in panels.c. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The panels of the right-hand side, drawn from the state only: the
  * per-step table, the contact strip (or 3D face) over the pressure
  * profile, the convergence plot, the mesh view and the table of runs. */

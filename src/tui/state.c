@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The explorer's state: scenes, selections, the session, taking a job's
  * result, and the snapshot panels draw from. The jobs are in job.c, the
  * runs in history.c, the mesh view's geometry in meshview.c. No curses

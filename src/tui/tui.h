@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* tui/: the explorer, an ncurses program layer beside cli/ (STYLE.md C12).
  *
  * The core (state.c, actions.c, job.c, history.c, meshview.c, export.c,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Private to tui/: the state's fields, the picker rows (actions.c), colour
  * roles, the braille canvas, the terminal wrapper (term.c, the only file
  * that includes curses) and the panels (draw.c, panels.c). */

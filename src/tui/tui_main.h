@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The explorer as a program: the one entry point src/main.c calls. Kept
  * apart from tui.h (the explorer's state and actions) so that the program
  * needs nothing of the explorer but this. */

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Every header of src/ compiles on its own (it includes what it uses)."""
 import os
 import subprocess

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* base/args.h: the option tables. Parsing of every type, ranges with open
  * and closed ends, --name=value, missing values, unknown options,
  * repeatable options, positional arguments, and a help that holds every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* base/: parameter tables, strict parsing, diagnostics and the allocator. */
 #include "base/base.h"
 #include "check.h"

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """'signorini bench' machinery on tiny cases: CSV columns and one row per
 run, the reference solution reused from the disk cache (checked through the
 counters), where that cache lives ($XDG_CACHE_HOME/signorini, --cache, a

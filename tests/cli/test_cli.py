@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The command line end to end: the JSON of 'solve' field by field, 'list',
 exit codes, one-line errors for bad options and bad scenes, and the output
 files: a write error on standard output is an error, '-' is standard

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Honest outcomes end to end (issue 20): 'converged' and exit 0 only when
 the kkt error is at or below the tolerance; the words of the outcome in the
 text summary and the JSON (reason id + reason_text); every shipped scene

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Paper 000 from the command line: 'solve twoblocks' with the dual methods,
 the refusal of Coulomb by mprgp, and 'bench paper 000' (first row: the
 paper's n/m, our counts beside the paper's, bad options as one-line errors)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The command line of every subcommand comes from its option table:
 --help lists exactly the options the table has (and the parser knows each
 of them), an unknown option and an out-of-range value are usage errors

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* contact/: N and T rows, gaps, weights and normals against hand values
  * for each obstacle, the refusal of an initial penetration, and the
  * removal of clamped points (cx_contact_drop_clamped). */

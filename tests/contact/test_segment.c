@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* contact/segment.c and mesh/twoblocks.c: the two-block mesh, and the
  * node-to-segment rows against hand values on a non-matching 2x2 over 3x3
  * pair, with and without an initial gap, and a penetration refused. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Shared by the fem tests: distorted meshes of every element type, a
  * deterministic random number, dense views of a CSC matrix. */
 #ifndef CX_TEST_FEM_FIXTURE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The stiffness assembled straight into its CSC pattern, for TRI3, TRI6,
  * QUAD4 (2D) and TET4, HEX8 (3D) on distorted meshes of two bodies, a
  * masonry wall (separate bodies with coincident nodes) and a mesh with a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* dirichlet.c: the dof map (init, fix by boundary and component, finish),
  * the reduction K(free, free), f(free) - K(free, fixed) value against a
  * dense computation on an assembled K (sorted CSC columns), the expansion

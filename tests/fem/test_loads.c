@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Loads: consistent nodal forces of surface tractions and body forces.
  *  - a constant traction over a boundary gives traction * length (area);
  *  - an affine traction t = t0 + G x gives the closed-form total force and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* material.c: the D matrices against hand values (E = 2.6, nu = 0.3:
  * mu = 1, plane-strain lambda = 1.5, plane-stress E/(1 - nu^2) = 2.857...),
  * plane stress as the 3D law with szz = 0 (static condensation of D), and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Patch tests: on distorted meshes of every element type and every model,
  * the displacement u = A x + c of a constant strain, prescribed at the
  * boundary nodes (dofmap + reduce), solved for by dense Gaussian

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Element stiffness and its assembly: a hand-computed TRI3 matrix; for each
  * element type on a distorted mesh, K over all dofs is symmetric
  * (asymmetry < 1e-12 max |K|), has the rigid motions in its null space

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* libFuzzer harness for the scene reader (cx_scene_parse: the bytes of a
  * scene file in memory, checked line by line, then inih and the key
  * tables). Besides the sanitizers' findings, it aborts when the reader

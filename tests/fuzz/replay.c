@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Without libFuzzer (gcc builds): run the harness over the files of the
  * directories given on the command line (the seed corpus: every scene and
  * scene test file), so that the suite checks its contract too. */

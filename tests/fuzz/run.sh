@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fuzz the scene reader for SECONDS (default 60) with libFuzzer under
 # AddressSanitizer + UndefinedBehaviorSanitizer: configures a clang build
 # in ./build-fuzz the first time (Debian 12: clang-14 and libclang-rt-14-dev,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Test matrices shared by the linalg tests: the 2D 5-point Laplacian and a
  * relative residual. */
 #ifndef CX_TEST_LAPLACIAN_H

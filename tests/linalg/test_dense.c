@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* linalg/dense.c: the LAPACK kernels against hand solutions; singular and
  * non-finite input give CX_ENUMERIC; counters. */
 #include "linalg/linalg.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* linalg/fact.c: CHOLMOD Cholesky and UMFPACK LU. Residuals, reuse of the
  * analysis with new values, counters, and the failures: not positive
  * definite (the column named, in the original numbering), singular, solve

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cx_ldlmod: rows deleted (identity) and added back by CHOLMOD's Modify
  * give the same solutions as a fresh factorisation of the masked matrix,
  * and the counters count one factorisation plus one update per change. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* linalg/pcg.c: Jacobi-preconditioned CG on the 2D Laplacian; the
  * iteration limit, a breakdown and b = 0. */
 #include "linalg/linalg.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* linalg/schur.c: the Schur complement S = A_cc - A_ci A_ii^-1 A_ic from one
  * constrained-order Cholesky, with condense and expand, against a dense
  * reference (LAPACK on the blocks). An SPD matrix, a SINGULAR one (Neumann

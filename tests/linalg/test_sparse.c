@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* linalg/sparse.c and vec.c: triplet to CSC (duplicates summed, rows
  * sorted, explicit zeros kept), copy, transpose, products, entry lookup,
  * asymmetry, the vector kernels, and clean failure on allocation. */

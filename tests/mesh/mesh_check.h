@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Geometric checks shared by the mesh tests: element orientation, measure,
  * and the outward orientation of boundary facets. */
 #ifndef CX_TEST_MESH_CHECK_H

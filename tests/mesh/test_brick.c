@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* mesh/brick.c: counts; positive HEX8 corners and TET4 volumes; total
  * volume; the TET4 split is conforming (every tetrahedron face is shared by
  * two tetrahedra or is one boundary facet, and every boundary facet is a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* mesh/hertz.c: counts; the origin is a node; "arc" and "side" nodes on the
  * circle x^2 + (y-R)^2 = R^2 to 1e-12 R; "top" at y = R, "axis" at x = 0;
  * the arc runs from the origin to the 45 degree point; positive elements and

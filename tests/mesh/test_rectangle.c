@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* mesh/rectangle.c and mesh.c: element tables, node and element counts,
  * coordinates, counter-clockwise elements, outward boundary facets,
  * conforming TRI6 mid-edge nodes, boundary node lists, input validation

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* mesh/surface.c: the facets of a mesh, its surface and its outline, by
  * counts computed by hand on a rectangle, a brick and two stacked blocks,
  * and the orientation of the surface facets (outward). */

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # --vtu in a build without the renderer: configure a second build directory
 # with -Drender=disabled -Dtests=false, build it, and check that
 # 'signorini solve hertz --level 8 --vtu X.vtu' writes a VTU there (no GL

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The safe-output helper (out/outfile.h): a new file and a replaced one
  * (permissions kept, no temporary left), a failed write leaves nothing, a
  * symbolic link stays a link and its target is written (also a dangling

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The solution snapshot (out/result.h) and the formats written from it:
  * a result from a solved hertz session holds copies (it outlives the
  * session), the full displacement (prescribed dofs included), the contact

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Test helper: read a PNG back (RGB, top-down) with its tEXt chunks. */
 #ifndef CX_TEST_PNGREAD_H
 #define CX_TEST_PNGREAD_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Images (render/render.h): every field of hertz (2D) and block3d (3D) at
  * a small size, read back and checked — not blank, the colour bar holds
  * the colormap in order, the body / obstacle / background where the

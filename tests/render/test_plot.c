@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Plots (render/plot.h): axis ticks, a plot written, read back and checked
  * pixel by pixel, text chunks, determinism, bad paths and empty plots. */
 #include <math.h>

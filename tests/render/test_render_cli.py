@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """'signorini render' and 'solve --png/--vtu' end to end: the PNG is written
 (signature, size, text chunks), the VTU is well-formed XML with the right
 counts and array sizes (ASCII and base64 binary, decoded), the plots are

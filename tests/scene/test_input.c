@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The bytes of a scene file (issue 20): what the reader accepts (a regular
  * file, a pipe, CRLF line ends, UTF-8 in comments and titles) and what it
  * refuses with one line (a device such as /dev/zero, a file or a pipe

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The program on bad input bytes and out-of-range values (issue 20): each
 bad scene gives exit 1 and one printable line on stderr naming the file, the
 line and the key, and nothing on stdout (so no NaN or Inf); /dev/zero, an

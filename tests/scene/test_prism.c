@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Paper 001's prism and its mesh rule (level_rule = sqrt2): the cell
  * counts, nodes and contact nodes of every level against Table 1 (levels
  * 2-8 exactly; level 1 by the rule, 112 / 24), the built problems of levels

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The scene reader (src/scene): every scene of the scene directories loads
  * (cx_scene_list + cx_scene_resolve) and the Hertz scene's fields are the
  * file's; the test scenes of good/ (defaults, normalised directions,

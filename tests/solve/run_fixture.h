@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Shared by the solve tests: run a method with "key=value ..."
  * parameters and options, and the energy-norm distance of two solutions. */
 #ifndef CX_TEST_RUN_FIXTURE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Shared by the solve tests: a scene's problem at a level, in a session. */
 #ifndef CX_TEST_SOLVE_FIXTURE_H
 #define CX_TEST_SOLVE_FIXTURE_H

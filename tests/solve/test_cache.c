@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The session's keyed operator cache: built once per key, counted in the
  * cache counters, freed with the session; a bad argument is not cached, a
  * matrix that cannot be factorised is (the failure, tried once). */

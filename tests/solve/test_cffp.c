@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cf-fp (paper 002 CF-FP) and the nested sessions under it: Coulomb
  * F = 0.6 on hertz converges with stick and slip points, one factorisation
  * for all fixed-point steps, all inner work counted in the run, the same

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* solve/: the friction state belongs to the session (issue 19, the
  * cx_problem split). The build gives the scene's defaults beside the
  * problem; a new session is frictionless; each setter changes one meaning

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Paper 003 (masonry walls of floating bodies): the sizes of Tables 1-2,
  * the null space of K, the agreement of every LCP method, complementarity
  * after the projection (which takes one iteration), the settlement, the

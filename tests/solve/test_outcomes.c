@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Honest outcomes (issue 20): converged means kkt <= tol; a method's own
  * criterion above it is "stopped", not converged; a declared breakdown ends
  * the run at once with the method's message; NaN/Inf stop the run with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Partial iterates (solve.h): a method on the condensed system updates u on
  * the contact dofs only, the kkt error is evaluated on the condensed
  * system, and u is expanded once, when the run ends.

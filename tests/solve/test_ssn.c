@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssn-tresca on the foundation's scenes: the Hertz contact zone and load
  * balance, stick and slip on 'slider', the 3D block, refusals, and that
  * switching method or friction keeps the one factorisation. */

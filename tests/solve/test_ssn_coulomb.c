@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssn-coulomb (paper 000 §4.1, ActiveSetCoulomb) on the condensed system:
  * one sparse factorisation per run (the session's Schur complement; none
  * when the session already holds it), a dense factorisation per Newton

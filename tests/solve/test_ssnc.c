@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssn-c (paper 002 §7): the paper's iteration counts on hertz (Table 1:
  * 7, 8, 9 on 442, 1692, 6619 nodes; 5-12 in the issue), one symbolic
  * analysis and one factorisation per Newton step, the regularised answer

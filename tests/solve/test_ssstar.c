@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssstar (paper 001) on the prism: on levels 1-4 it reaches kkt < 1e-10
  * and agrees with 3D ssn-tresca to 1e-8; its Newton steps (the paper's
  * iterations) stay in 4-9 on levels 1-5 from the zero start; the reduced

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The stall rule: a run whose kkt error has not halved for stall_window
  * iterations is stopped as stalled, unless the method reports progress of
  * its own (a regularised first stage resting at its O(eps) kkt floor). */

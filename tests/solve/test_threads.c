@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Two sessions on two threads (issue 19): scenes loaded, built and solved
  * concurrently give the same numbers, bit for bit, as the same runs done
  * alone; scene loading from several threads at once; the allocation

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Paper 000 on 'twoblocks': the scene's sizes and loads (n = 4m(m/3 + 1)),
  * every dual method against ssn-tresca on a non-matching pair of meshes,
  * action and reaction of the node-to-segment forces, the SNM variants'

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ubr-c and ubr-tf (paper 002 §4.3, §5): against the reference to 1e-6 in
  * the energy norm with kkt < 1e-8 (run past the paper's criterion), one
  * factorisation per run and none when the factor is cached, iteration

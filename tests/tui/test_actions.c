@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The explorer's state and actions without a terminal: keys give the
  * reactions of STYLE.md C12 (only scene and level changes reassemble),
  * stepping fills the history, switching method / parameter / friction /

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The explorer end to end in a real terminal: tmux on a private socket,
 a fixed size, keys sent, the pane captured and polled (no fixed sleeps).
 Checks: the scene name; N step keys give iteration N and a falling kkt;
