@@ -118,7 +118,7 @@ int main(void)
     CX_CHECK(!strchr(d.msg, '\n'));
     /* repeatable, up to its limit */
     {
-        char line[CX_OPT_LIST_MAX * 8 + 16] = "";
+        char line[(CX_OPT_LIST_MAX + 1) * sizeof "--set k=1 " + 1] = "";
         for (int k = 0; k <= CX_OPT_LIST_MAX; k++)
             strcat(line, "--set k=1 ");
         CX_CHECK(parse(line, &a, pos, 0, NULL, &d) == CX_EINVAL);
