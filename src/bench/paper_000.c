@@ -161,9 +161,9 @@ static const char *const p000_reason[5] = {
     "MPRGP: not the stop (eps 1e-8: +8 %) nor Gamma (0.5-5: -10..+2 %); with abar = 1/alpha_max "
     "instead of the stated 2/alpha_max (--abar 1) rows 1 and 10 give 178 and 260 against 181 and 246: "
     "the paper's alpha_max may be an estimate about twice too high",
-    "SNM1: 10 Newton steps where the paper has 12-14: under this load the sets change fewer times from "
+    "SNM1: 10-11 Newton steps where the paper has 12-14: under this load the sets change fewer times from "
     "lambda0 = 0 (rho plays no role with exact solves, as the paper notes); each step costs what the "
-    "paper's does (60-80 CG steps)",
+    "paper's does (60-100 CG steps)",
     "SNM2: the paper's adaptive rule (its ref. [21]) is lost; 19-56 products for 7-17 Newton steps is "
     "below what a converged run needs here (the paper's own MPRGP needs 181-302): with 1-2 CG steps "
     "per Newton step the step criterion err <= 1e-6 stops early (our SNM3 with eta = 0.5: 5/5 at kkt 0.4); "
