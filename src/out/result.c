@@ -151,8 +151,8 @@ int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *s
     if (sc) {
         snprintf(run->scene, sizeof run->scene, "%s", sc->id);
         snprintf(run->title, sizeof run->title, "%s", sc->title);
-        x->has_obstacle = 1;
-        x->obstacle = sc->obstacle;
+        x->has_obstacle = !sc->contact_master[0];
+        cx_scene_obstacle(sc, level, &x->obstacle);   /* where the solver has it */
         double pa, pr;
         if (cx_scene_pressure_error(sc, p, x->lN, &pa, &pr) == CX_OK) {
             run->has_pressure_error = 1;

@@ -51,7 +51,63 @@ static double img_umax(const cx_mesh *m, const double *uall)
 double cx_render_auto_scale(const cx_result *r)
 {
     double umax = img_umax(r->mesh, r->u);
-    return umax > 0 ? 0.07 * img_body_size(r->mesh) / umax : 1.0;
+    double s = umax > 0 ? 0.07 * img_body_size(r->mesh) / umax : 1.0;
+    /* shrinking would draw points in contact off the obstacle: at s = 1
+     * the drawn contact is the solver's */
+    return r->m > 0 ? fmax(s, 1.0) : s;
+}
+
+/* The obstacle where the drawn bodies meet it. A point in contact with
+ * initial gap g moves by g towards the obstacle, and is drawn moved by
+ * s g: a plane whose nearest points all start at the gap g (masonry's
+ * settlement) is drawn moved by (1 - s) g along its normal, so that they
+ * touch it at any scale s. Where the points in contact start at other
+ * gaps (a curved body) and s != 1, the image says that the contact is not
+ * drawn exactly. */
+static void img_obstacle(cx_render_scene *sc)
+{
+    const cx_result *r = sc->r;
+    const cx_contact_set *cs = &r->contact;
+    sc->obstacle = NULL;
+    if (!r->has_obstacle)
+        return;
+    sc->drawn_obstacle = r->obstacle;
+    sc->obstacle = &sc->drawn_obstacle;
+    cx_obstacle *ob = &sc->drawn_obstacle;
+    int dim = sc->dim;
+    double size = img_body_size(r->mesh), tolg = 1e-9 * size;
+    if (ob->kind != CX_OBST_PLANE || cs->m == 0) {
+        /* curved obstacles: contact at gaps > 0 is inexact when s != 1 */
+        for (int i = 0; i < cs->m; i++)
+            if (r->status[i] != CX_PT_FREE && cs->gap[i] > tolg && sc->scale != 1)
+                sc->contact_inexact = 1;
+        return;
+    }
+    /* the points against the plane: their gap is their distance to it
+     * (body-to-body points, e.g. masonry's joints, are not) */
+    double g0 = INFINITY, tolc = 1e-6 * size;
+    int *against = CX_NEW(int, cs->m > 0 ? cs->m : 1);
+    for (int i = 0; i < cs->m; i++) {
+        double dist = 0;
+        for (int k = 0; k < dim; k++)
+            dist += (cs->x[dim * i + k] - ob->point[k]) * ob->normal[k];
+        int on = fabs(dist - cs->gap[i]) <= tolc;
+        if (against)
+            against[i] = on;
+        if (on)
+            g0 = fmin(g0, dist);
+    }
+    if (!(g0 > tolg) || !isfinite(g0))
+        g0 = 0;
+    sc->obstacle_gap = g0;
+    sc->obstacle_shift = (1 - sc->scale) * g0;
+    for (int k = 0; k < dim; k++)
+        ob->point[k] += sc->obstacle_shift * ob->normal[k];
+    /* points in contact that started at another gap are drawn off it */
+    for (int i = 0; i < cs->m && sc->scale != 1; i++)
+        if (r->status[i] != CX_PT_FREE && (!against || against[i]) && fabs(cs->gap[i] - g0) > tolc)
+            sc->contact_inexact = 1;
+    cx_free(against);
 }
 
 static void img_clear(cx_render_scene *sc)
@@ -103,7 +159,6 @@ static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *
     double t0 = cx_clock_now();
     memset(sc, 0, sizeof *sc);
     sc->r = r;
-    sc->obstacle = r->has_obstacle ? &r->obstacle : NULL;
     sc->o = o;
     sc->w = o->width;
     sc->h = o->height;
@@ -129,6 +184,7 @@ static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *
             sc->x0[3 * i + k] = m->x[dim * i + k];
             sc->xd[3 * i + k] = m->x[dim * i + k] + sc->scale * sc->uall[dim * i + k];
         }
+    img_obstacle(sc);
     if (f == CX_FIELD_STATUS) {
         sc->lo = 0;
         sc->hi = 1;

@@ -356,18 +356,30 @@ static double ov_marker_radius(const cx_render_scene *sc, double s)
 
 static void ov_notes(const cx_render_scene *sc, cairo_t *cr, double s, int legend, int hidden)
 {
-    char line[256];
+    char line[512];
     double y = sc->h - 30 * s;
     cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+    size_t n;
     if (sc->o->scale > 0)
-        snprintf(line, sizeof line, "displacement × %.3g (set), max |u| = %.3g", sc->scale, sc->umax);
+        n = (size_t)snprintf(line, sizeof line, "displacement × %.3g (set), max |u| = %.3g", sc->scale,
+                             sc->umax);
+    else if (sc->scale == 1 && sc->r->m > 0 && sc->umax > 0)
+        n = (size_t)snprintf(line, sizeof line, "displacement × 1 (auto: true scale with contact, "
+                             "max |u| = %.3g)", sc->umax);
     else
-        snprintf(line, sizeof line, "displacement × %.3g (auto: max |u| = %.3g drawn as 7 %% of the body size)",
-                 sc->scale, sc->umax);
-    cx_text(cr, line, 20 * s, y, 14 * s, 0, 0, 0.5);
+        n = (size_t)snprintf(line, sizeof line, "displacement × %.3g (auto: max |u| = %.3g drawn as "
+                             "7 %% of the body size)", sc->scale, sc->umax);
+    if (sc->obstacle_gap > 0 && n < sizeof line)
+        /* the settlement: the obstacle moved with the scale (image.c) */
+        n += (size_t)snprintf(line + n, sizeof line - n, " · obstacle drawn %.3g × its gap %.3g "
+                              "from the body", sc->scale, sc->obstacle_gap);
+    if (sc->contact_inexact && n < sizeof line)
+        snprintf(line + n, sizeof line - n, " · magnified: contact drawn inexactly (exact at --scale 1)");
+    cx_text_fit(cr, line, 20 * s, y, 14 * s, 0, 0, 0.5, sc->w - (legend ? 300 : 40) * s);
+    double y2 = y - 20 * s;
     if (hidden)
         cx_text(cr, "the contact faces are hidden from here: --view contact shows them",
-                20 * s, y - 20 * s, 14 * s, 0, 0, 0.5);
+                20 * s, y2, 14 * s, 0, 0, 0.5);
     if (!legend)
         return;
     static const int codes[4] = {CX_PT_FREE, CX_PT_CONTACT, CX_PT_STICK, CX_PT_SLIP_POS};

@@ -132,6 +132,11 @@ void cx_scene_cells(const cx_scene *s, int level, int cells[3]);
 /* twoblocks: the lower body's cell counts of a level (level x cells_lower). */
 void cx_scene_cells_lower(const cx_scene *s, int level, int cells[3]);
 
+/* The obstacle the solver uses at a level (level <= 0: the scene's
+ * default): the scene's, except masonry's plane lowered by the settlement
+ * gap g = gap_h H (H = 1 / courses). */
+void cx_scene_obstacle(const cx_scene *s, int level, cx_obstacle *ob);
+
 /* Generate the mesh, assemble, apply supports and loads, build contact:
  * the problem at a level (level <= 0: the scene's default), and beside it
  * the scene's friction defaults in *fr (may be NULL; its law, slip bound

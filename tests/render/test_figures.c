@@ -1,0 +1,191 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Figures for a paper (issue 22), checked on the pixels: bodies in contact
+ * drawn on the obstacle where the solver has it (the masonry walls on
+ * their lowered ground, hertz's contact points on the rigid line at the
+ * automatic scale). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+#include "pngread.h"
+#include "render/render.h"
+#include "scene/scene.h"
+
+static const char *OUT = "test_figures.png";
+
+typedef struct solved {
+    cx_scene sc;
+    cx_session *s;
+    cx_result *r;
+} solved;
+
+/* Solve scene id at level with its first method (max_iter > 0: that
+ * limit) and take the result. */
+static void solve_scene(solved *o, const char *id, int level, int max_iter)
+{
+    char path[512];
+    cx_diag d;
+    cx_problem *p = NULL;
+    cx_friction_state fr;
+    memset(o, 0, sizeof *o);
+    if (cx_scene_resolve(id, path, sizeof path, &d) || cx_scene_load(&o->sc, path, &d) ||
+        cx_scene_build(&o->sc, level, &p, &fr, &d) || cx_session_create(&o->s, &p, &d) ||
+        cx_session_set_friction(o->s, &fr, &d) ||
+        cx_session_set_method(o->s, cx_method_find(o->sc.methods[0]), NULL, NULL, &d)) {
+        fprintf(stderr, "%s level %d: %s\n", id, level, d.msg);
+        exit(2);
+    }
+    if (max_iter > 0) {
+        cx_options opt = *cx_session_options(o->s);
+        opt.max_iter = max_iter;
+        cx_session_set_options(o->s, &opt);
+    }
+    if (cx_solver_solve(o->s, NULL, NULL, &d) ||
+        cx_result_from_session(&o->r, o->s, &o->sc, level, &d)) {
+        fprintf(stderr, "%s level %d: %s\n", id, level, d.msg);
+        exit(2);
+    }
+}
+
+static void solved_free(solved *o)
+{
+    cx_result_destroy(&o->r);
+    cx_session_destroy(&o->s);
+}
+
+static int render_read(cx_result *r, const cx_render_opts *o, test_png *img)
+{
+    cx_diag d;
+    if (cx_render_png(r, o, OUT, NULL, &d) != CX_OK) {
+        fprintf(stderr, "render: %s\n", d.msg);
+        return -1;
+    }
+    return test_png_read(img, OUT);
+}
+
+/* The pixel row of the world point (x, y) of a 2D image. */
+static double row_of(cx_result *r, const cx_render_opts *o, double x, double y)
+{
+    double w[2] = {x, y}, px[2];
+    CX_CHECK_OK(cx_render_project(r, o, w, px, NULL));
+    return px[1];
+}
+
+/* Masonry walls (the left half of the ground settles by g = gap H): no
+ * body pixel below the drawn ground line. The body is drawn flat grey
+ * (status field); the ground is a warm beige with brown hatching
+ * (red well above blue), the background white. */
+static void test_masonry(const char *id, int touches)
+{
+    solved o;
+    solve_scene(&o, id, 5, 0);
+    CX_CHECK(o.r->run.converged);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.field = CX_FIELD_STATUS;
+    double s = cx_render_auto_scale(o.r);
+    double g = o.sc.gap_h / 5;   /* H = 1 / courses */
+    CX_CHECK(s > 1 && g > 0);
+    /* the solver's obstacle in the result: the lowered plane */
+    CX_CHECK_NEAR(o.r->obstacle.point[1], -g, 1e-12, 1e-15);
+    test_png img;
+    if (render_read(o.r, &opt, &img) != 0) {
+        CX_CHECK(0);
+        solved_free(&o);
+        return;
+    }
+    cx_render_layout l;
+    cx_render_layout_get(img.w, img.h, &l);
+    /* the drawn line: at -s g (the settled points moved by -g, drawn by -s g) */
+    double line = row_of(o.r, &opt, 0.5, -s * g);
+    int xl = (int)(l.area[0] + 3);
+    const unsigned char *c = test_png_px(&img, xl, (int)lround(line));
+    CX_CHECK(c[0] < 130 && c[0] > c[2]);   /* the dark brown ground line */
+    /* below it (past the markers on it), only ground or background */
+    double wl[2] = {0, 0}, wr[2] = {1, 0}, pl[2], pr[2];
+    cx_render_project(o.r, &opt, wl, pl, NULL);
+    cx_render_project(o.r, &opt, wr, pr, NULL);
+    int bad = 0, seen = 0;
+    for (int y = (int)ceil(line + 8); y < (int)(l.area[1] + l.area[3]); y++)
+        for (int x = (int)pl[0]; x <= (int)pr[0]; x++) {
+            c = test_png_px(&img, x, y);
+            int white = c[0] > 250 && c[1] > 250 && c[2] > 250;
+            seen++;
+            bad += !white && c[0] - c[2] < 8;
+        }
+    if (bad)
+        fprintf(stderr, "%s: %d body pixels below the ground line (row %.1f)\n", id, bad, line);
+    CX_CHECK(seen > 1000 && bad == 0);
+    /* and the settled part sits on it: body pixels just above the line
+     * at x = 0.25 (laminae's bottom strip bends less than g: no contact) */
+    double pm[2], wm[2] = {0.25, -s * g + 0.02};
+    cx_render_project(o.r, &opt, wm, pm, NULL);
+    c = test_png_px(&img, (int)pm[0], (int)pm[1]);
+    if (touches && !(c[0] < 250 && abs(c[0] - c[2]) < 8))
+        fprintf(stderr, "%s: (%d, %d, %d) above the line at x = 0.25\n", id, c[0], c[1], c[2]);
+    CX_CHECK(!touches || (c[0] < 250 && abs(c[0] - c[2]) < 8));
+    test_png_free(&img);
+    solved_free(&o);
+}
+
+/* Hertz at the automatic scale: never shrunk (s >= 1), and every point in
+ * contact drawn within 1 px of the drawn rigid line, which is where the
+ * image shows it. */
+static void test_hertz_contact(void)
+{
+    solved o;
+    solve_scene(&o, "hertz", 32, 0);
+    cx_result *r = o.r;
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.field = CX_FIELD_VON_MISES;
+    double s = cx_render_auto_scale(r);
+    CX_CHECK(s >= 1);
+    test_png img;
+    if (render_read(r, &opt, &img) != 0) {
+        CX_CHECK(0);
+        solved_free(&o);
+        return;
+    }
+    cx_render_layout l;
+    cx_render_layout_get(img.w, img.h, &l);
+    double line = row_of(r, &opt, 0, 0);
+    /* the drawn line: the darkest row of a column right of the body */
+    int x = (int)(l.area[0] + l.area[2] - 6), best = 0, dark = 999;
+    for (int y = (int)(l.area[1] + 0.5 * l.area[3]); y < (int)(l.area[1] + l.area[3]); y++) {
+        const unsigned char *c = test_png_px(&img, x, y);
+        if (c[0] + c[1] + c[2] < dark) {
+            dark = c[0] + c[1] + c[2];
+            best = y;
+        }
+    }
+    CX_CHECK(fabs(best + 0.5 - line) <= 1.5);
+    int ncontact = 0;
+    double worst = 0;
+    for (int i = 0; i < r->m; i++) {
+        if (r->status[i] == CX_PT_FREE)
+            continue;
+        int n = r->contact.node[i];
+        double xd[2] = {r->mesh->x[2 * n] + s * r->u[2 * n], r->mesh->x[2 * n + 1] + s * r->u[2 * n + 1]}, px[2];
+        cx_render_project(r, &opt, xd, px, NULL);
+        worst = fmax(worst, fabs(px[1] - line));
+        ncontact++;
+    }
+    fprintf(stderr, "hertz: scale %.3g, %d points in contact, at most %.3g px off the line\n", s,
+            ncontact, worst);
+    CX_CHECK(ncontact >= 10 && worst <= 1.0);
+    test_png_free(&img);
+    solved_free(&o);
+}
+
+int main(void)
+{
+    test_masonry("stackbond", 1);
+    test_masonry("runningbond", 1);
+    test_masonry("laminae", 0);
+    test_hertz_contact();
+    if (!getenv("CX_TEST_KEEP"))
+        remove(OUT);
+    return check_finish("render_figures");
+}
