@@ -18,6 +18,28 @@ void cx_render_layout_get(int w, int h, cx_render_layout *l)
     l->bar[1] = l->area[1] + 40 * s;
     l->bar[2] = 28 * s;
     l->bar[3] = l->area[3] - 80 * s;
+    l->banner[0] = l->area[0];
+    l->banner[1] = l->area[1];
+    l->banner[2] = w - 20 * s - l->area[0];
+    l->banner[3] = 0;
+}
+
+int cx_render_unconverged(const cx_run_record *run)
+{
+    return run->reason < 0 || (run->reason == CX_ITERATING && run->iterations > 0);
+}
+
+void cx_render_layout_run(const cx_run_record *run, int w, int h, cx_render_layout *l)
+{
+    cx_render_layout_get(w, h, l);
+    if (!cx_render_unconverged(run))
+        return;
+    double s = fmin(w / 1200.0, h / 900.0), bh = 34 * s, move = bh + 8 * s;
+    l->banner[3] = bh;
+    l->area[1] += move;
+    l->area[3] -= move;
+    l->bar[1] += move;
+    l->bar[3] -= move;
 }
 
 static void cam_cross(const double *a, const double *b, double *c)
@@ -80,7 +102,7 @@ static void cam_add_array(cam_box *b, const double *R, const cx_render_array *a)
 void cx_render_camera(cx_render_scene *sc)
 {
     cx_render_layout l;
-    cx_render_layout_get(sc->w, sc->h, &l);
+    cx_render_layout_run(&sc->r->run, sc->w, sc->h, &l);
     const cx_obstacle *ob = sc->obstacle;
     if (sc->dim == 2) {
         const double e[3] = {0, 0, 1}, up[3] = {0, 1, 0};

@@ -1,8 +1,11 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Colormaps: a perceptual one for magnitudes (a polynomial fit of
  * matplotlib's viridis) and a diverging one for signed fields (Moreland's
- * cool-warm, control points every 1/8), and the status colours. */
+ * cool-warm, control points every 1/8), and the status colours (the one
+ * table of out/palette.h). */
 #include "render/render.h"
+
+#include "out/palette.h"
 
 #include <math.h>
 
@@ -59,14 +62,8 @@ void cx_colormap(int diverging, double t, unsigned char rgb[3])
 
 void cx_status_color(int status, unsigned char rgb[3])
 {
-    static const unsigned char c[5][3] = {
-        {150, 150, 150},   /* free: grey */
-        {31, 119, 180},    /* contact (frictionless): blue */
-        {44, 160, 44},     /* stick: green */
-        {214, 39, 40},     /* slip +: red */
-        {214, 39, 40}};    /* slip -: red (the arrow tells the direction) */
-    int s = status >= 0 && status <= 4 ? status : 0;
-    rgb[0] = c[s][0];
-    rgb[1] = c[s][1];
-    rgb[2] = c[s][2];
+    int s = status >= 0 && status < CX_PALETTE_NSTATUS ? status : 0;
+    rgb[0] = cx_palette_status[s][0];
+    rgb[1] = cx_palette_status[s][1];
+    rgb[2] = cx_palette_status[s][2];
 }

@@ -281,6 +281,10 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
         cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
                          sizeof outcome);
         snprintf(scale, sizeof scale, "%.6g", sc.scale);
+        char tol[32], iters[32], args[1024];
+        snprintf(tol, sizeof tol, "%.6g", run->tol);
+        snprintf(iters, sizeof iters, "%d", run->iterations);
+        cx_run_record_solve_args(run, args, sizeof args);
         cx_png_text text[] = {
             {"Title", run->title},
             {"scene", run->scene},
@@ -291,7 +295,12 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
             {"slip bound", slip},
             {"parameters", run->params_text},
             {"kkt error", kkt},
+            {"converged", run->converged ? "yes" : "no"},
+            {"reason", cx_reason_id(run->reason)},
+            {"tolerance", tol},
+            {"iterations", iters},
             {"outcome", outcome},
+            {"solve options", args},
             {"field", cx_field_name(o->field)},
             {"displacement scale", scale},
             {"Software", "signorini " CX_VERSION},

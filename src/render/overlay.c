@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "out/palette.h"
 #include "render/axis.h"
 #include "render/text.h"
 
@@ -44,6 +45,32 @@ static void ov_title(const cx_render_scene *sc, cairo_t *cr, double s)
     cx_text_fit(cr, line, 20 * s, 46 * s, 15 * s, 0, 0, 0, sc->w - 40 * s);
 }
 
+/* A run that did not converge says so above the drawing, in the outcome
+ * sentence of solve/ (cx_reason_format), on a band no reader can miss. */
+static void ov_banner(const cx_render_scene *sc, cairo_t *cr, double s)
+{
+    const cx_run_record *run = &sc->r->run;
+    cx_render_layout l;
+    cx_render_layout_run(run, sc->w, sc->h, &l);
+    if (!(l.banner[3] > 0))
+        return;
+    char outcome[CX_DIAG_LEN + 160], line[CX_DIAG_LEN + 200];
+    if (run->reason == CX_ITERATING)
+        snprintf(outcome, sizeof outcome, "still running: iteration %d, kkt error %.1e > tol %.0e",
+                 run->iterations, run->kkt, run->tol);
+    else
+        cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
+                         sizeof outcome);
+    /* the sentence says it already when it is "did not converge ..." */
+    snprintf(line, sizeof line, "%s%s", strstr(outcome, "not converge") ? "" : "not converged: ", outcome);
+    cairo_set_source_rgb(cr, CX_PALETTE_WARNING_RGB);
+    cairo_rectangle(cr, l.banner[0], l.banner[1], l.banner[2], l.banner[3]);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cx_text_fit(cr, line, l.banner[0] + 12 * s, l.banner[1] + 0.5 * l.banner[3], 17 * s, 1, 0, 0.5,
+                l.banner[2] - 24 * s);
+}
+
 static const char *ov_units(int f)
 {
     if (f >= CX_FIELD_UMAG && f <= CX_FIELD_UZ)
@@ -54,7 +81,7 @@ static const char *ov_units(int f)
 static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
 {
     cx_render_layout l;
-    cx_render_layout_get(sc->w, sc->h, &l);
+    cx_render_layout_run(&sc->r->run, sc->w, sc->h, &l);
     double x = l.bar[0], y = l.bar[1], bw = l.bar[2], bh = l.bar[3];
     int div = cx_field_is_signed(sc->o->field);
     int nb = (int)ceil(bh);
@@ -92,7 +119,7 @@ static void ov_obstacle2d(const cx_render_scene *sc, cairo_t *cr, double s)
     if (!ob)
         return;
     cx_render_layout l;
-    cx_render_layout_get(sc->w, sc->h, &l);
+    cx_render_layout_run(&sc->r->run, sc->w, sc->h, &l);
     cairo_save(cr);
     cairo_rectangle(cr, l.area[0], l.area[1], l.area[2], l.area[3]);
     cairo_clip(cr);
@@ -429,6 +456,7 @@ void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr)
     int hidden = sc->dim == 3 && sc->o->view == CX_VIEW_BODY && sc->r->m > 0 &&
                  (f == CX_FIELD_PRESSURE || (f == CX_FIELD_STATUS && shown == 0));
     ov_title(sc, cr, s);
+    ov_banner(sc, cr, s);
     if (f != CX_FIELD_STATUS)
         ov_colorbar(sc, cr, s);
     ov_notes(sc, cr, s, markers, hidden);

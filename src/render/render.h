@@ -102,8 +102,16 @@ double cx_render_auto_scale(const cx_result *r);
 typedef struct cx_render_layout {
     double area[4];   /* x, y, w, h of the body's drawing area */
     double bar[4];    /* x, y, w, h of the colour bar gradient */
+    double banner[4]; /* x, y, w, h of the "not converged" banner (h = 0: none) */
 } cx_render_layout;
 void cx_render_layout_get(int w, int h, cx_render_layout *l);
+/* The layout of an image of a run: with the banner above the drawing
+ * area (which moves down to make room) when cx_render_unconverged(run). */
+void cx_render_layout_run(const cx_run_record *run, int w, int h, cx_render_layout *l);
+/* Non-zero if the image of this run must say that it did not converge:
+ * it ended without converging, or it is still running (a snapshot). A
+ * result without a run (no iterations, reason 0) is not flagged. */
+int cx_render_unconverged(const cx_run_record *run);
 
 /* The pixel (top-left origin) where the world point x (dim coordinates,
  * in the drawn frame: deformed points are x + scale u) appears in the image

@@ -2,12 +2,14 @@
 /* Figures for a paper (issue 22), checked on the pixels: bodies in contact
  * drawn on the obstacle where the solver has it (the masonry walls on
  * their lowered ground, hertz's contact points on the rigid line at the
- * automatic scale). */
+ * automatic scale); a run that did not converge says so on a banner and
+ * in the PNG's text chunks; the status colours are out/palette.h's. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "check.h"
+#include "out/palette.h"
 #include "pngread.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -179,12 +181,77 @@ static void test_hertz_contact(void)
     solved_free(&o);
 }
 
+/* A run stopped by --max-iter 1: the banner in the warning colour where
+ * the layout puts it (not on the converged image), and the run in the
+ * text chunks, with the solve arguments that repeat it. */
+static void test_unconverged(void)
+{
+    solved o, ok;
+    solve_scene(&o, "hertz", 8, 1);
+    solve_scene(&ok, "hertz", 8, 0);
+    CX_CHECK(!o.r->run.converged && o.r->run.reason == CX_DIVERGED_MAXIT && ok.r->run.converged);
+    CX_CHECK(cx_render_unconverged(&o.r->run) && !cx_render_unconverged(&ok.r->run));
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.width = 600;
+    opt.height = 450;
+    const unsigned char warn[3] = {(unsigned char)lround(255 * 0.66), (unsigned char)lround(255 * 0.22), 0};
+    for (int pass = 0; pass < 2; pass++) {
+        solved *x = pass ? &ok : &o;
+        test_png img;
+        if (render_read(x->r, &opt, &img) != 0) {
+            CX_CHECK(0);
+            continue;
+        }
+        cx_render_layout l;
+        cx_render_layout_run(&x->r->run, img.w, img.h, &l);
+        if (pass == 0) {
+            CX_CHECK(l.banner[3] > 10);
+            /* the band's right end (past the text) and its left margin */
+            int n = 0;
+            for (int k = 0; k < 3; k++) {
+                int px = (int)(k == 0 ? l.banner[0] + 2 : l.banner[0] + l.banner[2] - 3 - 3 * k);
+                int py = (int)(l.banner[1] + (0.25 + 0.25 * k) * l.banner[3]);
+                const unsigned char *c = test_png_px(&img, px, py);
+                n += abs(c[0] - warn[0]) + abs(c[1] - warn[1]) + abs(c[2] - warn[2]) < 6;
+            }
+            CX_CHECK(n == 3);
+            /* white text on it: a few hundred near-white pixels in the band */
+            long white = 0;
+            for (int y = (int)l.banner[1]; y < (int)(l.banner[1] + l.banner[3]); y++)
+                for (int xx = (int)l.banner[0]; xx < (int)(l.banner[0] + l.banner[2]); xx++) {
+                    const unsigned char *c = test_png_px(&img, xx, y);
+                    white += c[0] > 220 && c[1] > 200 && c[2] > 200;
+                }
+            CX_CHECK(white > 150);
+            /* the body is drawn below the banner */
+            CX_CHECK(l.area[1] >= l.banner[1] + l.banner[3]);
+        } else {
+            CX_CHECK(l.banner[3] == 0);
+            CX_CHECK(test_png_count(&img, warn[0], warn[1], warn[2], 4) < 20);
+        }
+        const char *t;
+        CX_CHECK((t = test_png_text(&img, "converged")) && strcmp(t, pass ? "yes" : "no") == 0);
+        CX_CHECK((t = test_png_text(&img, "reason")) && strcmp(t, pass ? "converged" : "max_iter") == 0);
+        CX_CHECK((t = test_png_text(&img, "tolerance")) && atof(t) == 1e-10);
+        CX_CHECK((t = test_png_text(&img, "iterations")) && atoi(t) == x->r->run.iterations);
+        CX_CHECK(pass || atoi(t) == 1);
+        CX_CHECK((t = test_png_text(&img, "solve options")) &&
+                 strncmp(t, "hertz --level 8 --method ssn-tresca --set rho=0.001 --friction none --tol 1e-10 ", 80) == 0);
+        CX_CHECK(t && strstr(t, pass ? "--max-iter 500 --stop own" : "--max-iter 1 --stop own") && !strstr(t, ".png"));
+        test_png_free(&img);
+    }
+    solved_free(&o);
+    solved_free(&ok);
+}
+
 int main(void)
 {
     test_masonry("stackbond", 1);
     test_masonry("runningbond", 1);
     test_masonry("laminae", 0);
     test_hertz_contact();
+    test_unconverged();
     if (!getenv("CX_TEST_KEEP"))
         remove(OUT);
     return check_finish("render_figures");
