@@ -115,7 +115,10 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     snprintf(title, sizeof title, "%s level %d: contact pressure (%s, kkt %.1e)", sc->id,
              res->run.level, res->run.method, res->run.kkt);
     cx_plot pl;
-    cx_plot_init(&pl, title, "x (position along the contact boundary)", "contact pressure [units of E]");
+    char xlab[128], ylab[128];
+    cx_quantity_label(&res->run, "x, position along the contact boundary", 0, xlab, sizeof xlab);
+    cx_field_axis_label(&res->run, CX_FIELD_PRESSURE, ylab, sizeof ylab);
+    cx_plot_init(&pl, title, xlab, ylab);
     cx_plot_add_series(&pl, "computed (nodal force / lumped length)", m, x, y, CX_PLOT_MARKERS);
     if (sc->has_hertz) {
         /* the analytical curve on a fine grid, so that it is smooth */

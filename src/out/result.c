@@ -152,6 +152,8 @@ int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *s
     if (sc) {
         snprintf(run->scene, sizeof run->scene, "%s", sc->id);
         snprintf(run->title, sizeof run->title, "%s", sc->title);
+        snprintf(run->unit_length, sizeof run->unit_length, "%s", sc->unit_length);
+        snprintf(run->unit_stress, sizeof run->unit_stress, "%s", sc->unit_stress);
         x->has_obstacle = !sc->contact_master[0];
         cx_scene_obstacle(sc, level, &x->obstacle);   /* where the solver has it */
         double pa, pr;

@@ -24,6 +24,8 @@
 typedef struct cx_run_record {
     char scene[CX_SCENE_NAMELEN];   /* scene id ("" = none) */
     char title[128];                /* scene title */
+    char unit_length[16];           /* the scene's declared units ([units]; "" = none) */
+    char unit_stress[16];
     int level;                      /* mesh level */
     char method[CX_SCENE_NAMELEN];  /* method id ("" = none) */
     int method_auto;                /* chosen by --method auto (set by the program) */

@@ -71,13 +71,6 @@ static void ov_banner(const cx_render_scene *sc, cairo_t *cr, double s)
                 l.banner[2] - 24 * s);
 }
 
-static const char *ov_units(int f)
-{
-    if (f >= CX_FIELD_UMAG && f <= CX_FIELD_UZ)
-        return "length units";
-    return "units of E";
-}
-
 static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
 {
     cx_render_layout l;
@@ -107,8 +100,8 @@ static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
         cx_axis_label(&ax, ax.ticks[i], lab, sizeof lab);
         cx_text(cr, lab, x + bw + 9 * s, ty, 14 * s, 0, 0, 0.5);
     }
-    char title[128];
-    snprintf(title, sizeof title, "%s [%s]", cx_field_label(sc->o->field), ov_units(sc->o->field));
+    char title[160];
+    cx_field_axis_label(&sc->r->run, sc->o->field, title, sizeof title);
     cx_text_vertical(cr, title, sc->w - 16 * s, y + 0.5 * bh, 15 * s, 0);
 }
 

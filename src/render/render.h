@@ -47,6 +47,14 @@ typedef enum cx_field {
 const char *cx_field_name(int f);         /* "von-mises", "sxx", ..., "status" */
 const char *cx_field_label(int f);        /* "von Mises stress", ... */
 int cx_field_from_name(const char *name); /* -1 if unknown */
+/* The label of a quantity with the run's declared units (the scene's
+ * [units]): "what [MPa]" (stress: a stress unit, else a length unit), or
+ * "what (units of the scene)" when none is declared. Into buf; returns it. */
+char *cx_quantity_label(const cx_run_record *run, const char *what, int stress, char *buf,
+                        size_t len);
+/* The colour bar / axis label of field f: "von Mises stress σ_vM [MPa]",
+ * "displacement u_x (units of the scene)"; status: its name alone. */
+char *cx_field_axis_label(const cx_run_record *run, int f, char *buf, size_t len);
 int cx_field_is_stress(int f);
 int cx_field_is_signed(int f);            /* diverging colormap */
 /* CX_OK if the field exists in this dimension, else CX_EINVAL with

@@ -93,6 +93,10 @@ typedef struct cx_scene {
     int nmethods;
     char methods[CX_SCENE_MAX_METHODS][CX_SCENE_NAMELEN];  /* suited, first = default */
 
+    /* [units] (optional): unit names for labels, "" = not declared */
+    char unit_length[16];         /* e.g. "mm" */
+    char unit_stress[16];         /* e.g. "MPa" (stresses, tractions, E) */
+
     /* [hertz] analytical reference (2D): load per unit length P, radius R */
     int has_hertz;
     double hertz_P, hertz_R;

@@ -245,6 +245,72 @@ static void test_unconverged(void)
     solved_free(&ok);
 }
 
+/* Units: the scene's [units] reach the labels; without them the labels
+ * say "(units of the scene)", never "units of E". */
+static void test_units(void)
+{
+    cx_run_record run;
+    memset(&run, 0, sizeof run);
+    char buf[160];
+    cx_field_axis_label(&run, CX_FIELD_VON_MISES, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "von Mises stress σ_vM (units of the scene)") == 0);
+    cx_field_axis_label(&run, CX_FIELD_UX, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "displacement u_x (units of the scene)") == 0);
+    snprintf(run.unit_stress, sizeof run.unit_stress, "MPa");
+    snprintf(run.unit_length, sizeof run.unit_length, "mm");
+    cx_field_axis_label(&run, CX_FIELD_VON_MISES, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "von Mises stress σ_vM [MPa]") == 0);
+    cx_field_axis_label(&run, CX_FIELD_PRESSURE, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "contact pressure p [MPa]") == 0);
+    cx_field_axis_label(&run, CX_FIELD_UMAG, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "displacement |u| [mm]") == 0);
+    cx_field_axis_label(&run, CX_FIELD_SXY, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "stress σ_xy [MPa]") == 0);
+    cx_quantity_label(&run, "x", 0, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "x [mm]") == 0);
+    for (int f = 0; f < CX_FIELD_COUNT; f++) {
+        cx_field_axis_label(&run, f, buf, sizeof buf);
+        CX_CHECK(!strstr(buf, "units of E"));
+    }
+
+    /* the shipped scenes: prism and twoblocks declare SI, hertz nothing */
+    char path[512];
+    cx_diag d;
+    cx_scene sc;
+    CX_CHECK_OK(cx_scene_resolve("twoblocks", path, sizeof path, &d));
+    CX_CHECK_OK(cx_scene_load(&sc, path, &d));
+    CX_CHECK(strcmp(sc.unit_length, "m") == 0 && strcmp(sc.unit_stress, "Pa") == 0);
+    CX_CHECK_OK(cx_scene_resolve("hertz", path, sizeof path, &d));
+    CX_CHECK_OK(cx_scene_load(&sc, path, &d));
+    CX_CHECK(sc.unit_length[0] == 0 && sc.unit_stress[0] == 0);
+
+    /* a scene file with [units], one with a bad name: the key's line */
+    static const char *base = "[scene]\nid = u\ndim = 2\n[mesh]\ngenerator = rectangle\n"
+                              "lo = 0 0\nhi = 1 1\ncells = 1 1\n[material]\nE = 1\nnu = 0.3\n"
+                              "[contact]\nboundary = bottom\nobstacle = plane\npoint = 0 0\n"
+                              "normal = 0 1\n";
+    const char *tails[3] = {"[units]\nlength = mm\nstress = MPa\n", "[units]\nstress = M Pa\n",
+                            "[units]\n"};
+    for (int k = 0; k < 3; k++) {
+        FILE *fp = fopen("test_figures_units.ini", "w");
+        fputs(base, fp);
+        fputs(tails[k], fp);
+        fclose(fp);
+        int rc = cx_scene_load(&sc, "test_figures_units.ini", &d);
+        if (k == 0) {
+            CX_CHECK_OK(rc);
+            CX_CHECK(strcmp(sc.unit_length, "mm") == 0 && strcmp(sc.unit_stress, "MPa") == 0);
+        } else {
+            CX_CHECK(rc == CX_EINVAL);
+            CX_CHECK(strstr(d.msg, k == 1 ? "test_figures_units.ini:18: key 'stress'" :
+                                            "test_figures_units.ini:17: section [units]") != NULL);
+            if (!strstr(d.msg, "test_figures_units.ini"))
+                fprintf(stderr, "units: %s\n", d.msg);
+        }
+    }
+    remove("test_figures_units.ini");
+}
+
 int main(void)
 {
     test_masonry("stackbond", 1);
@@ -252,6 +318,7 @@ int main(void)
     test_masonry("laminae", 0);
     test_hertz_contact();
     test_unconverged();
+    test_units();
     if (!getenv("CX_TEST_KEEP"))
         remove(OUT);
     return check_finish("render_figures");
