@@ -21,6 +21,7 @@ void cx_render_opts_default(cx_render_opts *o)
     o->edges = 0;
     o->view = CX_VIEW_BODY;
     o->msaa = 4;
+    o->font_scale = 1;
 }
 
 static double img_body_size(const cx_mesh *m)
@@ -210,6 +211,8 @@ static int img_check(const cx_result *r, const cx_render_opts *o, cx_diag *d)
     CX_TRY(cx_field_check(o->field, r->dim, d));
     if (o->view == CX_VIEW_CONTACT && r->dim != 3)
         return cx_diag_set(d, CX_EINVAL, "--view contact: only in 3D");
+    if (!(o->font_scale >= 0.25 && o->font_scale <= 4))
+        return cx_diag_set(d, CX_EINVAL, "--font-scale %g: expected 0.25..4", o->font_scale);
     if (o->msaa < 0 || o->msaa > 4)
         return cx_diag_set(d, CX_EINVAL, "msaa %d: expected 0..4 samples", o->msaa);
     return CX_OK;

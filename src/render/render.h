@@ -86,6 +86,7 @@ typedef struct cx_render_opts {
     int edges;                    /* draw mesh edges */
     int view;                     /* cx_view */
     int msaa;                     /* 4 (default) or 0 */
+    double font_scale;            /* text size factor (default 1; 0.5..4) */
 } cx_render_opts;
 
 void cx_render_opts_default(cx_render_opts *o);
@@ -111,11 +112,23 @@ typedef struct cx_render_layout {
     double area[4];   /* x, y, w, h of the body's drawing area */
     double bar[4];    /* x, y, w, h of the colour bar gradient */
     double banner[4]; /* x, y, w, h of the "not converged" banner (h = 0: none) */
+    double font;      /* tick-label font size (pixels): cx_render_font_px */
 } cx_render_layout;
+/* The tick-label font size of a w x h figure (images and plots): 2.2 % of
+ * the width, matplotlib's default ratio (10 pt in a 6.4 inch figure), so
+ * that it stays legible when the figure is printed a column wide; at most
+ * 4.5 % of the height; times font_scale. Titles are 1.2 times larger,
+ * notes 0.8 times. */
+double cx_render_font_px(int w, int h, double font_scale);
+/* The layout at font scale 1 for a converged run. */
 void cx_render_layout_get(int w, int h, cx_render_layout *l);
+/* Every dimension in proportion to the font, at font_scale. */
+void cx_render_layout_font(int w, int h, double font_scale, cx_render_layout *l);
 /* The layout of an image of a run: with the banner above the drawing
  * area (which moves down to make room) when cx_render_unconverged(run). */
 void cx_render_layout_run(const cx_run_record *run, int w, int h, cx_render_layout *l);
+/* The layout of the image that cx_render_png draws of r with o. */
+void cx_render_layout_image(const cx_result *r, const cx_render_opts *o, cx_render_layout *l);
 /* Non-zero if the image of this run must say that it did not converge:
  * it ended without converging, or it is still running (a snapshot). A
  * result without a run (no iterations, reason 0) is not flagged. */

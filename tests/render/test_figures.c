@@ -102,8 +102,15 @@ static void test_masonry(const char *id, int touches)
     /* the drawn line: at -s g (the settled points moved by -g, drawn by -s g) */
     double line = row_of(o.r, &opt, 0.5, -s * g);
     int xl = (int)(l.area[0] + 3);
-    const unsigned char *c = test_png_px(&img, xl, (int)lround(line));
-    CX_CHECK(c[0] < 130 && c[0] > c[2]);   /* the dark brown ground line */
+    /* the dark brown ground line (2 px wide around its row) */
+    int darkest = 255;
+    for (int y = (int)floor(line) - 1; y <= (int)ceil(line) + 1; y++) {
+        const unsigned char *q = test_png_px(&img, xl, y);
+        if (q[0] > q[2])
+            darkest = q[0] < darkest ? q[0] : darkest;
+    }
+    CX_CHECK(darkest < 130);
+    const unsigned char *c;
     /* below it (past the markers on it), only ground or background */
     double wl[2] = {0, 0}, wr[2] = {1, 0}, pl[2], pr[2];
     cx_render_project(o.r, &opt, wl, pl, NULL);
@@ -311,6 +318,88 @@ static void test_units(void)
     remove("test_figures_units.ini");
 }
 
+/* The height of the dark glyphs of the colour bar's lowest tick label
+ * ("0", at the bar's bottom). */
+static int bar_label_height(const test_png *img, const cx_render_layout *l)
+{
+    int x0 = (int)(l->bar[0] + l->bar[2] + 0.3 * l->font), x1 = (int)(x0 + 2.5 * l->font);
+    int yc = (int)(l->bar[1] + l->bar[3]), top = -1, bottom = -1;
+    for (int y = (int)(yc - l->font); y <= (int)(yc + l->font) && y < img->h; y++)
+        for (int x = x0; x < x1 && x < img->w; x++) {
+            const unsigned char *c = test_png_px(img, x, y);
+            if (c[0] < 110 && c[1] < 110 && c[2] < 110) {
+                if (top < 0)
+                    top = y;
+                bottom = y;
+            }
+        }
+    return top < 0 ? 0 : bottom - top + 1;
+}
+
+/* Legible at print size: the tick-label font is at least 2.2 % of the
+ * image width at the default size (measured on the glyphs: a digit is
+ * 0.73 em high in DejaVu Sans), larger with --font-scale; the status
+ * colours are out/palette.h's, on the image too. */
+static void test_legible(void)
+{
+    CX_CHECK(cx_render_font_px(1200, 900, 1) >= 0.022 * 1200 - 1e-9);
+    CX_CHECK(cx_render_font_px(400, 300, 1) >= 0.022 * 400 - 1e-9);
+    CX_CHECK_NEAR(cx_render_font_px(1200, 900, 2), 2 * cx_render_font_px(1200, 900, 1), 1e-12, 0);
+    solved o;
+    solve_scene(&o, "hertz", 8, 0);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    CX_CHECK(opt.font_scale == 1 && opt.width == 1200);
+    test_png img;
+    int hgt[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        opt.font_scale = k ? 1.5 : 1;
+        if (render_read(o.r, &opt, &img) != 0) {
+            CX_CHECK(0);
+            continue;
+        }
+        cx_render_layout l;
+        cx_render_layout_image(o.r, &opt, &l);
+        CX_CHECK_NEAR(l.font, cx_render_font_px(img.w, img.h, opt.font_scale), 1e-12, 0);
+        hgt[k] = bar_label_height(&img, &l);
+        test_png_free(&img);
+    }
+    fprintf(stderr, "legible: the bar's '0' is %d px high at font scale 1, %d at 1.5 (image 1200 px)\n",
+            hgt[0], hgt[1]);
+    CX_CHECK(hgt[0] >= 0.65 * 0.022 * 1200);   /* 0.73 em, less antialiasing */
+    CX_CHECK(hgt[0] <= 1.0 * 0.022 * 1200);
+    CX_CHECK(hgt[1] >= 1.3 * hgt[0]);
+    opt.font_scale = 10;
+    cx_diag d;
+    CX_CHECK(cx_render_png(o.r, &opt, OUT, NULL, &d) == CX_EINVAL && strstr(d.msg, "--font-scale"));
+
+    /* the palette: one table, the renderer's colours, on the image */
+    for (int st = 0; st < CX_PALETTE_NSTATUS; st++) {
+        unsigned char c[3];
+        cx_status_color(st, c);
+        CX_CHECK(memcmp(c, cx_palette_status[st], 3) == 0);
+    }
+    CX_CHECK(memcmp(cx_palette_status[CX_PT_STICK], cx_palette_status[CX_PT_SLIP_POS], 3) != 0 &&
+             memcmp(cx_palette_status[CX_PT_FREE], cx_palette_status[CX_PT_CONTACT], 3) != 0);
+    cx_render_opts_default(&opt);
+    opt.field = CX_FIELD_STATUS;
+    if (render_read(o.r, &opt, &img) == 0) {
+        cx_result *r = o.r;
+        int n = r->contact.node[0];
+        double s = cx_render_auto_scale(r), x[2] = {r->mesh->x[2 * n] + s * r->u[2 * n],
+                                                     r->mesh->x[2 * n + 1] + s * r->u[2 * n + 1]}, px[2];
+        cx_render_project(r, &opt, x, px, NULL);
+        const unsigned char *c = test_png_px(&img, (int)px[0], (int)px[1]);
+        const unsigned char *want = cx_palette_status[r->status[0]];
+        CX_CHECK(r->status[0] == CX_PT_CONTACT);
+        CX_CHECK(abs(c[0] - want[0]) + abs(c[1] - want[1]) + abs(c[2] - want[2]) < 30);
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    solved_free(&o);
+}
+
 int main(void)
 {
     test_masonry("stackbond", 1);
@@ -319,6 +408,7 @@ int main(void)
     test_hertz_contact();
     test_unconverged();
     test_units();
+    test_legible();
     if (!getenv("CX_TEST_KEEP"))
         remove(OUT);
     return check_finish("render_figures");
