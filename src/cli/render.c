@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #if CX_HAVE_RENDER
@@ -42,6 +43,26 @@ static int render_check_size(const char *text, cx_diag *d)
     return CX_OK;
 }
 
+/* --range MIN:MAX: finite numbers, MIN < MAX */
+static int render_parse_range(const char *text, double *lo, double *hi)
+{
+    char *end;
+    *lo = strtod(text, &end);
+    if (end == text || *end != ':')
+        return 0;
+    const char *b = end + 1;
+    *hi = strtod(b, &end);
+    return end != b && *end == '\0' && isfinite(*lo) && isfinite(*hi) && *lo < *hi;
+}
+
+static int render_check_range(const char *text, cx_diag *d)
+{
+    double lo, hi;
+    if (!render_parse_range(text, &lo, &hi))
+        return cx_diag_set(d, CX_EINVAL, "--range '%s': expected MIN:MAX, finite numbers, MIN < MAX", text);
+    return CX_OK;
+}
+
 const cx_opt cli_render_opts[] = {
     {"png", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
      "also draw the solution (written to a temporary file,\n"
@@ -55,6 +76,17 @@ const cx_opt cli_render_opts[] = {
     {"font-scale", 0, CX_OPT_REAL, 0.25, 4, 0, NULL, "K",
      "text size factor (default 1: tick labels 2.2 % of the image\n"
      "width, legible when printed a column wide)", offsetof(cli_render_args, font_scale), NULL},
+    {"cmap", 0, CX_OPT_CHOICE, 0, 0, 0, "auto|viridis|cividis|magma|coolwarm|gray",
+     "auto|viridis|cividis|magma|coolwarm|gray",
+     "colormap (default auto: viridis for magnitudes, coolwarm\n"
+     "for signed fields)", offsetof(cli_render_args, cmap), NULL},
+    {"range", 0, CX_OPT_STRING, 0, 0, 0, NULL, "MIN:MAX",
+     "fixed colour range, so that several figures share one\n"
+     "(default: the field's)", offsetof(cli_render_args, range), render_check_range},
+    {"title", 0, CX_OPT_STRING, 0, 0, 0, NULL, "TEXT", "the image's title (default: the scene's)",
+     offsetof(cli_render_args, title), NULL},
+    {"no-title", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no title lines (for a figure with a caption)",
+     offsetof(cli_render_args, no_title), NULL},
     {"size", 0, CX_OPT_STRING, 0, 0, 0, NULL, "WxH", "image size in pixels (default 1200x900)",
      offsetof(cli_render_args, size), render_check_size},
     {"view", 0, CX_OPT_CHOICE, 0, 0, 0, "body|contact", "body|contact",
@@ -250,6 +282,11 @@ static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *
     o.height = r->h;
     o.scale = r->scale;
     o.font_scale = r->font_scale;
+    o.cmap = r->cmap - 1;
+    o.no_title = r->no_title;
+    o.title = r->title;
+    if (r->range && render_parse_range(r->range, &o.range_lo, &o.range_hi))
+        o.has_range = 1;
     o.edges = r->edges;
     o.view = r->view;
     if (r->field_name && (o.field = cx_field_from_name(r->field_name)) < 0)

@@ -66,6 +66,14 @@ void cx_render_layout_run(const cx_run_record *run, int w, int h, cx_render_layo
 void cx_render_layout_image(const cx_result *r, const cx_render_opts *o, cx_render_layout *l)
 {
     cx_render_layout_font(o->width, o->height, o->font_scale, l);
+    if (o->no_title) {   /* the drawing moves up into the title's room */
+        double up = l->area[1] - 0.75 * l->font;
+        l->area[1] -= up;
+        l->area[3] += up;
+        l->bar[1] -= up;
+        l->bar[3] += up;
+        l->banner[1] = l->area[1];
+    }
     layout_banner(&r->run, l);
 }
 

@@ -22,6 +22,7 @@ void cx_render_opts_default(cx_render_opts *o)
     o->view = CX_VIEW_BODY;
     o->msaa = 4;
     o->font_scale = 1;
+    o->cmap = CX_CMAP_AUTO;
 }
 
 static double img_body_size(const cx_mesh *m)
@@ -147,6 +148,11 @@ static void img_range(cx_render_scene *sc)
         sc->lo = fmin(lo, 0.0);
         sc->hi = hi;
     }
+    if (sc->o->has_range) {   /* the user's: shared by several figures */
+        sc->lo = sc->o->range_lo;
+        sc->hi = sc->o->range_hi;
+        return;
+    }
     if (!(sc->hi > sc->lo)) {   /* a constant field: a unit range around it */
         double c = sc->lo;
         sc->lo = cx_field_is_signed(sc->o->field) || c != 0 ? c - 1 : 0;
@@ -211,6 +217,11 @@ static int img_check(const cx_result *r, const cx_render_opts *o, cx_diag *d)
     CX_TRY(cx_field_check(o->field, r->dim, d));
     if (o->view == CX_VIEW_CONTACT && r->dim != 3)
         return cx_diag_set(d, CX_EINVAL, "--view contact: only in 3D");
+    if (o->cmap < CX_CMAP_AUTO || o->cmap >= CX_CMAP_COUNT)
+        return cx_diag_set(d, CX_EINVAL, "--cmap %d: unknown colormap", o->cmap);
+    if (o->has_range && !(isfinite(o->range_lo) && isfinite(o->range_hi) && o->range_lo < o->range_hi))
+        return cx_diag_set(d, CX_EINVAL, "--range %g:%g: expected finite MIN < MAX", o->range_lo,
+                           o->range_hi);
     if (!(o->font_scale >= 0.25 && o->font_scale <= 4))
         return cx_diag_set(d, CX_EINVAL, "--font-scale %g: expected 0.25..4", o->font_scale);
     if (o->msaa < 0 || o->msaa > 4)
@@ -286,6 +297,8 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
         snprintf(scale, sizeof scale, "%.6g", sc.scale);
         char tol[32], iters[32], args[1024];
         snprintf(tol, sizeof tol, "%.6g", run->tol);
+        char range[80];
+        snprintf(range, sizeof range, "%.9g:%.9g%s", sc.lo, sc.hi, o->has_range ? " (set)" : "");
         snprintf(iters, sizeof iters, "%d", run->iterations);
         cx_run_record_solve_args(run, args, sizeof args);
         cx_png_text text[] = {
@@ -306,6 +319,8 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
             {"solve options", args},
             {"field", cx_field_name(o->field)},
             {"displacement scale", scale},
+            {"colour range", range},
+            {"colormap", cx_cmap_name(o->cmap)},
             {"Software", "signorini " CX_VERSION},
         };
         rc = cx_png_write_xrgb(path, out, sc.w, sc.h, stride, text,

@@ -36,8 +36,11 @@ static void ov_title(const cx_render_scene *sc, cairo_t *cr)
     const cx_run_record *run = &sc->r->run;
     double F = ov_font(sc), m = 0.75 * F;
     char line[512], fr[96];
+    if (sc->o->no_title)
+        return;
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    cx_text_fit(cr, run->title[0] ? run->title : run->scene, m, 0.45 * F, 1.2 * F, 1, 0, 0, sc->w - 2 * m);
+    cx_text_fit(cr, sc->o->title ? sc->o->title : run->title[0] ? run->title : run->scene, m, 0.45 * F,
+                1.2 * F, 1, 0, 0, sc->w - 2 * m);
     if (run->friction == CX_FRICTION_COULOMB)
         snprintf(fr, sizeof fr, "Coulomb F = %g", run->F);
     else if (run->friction == CX_FRICTION_TRESCA)
@@ -98,7 +101,7 @@ static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
     int nb = (int)ceil(bh);
     for (int i = 0; i < nb; i++) {
         unsigned char c[3];
-        cx_colormap(div, 1.0 - (i + 0.5) / nb, c);
+        cx_colormap_named(sc->o->cmap, div, 1.0 - (i + 0.5) / nb, c);
         ov_rgb(cr, c);
         cairo_rectangle(cr, x, y + bh * i / nb, bw, bh / nb + 0.6);
         cairo_fill(cr);
@@ -261,7 +264,7 @@ static void ov_band2d(const cx_render_scene *sc, cairo_t *cr, double s)
             cx_status_color(a, c);
         } else {
             double v = 0.5 * (sc->val[e[0]] + sc->val[e[2]]);
-            cx_colormap(0, (v - sc->lo) / (sc->hi - sc->lo), c);
+            cx_colormap_named(sc->o->cmap, 0, (v - sc->lo) / (sc->hi - sc->lo), c);
         }
         ov_rgb(cr, c);
         cairo_move_to(cr, pa[0], pa[1]);

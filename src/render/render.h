@@ -72,6 +72,21 @@ int cx_field_nodal(cx_result *r, int f, double *val, cx_diag *d);
 /* Colour of t in [0, 1] (clamped): perceptual (viridis-like) for
  * magnitudes, diverging blue-grey-red for signed fields. rgb in [0, 255]. */
 void cx_colormap(int diverging, double t, unsigned char rgb[3]);
+/* Named colormaps (--cmap); CX_CMAP_AUTO: viridis for magnitudes,
+ * coolwarm for signed fields. */
+typedef enum cx_cmap {
+    CX_CMAP_AUTO = -1,
+    CX_CMAP_VIRIDIS,
+    CX_CMAP_CIVIDIS,
+    CX_CMAP_MAGMA,
+    CX_CMAP_COOLWARM,
+    CX_CMAP_GRAY,
+    CX_CMAP_COUNT
+} cx_cmap;
+const char *cx_cmap_name(int cmap);          /* "viridis", ...; "auto" */
+int cx_cmap_from_name(const char *name);     /* -2 if unknown ("auto": CX_CMAP_AUTO) */
+/* Colour of t in [0, 1] (clamped) in colormap cmap; AUTO as cx_colormap(diverging). */
+void cx_colormap_named(int cmap, int diverging, double t, unsigned char rgb[3]);
 /* The marker colour of a contact status (cx_point_status). */
 void cx_status_color(int status, unsigned char rgb[3]);
 
@@ -86,7 +101,12 @@ typedef struct cx_render_opts {
     int edges;                    /* draw mesh edges */
     int view;                     /* cx_view */
     int msaa;                     /* 4 (default) or 0 */
-    double font_scale;            /* text size factor (default 1; 0.5..4) */
+    double font_scale;            /* text size factor (default 1; 0.25..4) */
+    int cmap;                     /* cx_cmap (default CX_CMAP_AUTO) */
+    int has_range;                /* colour range fixed to [range_lo, range_hi] */
+    double range_lo, range_hi;    /* (so that several figures share one scale) */
+    int no_title;                 /* no title lines (a caption says it) */
+    const char *title;            /* the title instead of the scene's (NULL: the scene's) */
 } cx_render_opts;
 
 void cx_render_opts_default(cx_render_opts *o);

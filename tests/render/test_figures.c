@@ -3,7 +3,8 @@
  * drawn on the obstacle where the solver has it (the masonry walls on
  * their lowered ground, hertz's contact points on the rigid line at the
  * automatic scale); a run that did not converge says so on a banner and
- * in the PNG's text chunks; the status colours are out/palette.h's. */
+ * in the PNG's text chunks; units in the labels; the font size rule and
+ * the status colours of out/palette.h; --cmap, --range, --no-title. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -400,6 +401,64 @@ static void test_legible(void)
     solved_free(&o);
 }
 
+/* Control: --cmap, --range, --no-title. */
+static void test_control(void)
+{
+    unsigned char c[3];
+    /* the published maps at their samples */
+    cx_colormap_named(CX_CMAP_MAGMA, 0, 0.5, c);
+    CX_CHECK(c[0] == 183 && c[1] == 55 && c[2] == 121);
+    cx_colormap_named(CX_CMAP_CIVIDIS, 0, 1.0, c);
+    CX_CHECK(c[0] == 254 && c[1] == 232 && c[2] == 56);
+    cx_colormap_named(CX_CMAP_GRAY, 0, 0.5, c);
+    CX_CHECK(c[0] == c[1] && c[1] == c[2]);
+    CX_CHECK(cx_cmap_from_name("magma") == CX_CMAP_MAGMA && cx_cmap_from_name("auto") == CX_CMAP_AUTO &&
+             cx_cmap_from_name("jet") == -2);
+    solved o;
+    solve_scene(&o, "hertz", 8, 0);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.width = 600;
+    opt.height = 450;
+    opt.cmap = CX_CMAP_CIVIDIS;
+    opt.has_range = 1;
+    opt.range_lo = 0;
+    opt.range_hi = 1000;
+    opt.no_title = 1;
+    test_png img;
+    if (render_read(o.r, &opt, &img) == 0) {
+        cx_render_layout l;
+        cx_render_layout_image(o.r, &opt, &l);
+        CX_CHECK(l.area[1] < l.font);   /* the drawing takes the title's room */
+        int bad = 0;
+        for (int k = 0; k <= 8; k++) {
+            double t = 0.05 + 0.9 * k / 8.0;
+            unsigned char want[3];
+            cx_colormap_named(CX_CMAP_CIVIDIS, 0, t, want);
+            const unsigned char *q = test_png_px(&img, (int)(l.bar[0] + 0.5 * l.bar[2]),
+                                                 (int)(l.bar[1] + (1 - t) * l.bar[3]));
+            bad += abs(q[0] - want[0]) + abs(q[1] - want[1]) + abs(q[2] - want[2]) > 12;
+        }
+        CX_CHECK(bad == 0);
+        const char *t = test_png_text(&img, "colour range");
+        CX_CHECK(t && strcmp(t, "0:1000 (set)") == 0);
+        CX_CHECK((t = test_png_text(&img, "colormap")) && strcmp(t, "cividis") == 0);
+        /* no title: the top rows are white */
+        long dark = 0;
+        for (int y = 0; y < (int)(0.6 * l.font); y++)
+            for (int x = 0; x < img.w; x++)
+                dark += test_png_px(&img, x, y)[0] < 200;
+        CX_CHECK(dark == 0);
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    cx_diag d;
+    opt.range_hi = -1;
+    CX_CHECK(cx_render_png(o.r, &opt, OUT, NULL, &d) == CX_EINVAL && strstr(d.msg, "--range"));
+    solved_free(&o);
+}
+
 int main(void)
 {
     test_masonry("stackbond", 1);
@@ -409,6 +468,7 @@ int main(void)
     test_unconverged();
     test_units();
     test_legible();
+    test_control();
     if (!getenv("CX_TEST_KEEP"))
         remove(OUT);
     return check_finish("render_figures");
