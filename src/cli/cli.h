@@ -24,6 +24,9 @@ typedef struct cli_render_args {
     const char *png, *vtu, *field_name, *size;
     int plot;            /* -1 none, 0 pressure, 1 convergence, 2 work */
     double scale;        /* 0: auto */
+    double font_scale;   /* text size factor (1) */
+    int cmap, no_title;  /* --cmap index (0 auto, then cx_cmap + 1), --no-title */
+    const char *range, *title;   /* --range MIN:MAX, --title TEXT */
     int w, h, view, edges, vtu_ascii, timing;
 } cli_render_args;
 void cli_render_args_init(cli_render_args *r);

@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #if CX_HAVE_RENDER
@@ -42,6 +43,26 @@ static int render_check_size(const char *text, cx_diag *d)
     return CX_OK;
 }
 
+/* --range MIN:MAX: finite numbers, MIN < MAX */
+static int render_parse_range(const char *text, double *lo, double *hi)
+{
+    char *end;
+    *lo = strtod(text, &end);
+    if (end == text || *end != ':')
+        return 0;
+    const char *b = end + 1;
+    *hi = strtod(b, &end);
+    return end != b && *end == '\0' && isfinite(*lo) && isfinite(*hi) && *lo < *hi;
+}
+
+static int render_check_range(const char *text, cx_diag *d)
+{
+    double lo, hi;
+    if (!render_parse_range(text, &lo, &hi))
+        return cx_diag_set(d, CX_EINVAL, "--range '%s': expected MIN:MAX, finite numbers, MIN < MAX", text);
+    return CX_OK;
+}
+
 const cx_opt cli_render_opts[] = {
     {"png", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
      "also draw the solution (written to a temporary file,\n"
@@ -52,6 +73,20 @@ const cx_opt cli_render_opts[] = {
     {"scale", 0, CX_OPT_REAL, 0, INFINITY, CX_OPT_MIN_OPEN | CX_OPT_MAX_OPEN, NULL, "S",
      "displacement magnification (default: auto, the largest\n"
      "displacement drawn as 7 % of the body size)", offsetof(cli_render_args, scale), NULL},
+    {"font-scale", 0, CX_OPT_REAL, 0.25, 4, 0, NULL, "K",
+     "text size factor (default 1: tick labels 2.2 % of the image\n"
+     "width, legible when printed a column wide)", offsetof(cli_render_args, font_scale), NULL},
+    {"cmap", 0, CX_OPT_CHOICE, 0, 0, 0, "auto|viridis|cividis|magma|coolwarm|gray",
+     "auto|viridis|cividis|magma|coolwarm|gray",
+     "colormap (default auto: viridis for magnitudes, coolwarm\n"
+     "for signed fields)", offsetof(cli_render_args, cmap), NULL},
+    {"range", 0, CX_OPT_STRING, 0, 0, 0, NULL, "MIN:MAX",
+     "fixed colour range, so that several figures share one\n"
+     "(default: the field's)", offsetof(cli_render_args, range), render_check_range},
+    {"title", 0, CX_OPT_STRING, 0, 0, 0, NULL, "TEXT", "the image's title (default: the scene's)",
+     offsetof(cli_render_args, title), NULL},
+    {"no-title", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no title lines (for a figure with a caption)",
+     offsetof(cli_render_args, no_title), NULL},
     {"size", 0, CX_OPT_STRING, 0, 0, 0, NULL, "WxH", "image size in pixels (default 1200x900)",
      offsetof(cli_render_args, size), render_check_size},
     {"view", 0, CX_OPT_CHOICE, 0, 0, 0, "body|contact", "body|contact",
@@ -80,6 +115,7 @@ void cli_render_args_init(cli_render_args *r)
 {
     memset(r, 0, sizeof *r);
     r->plot = -1;
+    r->font_scale = 1;
     r->w = 1200;
     r->h = 900;
 }
@@ -115,7 +151,11 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     snprintf(title, sizeof title, "%s level %d: contact pressure (%s, kkt %.1e)", sc->id,
              res->run.level, res->run.method, res->run.kkt);
     cx_plot pl;
-    cx_plot_init(&pl, title, "x (position along the contact boundary)", "contact pressure [units of E]");
+    char xlab[128], ylab[128];
+    cx_quantity_label(&res->run, "x, position along the contact boundary", 0, xlab, sizeof xlab);
+    cx_field_axis_label(&res->run, CX_FIELD_PRESSURE, ylab, sizeof ylab);
+    cx_plot_init(&pl, title, xlab, ylab);
+    pl.font_scale = r->font_scale;
     cx_plot_add_series(&pl, "computed (nodal force / lumped length)", m, x, y, CX_PLOT_MARKERS);
     if (sc->has_hertz) {
         /* the analytical curve on a fine grid, so that it is smooth */
@@ -182,6 +222,8 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
     cx_plot_init(&pl, title, work ? "time [s] (setup included)" : "iteration", "kkt error");
     pl.logy = 1;
     pl.logx = work;
+    pl.integer_x = !work;
+    pl.font_scale = r->font_scale;
     cx_options opt = *cx_session_options(s);
     int rc = CX_OK;
     const cx_problem *p0 = cx_session_problem(s);
@@ -239,6 +281,12 @@ static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *
     o.width = r->w;
     o.height = r->h;
     o.scale = r->scale;
+    o.font_scale = r->font_scale;
+    o.cmap = r->cmap - 1;
+    o.no_title = r->no_title;
+    o.title = r->title;
+    if (r->range && render_parse_range(r->range, &o.range_lo, &o.range_hi))
+        o.has_range = 1;
     o.edges = r->edges;
     o.view = r->view;
     if (r->field_name && (o.field = cx_field_from_name(r->field_name)) < 0)

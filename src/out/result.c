@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void *result_dup(const void *src, size_t bytes, int *bad)
@@ -151,8 +152,10 @@ int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *s
     if (sc) {
         snprintf(run->scene, sizeof run->scene, "%s", sc->id);
         snprintf(run->title, sizeof run->title, "%s", sc->title);
-        x->has_obstacle = 1;
-        x->obstacle = sc->obstacle;
+        snprintf(run->unit_length, sizeof run->unit_length, "%s", sc->unit_length);
+        snprintf(run->unit_stress, sizeof run->unit_stress, "%s", sc->unit_stress);
+        x->has_obstacle = !sc->contact_master[0];
+        cx_scene_obstacle(sc, level, &x->obstacle);   /* where the solver has it */
         double pa, pr;
         if (cx_scene_pressure_error(sc, p, x->lN, &pa, &pr) == CX_OK) {
             run->has_pressure_error = 1;
@@ -162,7 +165,11 @@ int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *s
         }
     }
     run->level = level > 0 ? level : sc ? sc->level : 0;
-    run->tol = cx_session_options(s)->tol;
+    const cx_options *so = cx_session_options(s);
+    run->tol = so->tol;
+    run->max_iter = so->max_iter;
+    run->own_stop = so->own_stop;
+    run->time_limit = so->time_limit;
     if (!m) {
         *r = x;
         return CX_OK;
@@ -253,4 +260,53 @@ void cx_result_nodal_status(const cx_result *r, double *val)
         val[k] = -1;
     for (int i = 0; i < cs->m; i++)
         val[cs->node[i]] = r->status[i];
+}
+
+/* The shortest %g form that reads back as v. */
+static void result_num(double v, char *buf, size_t len)
+{
+    for (int p = 6; p <= 17; p++) {
+        snprintf(buf, len, "%.*g", p, v);
+        if (strtod(buf, NULL) == v)
+            return;
+    }
+}
+
+char *cx_run_record_solve_args(const cx_run_record *run, char *buf, size_t len)
+{
+    char num[40];
+    size_t n = 0;
+    buf[0] = '\0';
+#define RESULT_ADD(...)                                                  \
+    do {                                                                 \
+        if (n < len) {                                                   \
+            int w_ = snprintf(buf + n, len - n, __VA_ARGS__);            \
+            n = w_ < 0 ? len : n + (size_t)w_;                           \
+        }                                                                \
+    } while (0)
+    RESULT_ADD("%s --level %d", run->scene[0] ? run->scene : "-", run->level);
+    if (run->method[0])
+        RESULT_ADD(" --method %s", run->method);
+    for (int k = 0; k < run->params.n; k++) {
+        cx_param_format(&run->params, k, num, sizeof num);
+        RESULT_ADD(" --set %s=%s", run->params.table[k].key, num);
+    }
+    RESULT_ADD(" --friction %s", cx_friction_name(run->friction));
+    if (run->friction == CX_FRICTION_COULOMB) {
+        result_num(run->F, num, sizeof num);
+        RESULT_ADD(" --F %s", num);
+    } else if (run->friction == CX_FRICTION_TRESCA) {
+        result_num(run->slip_bound, num, sizeof num);
+        RESULT_ADD(" --slip %s", num);
+    }
+    result_num(run->tol, num, sizeof num);
+    RESULT_ADD(" --tol %s", num);
+    if (run->max_iter > 0)
+        RESULT_ADD(" --max-iter %d --stop %s", run->max_iter, run->own_stop ? "own" : "kkt");
+    if (run->time_limit > 0) {
+        result_num(run->time_limit, num, sizeof num);
+        RESULT_ADD(" --time-limit %s", num);
+    }
+#undef RESULT_ADD
+    return buf;
 }

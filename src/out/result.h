@@ -24,6 +24,8 @@
 typedef struct cx_run_record {
     char scene[CX_SCENE_NAMELEN];   /* scene id ("" = none) */
     char title[128];                /* scene title */
+    char unit_length[16];           /* the scene's declared units ([units]; "" = none) */
+    char unit_stress[16];
     int level;                      /* mesh level */
     char method[CX_SCENE_NAMELEN];  /* method id ("" = none) */
     int method_auto;                /* chosen by --method auto (set by the program) */
@@ -33,6 +35,9 @@ typedef struct cx_run_record {
     double F;                       /* Coulomb coefficient */
     double slip_bound;              /* Tresca bound (a traction) */
     double tol;
+    int max_iter;                   /* the run's other stopping options (cx_options) */
+    int own_stop;
+    double time_limit;
     int iterations;
     int converged;                  /* kkt error at or below tol (reason > 0) */
     int reason;                     /* cx_reason: cx_reason_id / cx_reason_str */
@@ -90,6 +95,13 @@ int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state
 int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *sc, int level,
                            cx_diag *d);
 void cx_result_destroy(cx_result **r);
+
+/* The 'signorini solve' arguments that repeat the run (no output path, no
+ * date: the same text for the same run), e.g. "hertz --level 32 --method
+ * ssn-tresca --set rho=0.001 --friction none --tol 1e-10 --max-iter 500
+ * --stop own"; numbers in their shortest exact form. Into buf (len
+ * bytes, always terminated; cut if too small); returns buf. */
+char *cx_run_record_solve_args(const cx_run_record *run, char *buf, size_t len);
 
 /* Nodal stresses (Voigt: 3 per node in 2D, 6 in 3D; cx_fem_nodal_stress)
  * and von Mises stress (per node, with the material of a body using it),

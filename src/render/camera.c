@@ -7,17 +7,74 @@
 
 #include <math.h>
 
+double cx_render_font_px(int w, int h, double font_scale)
+{
+    if (!(font_scale > 0))
+        font_scale = 1;
+    return font_scale * fmin(0.022 * w, 0.045 * h);
+}
+
+/* In units of the font F: title (1.2 F) and subtitle lines above the
+ * drawing area, the notes line below it; the colour bar at the right with
+ * its tick labels (up to about 4 F wide) and its vertical title. */
+void cx_render_layout_font(int w, int h, double font_scale, cx_render_layout *l)
+{
+    double F = cx_render_font_px(w, h, font_scale), m = 0.75 * F;
+    l->font = F;
+    l->bar[2] = 0.9 * F;
+    l->bar[0] = w - 1.3 * F - 4.2 * F - 0.35 * F - l->bar[2];
+    l->area[0] = m;
+    l->area[1] = 3.25 * F;
+    l->area[2] = l->bar[0] - 1.2 * F - l->area[0];
+    l->area[3] = h - 2.1 * F - l->area[1];
+    l->bar[1] = l->area[1] + 1.2 * F;
+    l->bar[3] = l->area[3] - 2.4 * F;
+    l->banner[0] = l->area[0];
+    l->banner[1] = l->area[1];
+    l->banner[2] = w - m - l->area[0];
+    l->banner[3] = 0;
+}
+
 void cx_render_layout_get(int w, int h, cx_render_layout *l)
 {
-    double s = fmin(w / 1200.0, h / 900.0);
-    l->area[0] = 20 * s;
-    l->area[1] = 84 * s;
-    l->area[2] = w - 190 * s - l->area[0];
-    l->area[3] = h - 56 * s - l->area[1];
-    l->bar[0] = w - 150 * s;
-    l->bar[1] = l->area[1] + 40 * s;
-    l->bar[2] = 28 * s;
-    l->bar[3] = l->area[3] - 80 * s;
+    cx_render_layout_font(w, h, 1, l);
+}
+
+static void layout_banner(const cx_run_record *run, cx_render_layout *l)
+{
+    if (!cx_render_unconverged(run))
+        return;
+    double F = l->font, bh = 1.4 * F, move = bh + 0.3 * F;
+    l->banner[3] = bh;
+    l->area[1] += move;
+    l->area[3] -= move;
+    l->bar[1] += move;
+    l->bar[3] -= move;
+}
+
+int cx_render_unconverged(const cx_run_record *run)
+{
+    return run->reason < 0 || (run->reason == CX_ITERATING && run->iterations > 0);
+}
+
+void cx_render_layout_run(const cx_run_record *run, int w, int h, cx_render_layout *l)
+{
+    cx_render_layout_font(w, h, 1, l);
+    layout_banner(run, l);
+}
+
+void cx_render_layout_image(const cx_result *r, const cx_render_opts *o, cx_render_layout *l)
+{
+    cx_render_layout_font(o->width, o->height, o->font_scale, l);
+    if (o->no_title) {   /* the drawing moves up into the title's room */
+        double up = l->area[1] - 0.75 * l->font;
+        l->area[1] -= up;
+        l->area[3] += up;
+        l->bar[1] -= up;
+        l->bar[3] += up;
+        l->banner[1] = l->area[1];
+    }
+    layout_banner(&r->run, l);
 }
 
 static void cam_cross(const double *a, const double *b, double *c)
@@ -80,7 +137,7 @@ static void cam_add_array(cam_box *b, const double *R, const cx_render_array *a)
 void cx_render_camera(cx_render_scene *sc)
 {
     cx_render_layout l;
-    cx_render_layout_get(sc->w, sc->h, &l);
+    cx_render_layout_image(sc->r, sc->o, &l);
     const cx_obstacle *ob = sc->obstacle;
     if (sc->dim == 2) {
         const double e[3] = {0, 0, 1}, up[3] = {0, 1, 0};

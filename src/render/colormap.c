@@ -1,10 +1,14 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Colormaps: a perceptual one for magnitudes (a polynomial fit of
  * matplotlib's viridis) and a diverging one for signed fields (Moreland's
- * cool-warm, control points every 1/8), and the status colours. */
+ * cool-warm, control points every 1/8), and the status colours (the one
+ * table of out/palette.h). */
 #include "render/render.h"
 
+#include "out/palette.h"
+
 #include <math.h>
+#include <string.h>
 
 static unsigned char cmap_byte(double v)
 {
@@ -59,14 +63,65 @@ void cx_colormap(int diverging, double t, unsigned char rgb[3])
 
 void cx_status_color(int status, unsigned char rgb[3])
 {
-    static const unsigned char c[5][3] = {
-        {150, 150, 150},   /* free: grey */
-        {31, 119, 180},    /* contact (frictionless): blue */
-        {44, 160, 44},     /* stick: green */
-        {214, 39, 40},     /* slip +: red */
-        {214, 39, 40}};    /* slip -: red (the arrow tells the direction) */
-    int s = status >= 0 && status <= 4 ? status : 0;
-    rgb[0] = c[s][0];
-    rgb[1] = c[s][1];
-    rgb[2] = c[s][2];
+    int s = status >= 0 && status < CX_PALETTE_NSTATUS ? status : 0;
+    rgb[0] = cx_palette_status[s][0];
+    rgb[1] = cx_palette_status[s][1];
+    rgb[2] = cx_palette_status[s][2];
+}
+
+static const char *const cmap_names[CX_CMAP_COUNT] = {"viridis", "cividis", "magma", "coolwarm", "gray"};
+
+const char *cx_cmap_name(int cmap)
+{
+    return cmap >= 0 && cmap < CX_CMAP_COUNT ? cmap_names[cmap] : "auto";
+}
+
+int cx_cmap_from_name(const char *name)
+{
+    if (strcmp(name, "auto") == 0)
+        return CX_CMAP_AUTO;
+    for (int k = 0; k < CX_CMAP_COUNT; k++)
+        if (strcmp(name, cmap_names[k]) == 0)
+            return k;
+    return -2;
+}
+
+/* Piecewise-linear through control points every 1/16 (rgb 0..255). */
+static void cmap_points(const double pts[17][3], double t, unsigned char rgb[3])
+{
+    double s = t * 16.0;
+    int i = (int)floor(s);
+    if (i > 15)
+        i = 15;
+    double f = s - i;
+    for (int k = 0; k < 3; k++)
+        rgb[k] = cmap_byte(((1 - f) * pts[i][k] + f * pts[i + 1][k]) / 255.0);
+}
+
+void cx_colormap_named(int cmap, int diverging, double t, unsigned char rgb[3])
+{
+    if (!(t >= 0))
+        t = 0;
+    if (t > 1)
+        t = 1;
+    /* cividis (Nuñez et al. 2018) and magma (van der Walt & Smith): the
+     * published maps sampled every 1/16, rgb 0..255 */
+    static const double cividis[17][3] = {
+        {0, 34, 78}, {0, 46, 106}, {26, 56, 111}, {50, 67, 109}, {67, 78, 108}, {83, 90, 109},
+        {97, 101, 111}, {111, 112, 115}, {125, 124, 120}, {140, 136, 120}, {155, 148, 118},
+        {171, 160, 114}, {188, 174, 108}, {205, 187, 99}, {222, 201, 88}, {240, 216, 70},
+        {254, 232, 56}};
+    static const double magma[17][3] = {
+        {0, 0, 4}, {10, 8, 34}, {29, 17, 71}, {54, 16, 107}, {81, 18, 124}, {106, 28, 129},
+        {131, 38, 129}, {156, 46, 127}, {183, 55, 121}, {208, 65, 111}, {231, 82, 99},
+        {245, 107, 92}, {252, 137, 97}, {254, 167, 114}, {254, 196, 136}, {253, 226, 163},
+        {252, 253, 191}};
+    switch (cmap) {
+    case CX_CMAP_VIRIDIS: cmap_viridis(t, rgb); break;
+    case CX_CMAP_CIVIDIS: cmap_points(cividis, t, rgb); break;
+    case CX_CMAP_MAGMA: cmap_points(magma, t, rgb); break;
+    case CX_CMAP_COOLWARM: cmap_coolwarm(t, rgb); break;
+    case CX_CMAP_GRAY: rgb[0] = rgb[1] = rgb[2] = cmap_byte(0.08 + 0.88 * t); break;
+    default: cx_colormap(diverging, t, rgb); break;
+    }
 }

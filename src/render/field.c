@@ -3,28 +3,29 @@
 #include "render/render.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 static const struct {
-    const char *name, *label;
+    const char *name, *label, *symbol;
     int dims;        /* bit 2: in 2D, bit 3: in 3D */
     int stress;      /* Voigt index + 1 of the component, or -1 for von Mises */
     int disp;        /* component + 1, or -1 for |u| */
     int is_signed;
 } field_table[CX_FIELD_COUNT] = {
-    [CX_FIELD_VON_MISES] = {"von-mises", "von Mises stress", 12, -1, 0, 0},
-    [CX_FIELD_SXX] = {"sxx", "stress σxx", 12, 0, 0, 1},
-    [CX_FIELD_SYY] = {"syy", "stress σyy", 12, 0, 0, 1},
-    [CX_FIELD_SZZ] = {"szz", "stress σzz", 8, 0, 0, 1},
-    [CX_FIELD_SYZ] = {"syz", "stress σyz", 8, 0, 0, 1},
-    [CX_FIELD_SXZ] = {"sxz", "stress σxz", 8, 0, 0, 1},
-    [CX_FIELD_SXY] = {"sxy", "stress σxy", 12, 0, 0, 1},
-    [CX_FIELD_UMAG] = {"u", "displacement |u|", 12, 0, -1, 0},
-    [CX_FIELD_UX] = {"ux", "displacement ux", 12, 0, 1, 1},
-    [CX_FIELD_UY] = {"uy", "displacement uy", 12, 0, 2, 1},
-    [CX_FIELD_UZ] = {"uz", "displacement uz", 8, 0, 3, 1},
-    [CX_FIELD_PRESSURE] = {"pressure", "contact pressure", 12, 0, 0, 0},
-    [CX_FIELD_STATUS] = {"status", "contact status", 12, 0, 0, 0},
+    [CX_FIELD_VON_MISES] = {"von-mises", "von Mises stress", "σ_vM", 12, -1, 0, 0},
+    [CX_FIELD_SXX] = {"sxx", "stress σxx", "σ_xx", 12, 0, 0, 1},
+    [CX_FIELD_SYY] = {"syy", "stress σyy", "σ_yy", 12, 0, 0, 1},
+    [CX_FIELD_SZZ] = {"szz", "stress σzz", "σ_zz", 8, 0, 0, 1},
+    [CX_FIELD_SYZ] = {"syz", "stress σyz", "σ_yz", 8, 0, 0, 1},
+    [CX_FIELD_SXZ] = {"sxz", "stress σxz", "σ_xz", 8, 0, 0, 1},
+    [CX_FIELD_SXY] = {"sxy", "stress σxy", "σ_xy", 12, 0, 0, 1},
+    [CX_FIELD_UMAG] = {"u", "displacement |u|", "|u|", 12, 0, -1, 0},
+    [CX_FIELD_UX] = {"ux", "displacement ux", "u_x", 12, 0, 1, 1},
+    [CX_FIELD_UY] = {"uy", "displacement uy", "u_y", 12, 0, 2, 1},
+    [CX_FIELD_UZ] = {"uz", "displacement uz", "u_z", 8, 0, 3, 1},
+    [CX_FIELD_PRESSURE] = {"pressure", "contact pressure", "p", 12, 0, 0, 0},
+    [CX_FIELD_STATUS] = {"status", "contact status", "", 12, 0, 0, 0},
 };
 
 const char *cx_field_name(int f)
@@ -111,4 +112,30 @@ int cx_field_nodal(cx_result *r, int f, double *val, cx_diag *d)
         }
     }
     return CX_OK;
+}
+
+char *cx_quantity_label(const cx_run_record *run, const char *what, int stress, char *buf,
+                        size_t len)
+{
+    const char *unit = stress ? run->unit_stress : run->unit_length;
+    if (unit[0])
+        snprintf(buf, len, "%s [%s]", what, unit);
+    else
+        snprintf(buf, len, "%s (units of the scene)", what);
+    return buf;
+}
+
+char *cx_field_axis_label(const cx_run_record *run, int f, char *buf, size_t len)
+{
+    if (f < 0 || f >= CX_FIELD_COUNT || f == CX_FIELD_STATUS) {
+        snprintf(buf, len, "%s", cx_field_label(f));
+        return buf;
+    }
+    char what[96];
+    int disp = f >= CX_FIELD_UMAG && f <= CX_FIELD_UZ;
+    /* the quantity's word, then its symbol: "stress σ_xx", not "stress σxx σ_xx" */
+    const char *word = f == CX_FIELD_VON_MISES || f == CX_FIELD_PRESSURE ? field_table[f].label
+                       : disp ? "displacement" : "stress";
+    snprintf(what, sizeof what, "%s %s", word, field_table[f].symbol);
+    return cx_quantity_label(run, what, !disp, buf, len);
 }

@@ -156,7 +156,7 @@ static void gl_draw_scene(const cx_render_scene *sc, GLuint prog, int *calls)
     /* the colormap as a 256 x 1 texture, sampled at texel centres */
     unsigned char tex[256 * 4];
     for (int i = 0; i < 256; i++) {
-        cx_colormap(cx_field_is_signed(sc->o->field), i / 255.0, tex + 4 * i);
+        cx_colormap_named(sc->o->cmap, cx_field_is_signed(sc->o->field), i / 255.0, tex + 4 * i);
         tex[4 * i + 3] = 255;
     }
     GLuint t;

@@ -21,6 +21,8 @@ void cx_render_opts_default(cx_render_opts *o)
     o->edges = 0;
     o->view = CX_VIEW_BODY;
     o->msaa = 4;
+    o->font_scale = 1;
+    o->cmap = CX_CMAP_AUTO;
 }
 
 static double img_body_size(const cx_mesh *m)
@@ -51,7 +53,63 @@ static double img_umax(const cx_mesh *m, const double *uall)
 double cx_render_auto_scale(const cx_result *r)
 {
     double umax = img_umax(r->mesh, r->u);
-    return umax > 0 ? 0.07 * img_body_size(r->mesh) / umax : 1.0;
+    double s = umax > 0 ? 0.07 * img_body_size(r->mesh) / umax : 1.0;
+    /* shrinking would draw points in contact off the obstacle: at s = 1
+     * the drawn contact is the solver's */
+    return r->m > 0 ? fmax(s, 1.0) : s;
+}
+
+/* The obstacle where the drawn bodies meet it. A point in contact with
+ * initial gap g moves by g towards the obstacle, and is drawn moved by
+ * s g: a plane whose nearest points all start at the gap g (masonry's
+ * settlement) is drawn moved by (1 - s) g along its normal, so that they
+ * touch it at any scale s. Where the points in contact start at other
+ * gaps (a curved body) and s != 1, the image says that the contact is not
+ * drawn exactly. */
+static void img_obstacle(cx_render_scene *sc)
+{
+    const cx_result *r = sc->r;
+    const cx_contact_set *cs = &r->contact;
+    sc->obstacle = NULL;
+    if (!r->has_obstacle)
+        return;
+    sc->drawn_obstacle = r->obstacle;
+    sc->obstacle = &sc->drawn_obstacle;
+    cx_obstacle *ob = &sc->drawn_obstacle;
+    int dim = sc->dim;
+    double size = img_body_size(r->mesh), tolg = 1e-9 * size;
+    if (ob->kind != CX_OBST_PLANE || cs->m == 0) {
+        /* curved obstacles: contact at gaps > 0 is inexact when s != 1 */
+        for (int i = 0; i < cs->m; i++)
+            if (r->status[i] != CX_PT_FREE && cs->gap[i] > tolg && sc->scale != 1)
+                sc->contact_inexact = 1;
+        return;
+    }
+    /* the points against the plane: their gap is their distance to it
+     * (body-to-body points, e.g. masonry's joints, are not) */
+    double g0 = INFINITY, tolc = 1e-6 * size;
+    int *against = CX_NEW(int, cs->m > 0 ? cs->m : 1);
+    for (int i = 0; i < cs->m; i++) {
+        double dist = 0;
+        for (int k = 0; k < dim; k++)
+            dist += (cs->x[dim * i + k] - ob->point[k]) * ob->normal[k];
+        int on = fabs(dist - cs->gap[i]) <= tolc;
+        if (against)
+            against[i] = on;
+        if (on)
+            g0 = fmin(g0, dist);
+    }
+    if (!(g0 > tolg) || !isfinite(g0))
+        g0 = 0;
+    sc->obstacle_gap = g0;
+    sc->obstacle_shift = (1 - sc->scale) * g0;
+    for (int k = 0; k < dim; k++)
+        ob->point[k] += sc->obstacle_shift * ob->normal[k];
+    /* points in contact that started at another gap are drawn off it */
+    for (int i = 0; i < cs->m && sc->scale != 1; i++)
+        if (r->status[i] != CX_PT_FREE && (!against || against[i]) && fabs(cs->gap[i] - g0) > tolc)
+            sc->contact_inexact = 1;
+    cx_free(against);
 }
 
 static void img_clear(cx_render_scene *sc)
@@ -90,6 +148,11 @@ static void img_range(cx_render_scene *sc)
         sc->lo = fmin(lo, 0.0);
         sc->hi = hi;
     }
+    if (sc->o->has_range) {   /* the user's: shared by several figures */
+        sc->lo = sc->o->range_lo;
+        sc->hi = sc->o->range_hi;
+        return;
+    }
     if (!(sc->hi > sc->lo)) {   /* a constant field: a unit range around it */
         double c = sc->lo;
         sc->lo = cx_field_is_signed(sc->o->field) || c != 0 ? c - 1 : 0;
@@ -103,7 +166,6 @@ static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *
     double t0 = cx_clock_now();
     memset(sc, 0, sizeof *sc);
     sc->r = r;
-    sc->obstacle = r->has_obstacle ? &r->obstacle : NULL;
     sc->o = o;
     sc->w = o->width;
     sc->h = o->height;
@@ -129,6 +191,7 @@ static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *
             sc->x0[3 * i + k] = m->x[dim * i + k];
             sc->xd[3 * i + k] = m->x[dim * i + k] + sc->scale * sc->uall[dim * i + k];
         }
+    img_obstacle(sc);
     if (f == CX_FIELD_STATUS) {
         sc->lo = 0;
         sc->hi = 1;
@@ -154,6 +217,13 @@ static int img_check(const cx_result *r, const cx_render_opts *o, cx_diag *d)
     CX_TRY(cx_field_check(o->field, r->dim, d));
     if (o->view == CX_VIEW_CONTACT && r->dim != 3)
         return cx_diag_set(d, CX_EINVAL, "--view contact: only in 3D");
+    if (o->cmap < CX_CMAP_AUTO || o->cmap >= CX_CMAP_COUNT)
+        return cx_diag_set(d, CX_EINVAL, "--cmap %d: unknown colormap", o->cmap);
+    if (o->has_range && !(isfinite(o->range_lo) && isfinite(o->range_hi) && o->range_lo < o->range_hi))
+        return cx_diag_set(d, CX_EINVAL, "--range %g:%g: expected finite MIN < MAX", o->range_lo,
+                           o->range_hi);
+    if (!(o->font_scale >= 0.25 && o->font_scale <= 4))
+        return cx_diag_set(d, CX_EINVAL, "--font-scale %g: expected 0.25..4", o->font_scale);
     if (o->msaa < 0 || o->msaa > 4)
         return cx_diag_set(d, CX_EINVAL, "msaa %d: expected 0..4 samples", o->msaa);
     return CX_OK;
@@ -225,6 +295,12 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
         cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
                          sizeof outcome);
         snprintf(scale, sizeof scale, "%.6g", sc.scale);
+        char tol[32], iters[32], args[1024];
+        snprintf(tol, sizeof tol, "%.6g", run->tol);
+        char range[80];
+        snprintf(range, sizeof range, "%.9g:%.9g%s", sc.lo, sc.hi, o->has_range ? " (set)" : "");
+        snprintf(iters, sizeof iters, "%d", run->iterations);
+        cx_run_record_solve_args(run, args, sizeof args);
         cx_png_text text[] = {
             {"Title", run->title},
             {"scene", run->scene},
@@ -235,9 +311,16 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
             {"slip bound", slip},
             {"parameters", run->params_text},
             {"kkt error", kkt},
+            {"converged", run->converged ? "yes" : "no"},
+            {"reason", cx_reason_id(run->reason)},
+            {"tolerance", tol},
+            {"iterations", iters},
             {"outcome", outcome},
+            {"solve options", args},
             {"field", cx_field_name(o->field)},
             {"displacement scale", scale},
+            {"colour range", range},
+            {"colormap", cx_cmap_name(o->cmap)},
             {"Software", "signorini " CX_VERSION},
         };
         rc = cx_png_write_xrgb(path, out, sc.w, sc.h, stride, text,

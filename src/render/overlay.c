@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "out/palette.h"
 #include "render/axis.h"
 #include "render/text.h"
 
@@ -23,44 +24,84 @@ static void ov_rgb(cairo_t *cr, const unsigned char c[3])
     cairo_set_source_rgb(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0);
 }
 
-static void ov_title(const cx_render_scene *sc, cairo_t *cr, double s)
+static double ov_font(const cx_render_scene *sc)
+{
+    return cx_render_font_px(sc->w, sc->h, sc->o->font_scale);
+}
+
+/* The scene's title (1.2 F, bold), then the field and the run in smaller
+ * grey (0.75 F). */
+static void ov_title(const cx_render_scene *sc, cairo_t *cr)
 {
     const cx_run_record *run = &sc->r->run;
+    double F = ov_font(sc), m = 0.75 * F;
     char line[512], fr[96];
+    if (sc->o->no_title)
+        return;
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    snprintf(line, sizeof line, "%s — %s", run->title[0] ? run->title : run->scene,
-             cx_field_label(sc->o->field));
-    cx_text_fit(cr, line, 20 * s, 14 * s, 22 * s, 1, 0, 0, sc->w - 40 * s);
+    cx_text_fit(cr, sc->o->title ? sc->o->title : run->title[0] ? run->title : run->scene, m, 0.45 * F,
+                1.2 * F, 1, 0, 0, sc->w - 2 * m);
     if (run->friction == CX_FRICTION_COULOMB)
         snprintf(fr, sizeof fr, "Coulomb F = %g", run->F);
     else if (run->friction == CX_FRICTION_TRESCA)
         snprintf(fr, sizeof fr, "Tresca slip bound %g", run->slip_bound);
     else
         snprintf(fr, sizeof fr, "frictionless");
-    snprintf(line, sizeof line, "scene %s, level %d, %d dofs, %d contact points · %s%s%s · %s · kkt error %.2e",
-             run->scene, run->level, sc->r->n, sc->r->m, run->method, run->params_text[0] ? " " : "",
-             run->params_text, fr, run->kkt);
+    snprintf(line, sizeof line, "%s · scene %s, level %d, %d dofs, %d contact points · %s%s%s · %s · kkt error %.2e",
+             cx_field_label(sc->o->field), run->scene, run->level, sc->r->n, sc->r->m, run->method,
+             run->params_text[0] ? " " : "", run->params_text, fr, run->kkt);
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-    cx_text_fit(cr, line, 20 * s, 46 * s, 15 * s, 0, 0, 0, sc->w - 40 * s);
+    cx_text_fit(cr, line, m, 2.05 * F, 0.75 * F, 0, 0, 0, sc->w - 2 * m);
 }
 
-static const char *ov_units(int f)
+/* A run that did not converge says so above the drawing, in the outcome
+ * sentence of solve/ (cx_reason_format), on a band no reader can miss. */
+static void ov_banner(const cx_render_scene *sc, cairo_t *cr)
 {
-    if (f >= CX_FIELD_UMAG && f <= CX_FIELD_UZ)
-        return "length units";
-    return "units of E";
+    const cx_run_record *run = &sc->r->run;
+    cx_render_layout l;
+    cx_render_layout_run(run, sc->w, sc->h, &l);
+    if (!(l.banner[3] > 0))
+        return;
+    char outcome[CX_DIAG_LEN + 160], line[CX_DIAG_LEN + 200];
+    if (run->reason == CX_ITERATING)
+        snprintf(outcome, sizeof outcome, "still running: iteration %d, kkt error %.1e > tol %.0e",
+                 run->iterations, run->kkt, run->tol);
+    else
+        cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
+                         sizeof outcome);
+    /* the sentence says it already when it is "did not converge ..." */
+    snprintf(line, sizeof line, "%s%s", strstr(outcome, "not converge") ? "" : "not converged: ", outcome);
+    cairo_set_source_rgb(cr, CX_PALETTE_WARNING_RGB);
+    cairo_rectangle(cr, l.banner[0], l.banner[1], l.banner[2], l.banner[3]);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cx_text_fit(cr, line, l.banner[0] + 0.45 * l.font, l.banner[1] + 0.5 * l.banner[3], 0.8 * l.font, 1,
+                0, 0.5, l.banner[2] - 0.9 * l.font);
+}
+
+/* "⁻¹²": an exponent in UTF-8 superscripts, into buf (48 bytes). */
+static const char *ov_superscript(int e, char buf[48])
+{
+    static const char *const dig[10] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+    char num[16];
+    snprintf(num, sizeof num, "%d", e);
+    buf[0] = '\0';
+    for (const char *c = num; *c; c++)
+        strcat(buf, *c == '-' ? "⁻" : dig[*c - '0']);
+    return buf;
 }
 
 static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
 {
     cx_render_layout l;
-    cx_render_layout_get(sc->w, sc->h, &l);
+    cx_render_layout_image(sc->r, sc->o, &l);
     double x = l.bar[0], y = l.bar[1], bw = l.bar[2], bh = l.bar[3];
     int div = cx_field_is_signed(sc->o->field);
     int nb = (int)ceil(bh);
     for (int i = 0; i < nb; i++) {
         unsigned char c[3];
-        cx_colormap(div, 1.0 - (i + 0.5) / nb, c);
+        cx_colormap_named(sc->o->cmap, div, 1.0 - (i + 0.5) / nb, c);
         ov_rgb(cr, c);
         cairo_rectangle(cr, x, y + bh * i / nb, bw, bh / nb + 0.6);
         cairo_fill(cr);
@@ -69,20 +110,32 @@ static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
     cairo_set_line_width(cr, 1.0 * s);
     cairo_rectangle(cr, x, y, bw, bh);
     cairo_stroke(cr);
+    /* large or small values: ticks in units of 10^n, named in the title */
+    double F = l.font, big = fmax(fabs(sc->lo), fabs(sc->hi)), unit = 1;
+    int e = big > 0 ? (int)floor(log10(big) + 1e-9) : 0;
+    if (e >= 4 || e <= -3)
+        unit = pow(10.0, e);
+    else
+        e = 0;
     cx_axis ax;
-    cx_axis_make(&ax, sc->lo, sc->hi, 0, 6, 0);
+    cx_axis_make(&ax, sc->lo, sc->hi, 0, (int)fmax(3, fmin(8, bh / (2.2 * F))), 0);
     char lab[64];
     for (int i = 0; i < ax.nticks; i++) {
         double ty = y + bh * (1 - cx_axis_frac(&ax, ax.ticks[i]));
         cairo_move_to(cr, x + bw, ty);
-        cairo_line_to(cr, x + bw + 6 * s, ty);
+        cairo_line_to(cr, x + bw + 0.25 * F, ty);
         cairo_stroke(cr);
-        cx_axis_label(&ax, ax.ticks[i], lab, sizeof lab);
-        cx_text(cr, lab, x + bw + 9 * s, ty, 14 * s, 0, 0, 0.5);
+        cx_axis_label(&ax, ax.ticks[i] / unit, lab, sizeof lab);
+        cx_text(cr, lab, x + bw + 0.35 * F, ty, F, 0, 0, 0.5);
     }
-    char title[128];
-    snprintf(title, sizeof title, "%s [%s]", cx_field_label(sc->o->field), ov_units(sc->o->field));
-    cx_text_vertical(cr, title, sc->w - 16 * s, y + 0.5 * bh, 15 * s, 0);
+    char title[200];
+    cx_field_axis_label(&sc->r->run, sc->o->field, title, sizeof title);
+    if (e != 0) {
+        size_t n = strlen(title);
+        char sup[48];
+        snprintf(title + n, sizeof title - n, ", ×10%s", ov_superscript(e, sup));
+    }
+    cx_text_vertical(cr, title, sc->w - 0.75 * F, y + 0.5 * bh, 0.9 * F, 0);
 }
 
 /* 2D obstacle: a hatched strip beyond the plane, or the disc. */
@@ -92,7 +145,7 @@ static void ov_obstacle2d(const cx_render_scene *sc, cairo_t *cr, double s)
     if (!ob)
         return;
     cx_render_layout l;
-    cx_render_layout_get(sc->w, sc->h, &l);
+    cx_render_layout_image(sc->r, sc->o, &l);
     cairo_save(cr);
     cairo_rectangle(cr, l.area[0], l.area[1], l.area[2], l.area[3]);
     cairo_clip(cr);
@@ -189,14 +242,29 @@ static void ov_band2d(const cx_render_scene *sc, cairo_t *cr, double s)
         cx_render_scene_project(sc, sc->xd + 3 * e[2], pb);
         unsigned char c[3];
         if (status) {
-            /* the segment takes the status of its ends when they agree,
-             * else that of the free end (the boundary of the zone) */
+            /* each half of the segment takes the status of its end, so
+             * that the band changes colour half-way between two points of
+             * different status (stick | slip, not a "free" grey) */
             int a = sc->r->status[ci[e[0]] - 1];
             int b = sc->r->status[ci[e[2]] - 1];
-            cx_status_color(a == b ? a : CX_PT_FREE, c);
+            if (a != b) {
+                double mid[2] = {0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])};
+                cx_status_color(a, c);
+                ov_rgb(cr, c);
+                cairo_move_to(cr, pa[0], pa[1]);
+                cairo_line_to(cr, mid[0], mid[1]);
+                cairo_stroke(cr);
+                cx_status_color(b, c);
+                ov_rgb(cr, c);
+                cairo_move_to(cr, mid[0], mid[1]);
+                cairo_line_to(cr, pb[0], pb[1]);
+                cairo_stroke(cr);
+                continue;
+            }
+            cx_status_color(a, c);
         } else {
             double v = 0.5 * (sc->val[e[0]] + sc->val[e[2]]);
-            cx_colormap(0, (v - sc->lo) / (sc->hi - sc->lo), c);
+            cx_colormap_named(sc->o->cmap, 0, (v - sc->lo) / (sc->hi - sc->lo), c);
         }
         ov_rgb(cr, c);
         cairo_move_to(cr, pa[0], pa[1]);
@@ -354,40 +422,54 @@ static double ov_marker_radius(const cx_render_scene *sc, double s)
     return fmin(fmax(r, 1.2 * s), 4 * s);
 }
 
-static void ov_notes(const cx_render_scene *sc, cairo_t *cr, double s, int legend, int hidden)
+/* The bottom line: the status legend at the right (drawn first, so that
+ * the note beside it is fitted into what is left), then the displacement
+ * scale, the obstacle's offset and caveats at the left. */
+static void ov_notes(const cx_render_scene *sc, cairo_t *cr, int legend, int hidden)
 {
-    char line[256];
-    double y = sc->h - 30 * s;
+    char line[512];
+    double F = ov_font(sc), fs = 0.8 * F, y = sc->h - 1.05 * F;
+    double x = sc->w - 0.75 * F;
+    if (legend) {
+        static const int codes[4] = {CX_PT_FREE, CX_PT_CONTACT, CX_PT_STICK, CX_PT_SLIP_POS};
+        for (int i = 3; i >= 0; i--) {
+            if (sc->r->run.friction == CX_FRICTION_NONE ? i >= 2 : i == 1)
+                continue;
+            const char *name = cx_palette_status_name[codes[i]];
+            unsigned char c[3];
+            cx_status_color(codes[i], c);
+            x -= cx_text_width(cr, name, fs, 0);
+            cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+            cx_text(cr, name, x, y, fs, 0, 0, 0.5);
+            x -= 0.65 * fs;
+            cairo_new_sub_path(cr);
+            cairo_arc(cr, x, y, 0.3 * fs, 0, 2 * CX_PI);
+            ov_rgb(cr, c);
+            cairo_fill(cr);
+            x -= 1.2 * fs;
+        }
+    }
     cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+    size_t n;
     if (sc->o->scale > 0)
-        snprintf(line, sizeof line, "displacement × %.3g (set), max |u| = %.3g", sc->scale, sc->umax);
+        n = (size_t)snprintf(line, sizeof line, "displacement × %.3g (set), max |u| = %.3g", sc->scale,
+                             sc->umax);
+    else if (sc->scale == 1 && sc->r->m > 0 && sc->umax > 0)
+        n = (size_t)snprintf(line, sizeof line, "displacement × 1 (auto: true scale with contact, "
+                             "max |u| = %.3g)", sc->umax);
     else
-        snprintf(line, sizeof line, "displacement × %.3g (auto: max |u| = %.3g drawn as 7 %% of the body size)",
-                 sc->scale, sc->umax);
-    cx_text(cr, line, 20 * s, y, 14 * s, 0, 0, 0.5);
+        n = (size_t)snprintf(line, sizeof line, "displacement × %.3g (auto: max |u| = %.3g drawn as "
+                             "7 %% of the body size)", sc->scale, sc->umax);
+    if (sc->obstacle_gap > 0 && n < sizeof line)
+        /* the settlement: the obstacle moved with the scale (image.c) */
+        n += (size_t)snprintf(line + n, sizeof line - n, " · obstacle drawn %.3g × its gap %.3g "
+                              "from the body", sc->scale, sc->obstacle_gap);
+    if (sc->contact_inexact && n < sizeof line)
+        snprintf(line + n, sizeof line - n, " · magnified: contact drawn inexactly (exact at --scale 1)");
+    cx_text_fit(cr, line, 0.75 * F, y, fs, 0, 0, 0.5, x - 0.75 * F);
     if (hidden)
         cx_text(cr, "the contact faces are hidden from here: --view contact shows them",
-                20 * s, y - 20 * s, 14 * s, 0, 0, 0.5);
-    if (!legend)
-        return;
-    static const int codes[4] = {CX_PT_FREE, CX_PT_CONTACT, CX_PT_STICK, CX_PT_SLIP_POS};
-    static const char *names[4] = {"free", "contact", "stick", "slip"};
-    double x = sc->w - 20 * s;
-    for (int i = 3; i >= 0; i--) {
-        if (sc->r->run.friction == CX_FRICTION_NONE ? i >= 2 : i == 1)
-            continue;
-        unsigned char c[3];
-        cx_status_color(codes[i], c);
-        x -= cx_text_width(cr, names[i], 14 * s, 0);
-        cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
-        cx_text(cr, names[i], x, y, 14 * s, 0, 0, 0.5);
-        x -= 12 * s;
-        cairo_new_sub_path(cr);
-        cairo_arc(cr, x, y, 5 * s, 0, 2 * CX_PI);
-        ov_rgb(cr, c);
-        cairo_fill(cr);
-        x -= 22 * s;
-    }
+                0.75 * F, y - 1.1 * fs, fs, 0, 0, 0.5);
 }
 
 void cx_render_underlay(const cx_render_scene *sc, cairo_t *cr)
@@ -416,8 +498,9 @@ void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr)
     }
     int hidden = sc->dim == 3 && sc->o->view == CX_VIEW_BODY && sc->r->m > 0 &&
                  (f == CX_FIELD_PRESSURE || (f == CX_FIELD_STATUS && shown == 0));
-    ov_title(sc, cr, s);
+    ov_title(sc, cr);
+    ov_banner(sc, cr);
     if (f != CX_FIELD_STATUS)
         ov_colorbar(sc, cr, s);
-    ov_notes(sc, cr, s, markers, hidden);
+    ov_notes(sc, cr, markers, hidden);
 }

@@ -3,6 +3,7 @@
  * series with lines/markers, reference lines, a legend in the emptiest
  * corner, then the PNG through png.c. */
 #include "render/plot.h"
+#include "render/render.h"
 
 #include <cairo.h>
 #include <math.h>
@@ -26,6 +27,7 @@ void cx_plot_init(cx_plot *p, const char *title, const char *xlabel, const char 
     plot_copy(p->xlabel, sizeof p->xlabel, xlabel);
     plot_copy(p->ylabel, sizeof p->ylabel, ylabel);
     p->legend = 1;
+    p->font_scale = 1;
 }
 
 int cx_plot_add_series(cx_plot *p, const char *label, int n, const double *x,
@@ -395,16 +397,18 @@ static int plot_draw(const cx_plot *p, cairo_surface_t *surf, int w, int h, cx_d
     if ((p->logx && !(xr[0] > 0)) || (p->logy && !(yr[0] > 0)))
         return cx_diag_set(d, CX_EINVAL, "plot '%s': a log axis needs a positive range", p->title);
     cairo_t *cr = cairo_create(surf);
-    double s = fmin(w / 1200.0, h / 800.0);
-    if (s < 0.4)
-        s = 0.4;
+    /* every size in proportion to the tick-label font (14 s), which is
+     * cx_render_font_px: legible when the figure is printed small */
+    double s = cx_render_font_px(w, h, p->font_scale) / 14.0;
     plot_frame f;
-    f.x0 = 110 * s;
-    f.x1 = w - 30 * s;
-    f.y0 = 55 * s;
-    f.y1 = h - 70 * s;
-    cx_axis_make(&f.ax, xr[0], xr[1], p->logx, (int)fmax(3, (f.x1 - f.x0) / (110 * s)),
-                 !p->fixed_x);
+    f.x0 = 88 * s;
+    f.x1 = w - 22 * s;
+    f.y0 = 46 * s;
+    f.y1 = h - 60 * s;
+    int xt = (int)fmax(3, (f.x1 - f.x0) / (110 * s));
+    if (p->integer_x && !p->logx)   /* a step of at least 1: no tick at 1.5 */
+        xt = (int)fmax(1, fmin(xt, floor(xr[1] - xr[0])));
+    cx_axis_make(&f.ax, xr[0], xr[1], p->logx, xt, !p->fixed_x);
     cx_axis_make(&f.ay, yr[0], yr[1], p->logy, (int)fmax(3, (f.y1 - f.y0) / (70 * s)),
                  !p->fixed_y);
     cairo_set_source_rgb(cr, 1, 1, 1);

@@ -75,6 +75,8 @@ typedef struct cx_plot {
     int fixed_x, fixed_y;           /* set by cx_plot_set_xrange/yrange */
     double xmin, xmax, ymin, ymax;
     int legend;                     /* 1 (default): draw the legend; 0: none */
+    int integer_x;                  /* x counts (iterations): integer ticks only */
+    double font_scale;              /* text size factor (default 1: cx_render_font_px) */
     int nseries;
     cx_plot_series series[CX_PLOT_MAX_SERIES];
     int nrefs;

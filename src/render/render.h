@@ -47,6 +47,14 @@ typedef enum cx_field {
 const char *cx_field_name(int f);         /* "von-mises", "sxx", ..., "status" */
 const char *cx_field_label(int f);        /* "von Mises stress", ... */
 int cx_field_from_name(const char *name); /* -1 if unknown */
+/* The label of a quantity with the run's declared units (the scene's
+ * [units]): "what [MPa]" (stress: a stress unit, else a length unit), or
+ * "what (units of the scene)" when none is declared. Into buf; returns it. */
+char *cx_quantity_label(const cx_run_record *run, const char *what, int stress, char *buf,
+                        size_t len);
+/* The colour bar / axis label of field f: "von Mises stress σ_vM [MPa]",
+ * "displacement u_x (units of the scene)"; status: its name alone. */
+char *cx_field_axis_label(const cx_run_record *run, int f, char *buf, size_t len);
 int cx_field_is_stress(int f);
 int cx_field_is_signed(int f);            /* diverging colormap */
 /* CX_OK if the field exists in this dimension, else CX_EINVAL with
@@ -64,6 +72,21 @@ int cx_field_nodal(cx_result *r, int f, double *val, cx_diag *d);
 /* Colour of t in [0, 1] (clamped): perceptual (viridis-like) for
  * magnitudes, diverging blue-grey-red for signed fields. rgb in [0, 255]. */
 void cx_colormap(int diverging, double t, unsigned char rgb[3]);
+/* Named colormaps (--cmap); CX_CMAP_AUTO: viridis for magnitudes,
+ * coolwarm for signed fields. */
+typedef enum cx_cmap {
+    CX_CMAP_AUTO = -1,
+    CX_CMAP_VIRIDIS,
+    CX_CMAP_CIVIDIS,
+    CX_CMAP_MAGMA,
+    CX_CMAP_COOLWARM,
+    CX_CMAP_GRAY,
+    CX_CMAP_COUNT
+} cx_cmap;
+const char *cx_cmap_name(int cmap);          /* "viridis", ...; "auto" */
+int cx_cmap_from_name(const char *name);     /* -2 if unknown ("auto": CX_CMAP_AUTO) */
+/* Colour of t in [0, 1] (clamped) in colormap cmap; AUTO as cx_colormap(diverging). */
+void cx_colormap_named(int cmap, int diverging, double t, unsigned char rgb[3]);
 /* The marker colour of a contact status (cx_point_status). */
 void cx_status_color(int status, unsigned char rgb[3]);
 
@@ -78,6 +101,12 @@ typedef struct cx_render_opts {
     int edges;                    /* draw mesh edges */
     int view;                     /* cx_view */
     int msaa;                     /* 4 (default) or 0 */
+    double font_scale;            /* text size factor (default 1; 0.25..4) */
+    int cmap;                     /* cx_cmap (default CX_CMAP_AUTO) */
+    int has_range;                /* colour range fixed to [range_lo, range_hi] */
+    double range_lo, range_hi;    /* (so that several figures share one scale) */
+    int no_title;                 /* no title lines (a caption says it) */
+    const char *title;            /* the title instead of the scene's (NULL: the scene's) */
 } cx_render_opts;
 
 void cx_render_opts_default(cx_render_opts *o);
@@ -102,8 +131,28 @@ double cx_render_auto_scale(const cx_result *r);
 typedef struct cx_render_layout {
     double area[4];   /* x, y, w, h of the body's drawing area */
     double bar[4];    /* x, y, w, h of the colour bar gradient */
+    double banner[4]; /* x, y, w, h of the "not converged" banner (h = 0: none) */
+    double font;      /* tick-label font size (pixels): cx_render_font_px */
 } cx_render_layout;
+/* The tick-label font size of a w x h figure (images and plots): 2.2 % of
+ * the width, matplotlib's default ratio (10 pt in a 6.4 inch figure), so
+ * that it stays legible when the figure is printed a column wide; at most
+ * 4.5 % of the height; times font_scale. Titles are 1.2 times larger,
+ * notes 0.8 times. */
+double cx_render_font_px(int w, int h, double font_scale);
+/* The layout at font scale 1 for a converged run. */
 void cx_render_layout_get(int w, int h, cx_render_layout *l);
+/* Every dimension in proportion to the font, at font_scale. */
+void cx_render_layout_font(int w, int h, double font_scale, cx_render_layout *l);
+/* The layout of an image of a run: with the banner above the drawing
+ * area (which moves down to make room) when cx_render_unconverged(run). */
+void cx_render_layout_run(const cx_run_record *run, int w, int h, cx_render_layout *l);
+/* The layout of the image that cx_render_png draws of r with o. */
+void cx_render_layout_image(const cx_result *r, const cx_render_opts *o, cx_render_layout *l);
+/* Non-zero if the image of this run must say that it did not converge:
+ * it ended without converging, or it is still running (a snapshot). A
+ * result without a run (no iterations, reason 0) is not flagged. */
+int cx_render_unconverged(const cx_run_record *run);
 
 /* The pixel (top-left origin) where the world point x (dim coordinates,
  * in the drawn frame: deformed points are x + scale u) appears in the image

@@ -22,7 +22,11 @@ void cx_render_array_clear(cx_render_array *a);
 /* Everything one image needs, in world coordinates (z = 0 in 2D). */
 typedef struct cx_render_scene {
     cx_result *r;        /* what is drawn (borrowed) */
-    const cx_obstacle *obstacle;   /* r's obstacle, or NULL */
+    const cx_obstacle *obstacle;   /* the obstacle as drawn (&drawn_obstacle), or NULL */
+    cx_obstacle drawn_obstacle;    /* r's obstacle, a plane moved by obstacle_shift */
+    double obstacle_gap;           /* plane: the uniform initial gap g of the nearest points */
+    double obstacle_shift;         /* plane: moved by this along its normal, (1 - s) g */
+    int contact_inexact;           /* points in contact drawn off the obstacle by the scale */
     const cx_render_opts *o;
     int dim;
     const double *uall;  /* dim * nnodes: r->u */

@@ -73,15 +73,23 @@ static int build_masonry_contact(const cx_scene *s, int level, const cx_mesh *m,
                                  cx_contact_set *cs, cx_diag *d)
 {
     const cx_boundary *settle, *base, *joints;
-    int cells[3];
-    cx_scene_cells(s, level, cells);
     CX_TRY(build_boundary(s, m, s->contact_boundary, &settle, d));
     CX_TRY(build_boundary(s, m, "base", &base, d));
     CX_TRY(build_boundary(s, m, "joints", &joints, d));
-    cx_obstacle ob = s->obstacle;
-    for (int k = 0; k < 2; k++)
-        ob.point[k] -= s->gap_h / cells[0] * ob.normal[k];
+    cx_obstacle ob;
+    cx_scene_obstacle(s, level, &ob);
     return cx_contact_masonry(cs, m, settle, base, joints, &ob, d);
+}
+
+void cx_scene_obstacle(const cx_scene *s, int level, cx_obstacle *ob)
+{
+    *ob = s->obstacle;
+    if (s->generator != CX_GEN_MASONRY)
+        return;
+    int cells[3];
+    cx_scene_cells(s, level > 0 ? level : s->level, cells);
+    for (int k = 0; k < 2; k++)
+        ob->point[k] -= s->gap_h / cells[0] * ob->normal[k];
 }
 
 int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_state *fr,

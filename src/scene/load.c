@@ -115,7 +115,7 @@ typedef struct ld_bname {
     int line;
 } ld_bname;
 
-#define LD_NSECDEFS 8
+#define LD_NSECDEFS 9
 #define LD_NBNAMES (2 * CX_SCENE_MAX_LOADS + 2)
 
 struct ld_state {
@@ -660,6 +660,31 @@ static int ld_finish_hertz(ld_state *L)
     return CX_OK;
 }
 
+/* [units]: names for the figures' labels ("mm", "MPa"); nothing is
+ * converted. A name is 1..15 bytes without spaces. */
+static int ld_unit(ld_state *L, const char *key, char *dst, size_t len)
+{
+    const char *v = ld_value(L, key);
+    if (!v)
+        return CX_OK;
+    size_t n = strlen(v);
+    if (n == 0 || n >= len || strpbrk(v, " \t"))
+        return ld_bad(L, key, "'%s': expected a unit name of 1 to %d characters without spaces "
+                      "(e.g. mm, MPa)", v, (int)len - 1);
+    memcpy(dst, v, n + 1);
+    return CX_OK;
+}
+
+static int ld_finish_units(ld_state *L)
+{
+    cx_scene *s = L->s;
+    CX_TRY(ld_unit(L, "length", s->unit_length, sizeof s->unit_length));
+    CX_TRY(ld_unit(L, "stress", s->unit_stress, sizeof s->unit_stress));
+    if (!s->unit_length[0] && !s->unit_stress[0])
+        return ld_error(L, L->sec.line, L->line + 1, "section [units]: expected 'length' or 'stress'");
+    return CX_OK;
+}
+
 static int ld_finish_methods(ld_state *L)
 {
     cx_scene *s = L->s;
@@ -707,6 +732,7 @@ static const ld_key ld_contact_keys[] = {
     {"direction", 0}, {"friction", 0}, {"slip_bound", 0}, {"F", 0}, {"master", 0}, {"laws", 0}, {NULL, 0}};
 static const ld_key ld_hertz_keys[] = {{"P", 1}, {"R", 1}, {NULL, 0}};
 static const ld_key ld_methods_keys[] = {{"list", 1}, {NULL, 0}};
+static const ld_key ld_units_keys[] = {{"length", 0}, {"stress", 0}, {NULL, 0}};
 _Static_assert(sizeof ld_contact_keys / sizeof ld_contact_keys[0] - 1 <= LD_MAXKEYS &&
                sizeof ld_mesh_keys / sizeof ld_mesh_keys[0] - 1 <= LD_MAXKEYS,
                "LD_MAXKEYS holds the largest section");
@@ -721,6 +747,7 @@ static const ld_secdef ld_sections[LD_NSECDEFS] = {
     {"contact", 0, 1, ld_contact_keys, ld_finish_contact},
     {"hertz", 0, 0, ld_hertz_keys, ld_finish_hertz},
     {"methods", 0, 0, ld_methods_keys, ld_finish_methods},
+    {"units", 0, 0, ld_units_keys, ld_finish_units},
 };
 
 /* ---- sections open and close ------------------------------------------------- */

@@ -93,6 +93,10 @@ typedef struct cx_scene {
     int nmethods;
     char methods[CX_SCENE_MAX_METHODS][CX_SCENE_NAMELEN];  /* suited, first = default */
 
+    /* [units] (optional): unit names for labels, "" = not declared */
+    char unit_length[16];         /* e.g. "mm" */
+    char unit_stress[16];         /* e.g. "MPa" (stresses, tractions, E) */
+
     /* [hertz] analytical reference (2D): load per unit length P, radius R */
     int has_hertz;
     double hertz_P, hertz_R;
@@ -131,6 +135,11 @@ int cx_scene_list(char (**ids)[CX_SCENE_NAMELEN], int *count, cx_diag *d);
 void cx_scene_cells(const cx_scene *s, int level, int cells[3]);
 /* twoblocks: the lower body's cell counts of a level (level x cells_lower). */
 void cx_scene_cells_lower(const cx_scene *s, int level, int cells[3]);
+
+/* The obstacle the solver uses at a level (level <= 0: the scene's
+ * default): the scene's, except masonry's plane lowered by the settlement
+ * gap g = gap_h H (H = 1 / courses). */
+void cx_scene_obstacle(const cx_scene *s, int level, cx_obstacle *ob);
 
 /* Generate the mesh, assemble, apply supports and loads, build contact:
  * the problem at a level (level <= 0: the scene's default), and beside it

@@ -1,0 +1,30 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* out/palette.h: the one table of contact-status colours, shared by the
+ * renderer (render/colormap.c: cx_status_color) and the explorer, so that
+ * a figure and the screen agree. Okabe & Ito's colour-blind-safe set
+ * ("Color Universal Design", 2008): every pair stays distinct under the
+ * common colour-vision deficiencies, and free stays a neutral grey.
+ * Indexed by cx_point_status (solve/solve.h). */
+#ifndef CX_OUT_PALETTE_H
+#define CX_OUT_PALETTE_H
+
+enum { CX_PALETTE_NSTATUS = 5 };
+
+/* rgb in [0, 255] */
+static const unsigned char cx_palette_status[CX_PALETTE_NSTATUS][3] = {
+    {153, 153, 153},   /* CX_PT_FREE: grey */
+    {0, 114, 178},     /* CX_PT_CONTACT (frictionless): Okabe-Ito blue */
+    {0, 158, 115},     /* CX_PT_STICK: Okabe-Ito bluish green */
+    {213, 94, 0},      /* CX_PT_SLIP_POS: Okabe-Ito vermillion */
+    {213, 94, 0},      /* CX_PT_SLIP_NEG: the same (the arrow gives the direction) */
+};
+
+/* The words of the statuses in legends, in the same order. */
+static const char *const cx_palette_status_name[CX_PALETTE_NSTATUS] = {
+    "free", "contact", "stick", "slip", "slip"};
+
+/* The "not converged" banner: a dark vermillion that white bold text
+ * reads on (contrast above 4.5:1), as cairo's doubles. */
+#define CX_PALETTE_WARNING_RGB 0.66, 0.22, 0.0
+
+#endif

@@ -1,0 +1,475 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* Figures for a paper (issue 22), checked on the pixels: bodies in contact
+ * drawn on the obstacle where the solver has it (the masonry walls on
+ * their lowered ground, hertz's contact points on the rigid line at the
+ * automatic scale); a run that did not converge says so on a banner and
+ * in the PNG's text chunks; units in the labels; the font size rule and
+ * the status colours of out/palette.h; --cmap, --range, --no-title. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+#include "out/palette.h"
+#include "pngread.h"
+#include "render/render.h"
+#include "scene/scene.h"
+
+static const char *OUT = "test_figures.png";
+
+typedef struct solved {
+    cx_scene sc;
+    cx_session *s;
+    cx_result *r;
+} solved;
+
+/* Solve scene id at level with its first method (max_iter > 0: that
+ * limit) and take the result. */
+static void solve_scene(solved *o, const char *id, int level, int max_iter)
+{
+    char path[512];
+    cx_diag d;
+    cx_problem *p = NULL;
+    cx_friction_state fr;
+    memset(o, 0, sizeof *o);
+    if (cx_scene_resolve(id, path, sizeof path, &d) || cx_scene_load(&o->sc, path, &d) ||
+        cx_scene_build(&o->sc, level, &p, &fr, &d) || cx_session_create(&o->s, &p, &d) ||
+        cx_session_set_friction(o->s, &fr, &d) ||
+        cx_session_set_method(o->s, cx_method_find(o->sc.methods[0]), NULL, NULL, &d)) {
+        fprintf(stderr, "%s level %d: %s\n", id, level, d.msg);
+        exit(2);
+    }
+    if (max_iter > 0) {
+        cx_options opt = *cx_session_options(o->s);
+        opt.max_iter = max_iter;
+        cx_session_set_options(o->s, &opt);
+    }
+    if (cx_solver_solve(o->s, NULL, NULL, &d) ||
+        cx_result_from_session(&o->r, o->s, &o->sc, level, &d)) {
+        fprintf(stderr, "%s level %d: %s\n", id, level, d.msg);
+        exit(2);
+    }
+}
+
+static void solved_free(solved *o)
+{
+    cx_result_destroy(&o->r);
+    cx_session_destroy(&o->s);
+}
+
+static int render_read(cx_result *r, const cx_render_opts *o, test_png *img)
+{
+    cx_diag d;
+    if (cx_render_png(r, o, OUT, NULL, &d) != CX_OK) {
+        fprintf(stderr, "render: %s\n", d.msg);
+        return -1;
+    }
+    return test_png_read(img, OUT);
+}
+
+/* The pixel row of the world point (x, y) of a 2D image. */
+static double row_of(cx_result *r, const cx_render_opts *o, double x, double y)
+{
+    double w[2] = {x, y}, px[2];
+    CX_CHECK_OK(cx_render_project(r, o, w, px, NULL));
+    return px[1];
+}
+
+/* Masonry walls (the left half of the ground settles by g = gap H): no
+ * body pixel below the drawn ground line. The body is drawn flat grey
+ * (status field); the ground is a warm beige with brown hatching
+ * (red well above blue), the background white. */
+static void test_masonry(const char *id, int touches)
+{
+    solved o;
+    solve_scene(&o, id, 5, 0);
+    CX_CHECK(o.r->run.converged);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.field = CX_FIELD_STATUS;
+    double s = cx_render_auto_scale(o.r);
+    double g = o.sc.gap_h / 5;   /* H = 1 / courses */
+    CX_CHECK(s > 1 && g > 0);
+    /* the solver's obstacle in the result: the lowered plane */
+    CX_CHECK_NEAR(o.r->obstacle.point[1], -g, 1e-12, 1e-15);
+    test_png img;
+    if (render_read(o.r, &opt, &img) != 0) {
+        CX_CHECK(0);
+        solved_free(&o);
+        return;
+    }
+    cx_render_layout l;
+    cx_render_layout_get(img.w, img.h, &l);
+    /* the drawn line: at -s g (the settled points moved by -g, drawn by -s g) */
+    double line = row_of(o.r, &opt, 0.5, -s * g);
+    int xl = (int)(l.area[0] + 3);
+    /* the dark brown ground line (2 px wide around its row) */
+    int darkest = 255;
+    for (int y = (int)floor(line) - 1; y <= (int)ceil(line) + 1; y++) {
+        const unsigned char *q = test_png_px(&img, xl, y);
+        if (q[0] > q[2])
+            darkest = q[0] < darkest ? q[0] : darkest;
+    }
+    CX_CHECK(darkest < 130);
+    const unsigned char *c;
+    /* below it (past the markers on it), only ground or background */
+    double wl[2] = {0, 0}, wr[2] = {1, 0}, pl[2], pr[2];
+    cx_render_project(o.r, &opt, wl, pl, NULL);
+    cx_render_project(o.r, &opt, wr, pr, NULL);
+    int bad = 0, seen = 0;
+    for (int y = (int)ceil(line + 8); y < (int)(l.area[1] + l.area[3]); y++)
+        for (int x = (int)pl[0]; x <= (int)pr[0]; x++) {
+            c = test_png_px(&img, x, y);
+            int white = c[0] > 250 && c[1] > 250 && c[2] > 250;
+            seen++;
+            bad += !white && c[0] - c[2] < 8;
+        }
+    if (bad)
+        fprintf(stderr, "%s: %d body pixels below the ground line (row %.1f)\n", id, bad, line);
+    CX_CHECK(seen > 1000 && bad == 0);
+    /* and the settled part sits on it: body pixels just above the line
+     * at x = 0.25 (laminae's bottom strip bends less than g: no contact) */
+    double pm[2], wm[2] = {0.25, -s * g + 0.02};
+    cx_render_project(o.r, &opt, wm, pm, NULL);
+    c = test_png_px(&img, (int)pm[0], (int)pm[1]);
+    if (touches && !(c[0] < 250 && abs(c[0] - c[2]) < 8))
+        fprintf(stderr, "%s: (%d, %d, %d) above the line at x = 0.25\n", id, c[0], c[1], c[2]);
+    CX_CHECK(!touches || (c[0] < 250 && abs(c[0] - c[2]) < 8));
+    test_png_free(&img);
+    solved_free(&o);
+}
+
+/* Hertz at the automatic scale: never shrunk (s >= 1), and every point in
+ * contact drawn within 1 px of the drawn rigid line, which is where the
+ * image shows it. */
+static void test_hertz_contact(void)
+{
+    solved o;
+    solve_scene(&o, "hertz", 32, 0);
+    cx_result *r = o.r;
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.field = CX_FIELD_VON_MISES;
+    double s = cx_render_auto_scale(r);
+    CX_CHECK(s >= 1);
+    test_png img;
+    if (render_read(r, &opt, &img) != 0) {
+        CX_CHECK(0);
+        solved_free(&o);
+        return;
+    }
+    cx_render_layout l;
+    cx_render_layout_get(img.w, img.h, &l);
+    double line = row_of(r, &opt, 0, 0);
+    /* the drawn line: the darkest row of a column right of the body */
+    int x = (int)(l.area[0] + l.area[2] - 6), best = 0, dark = 999;
+    for (int y = (int)(l.area[1] + 0.5 * l.area[3]); y < (int)(l.area[1] + l.area[3]); y++) {
+        const unsigned char *c = test_png_px(&img, x, y);
+        if (c[0] + c[1] + c[2] < dark) {
+            dark = c[0] + c[1] + c[2];
+            best = y;
+        }
+    }
+    CX_CHECK(fabs(best + 0.5 - line) <= 1.5);
+    int ncontact = 0;
+    double worst = 0;
+    for (int i = 0; i < r->m; i++) {
+        if (r->status[i] == CX_PT_FREE)
+            continue;
+        int n = r->contact.node[i];
+        double xd[2] = {r->mesh->x[2 * n] + s * r->u[2 * n], r->mesh->x[2 * n + 1] + s * r->u[2 * n + 1]}, px[2];
+        cx_render_project(r, &opt, xd, px, NULL);
+        worst = fmax(worst, fabs(px[1] - line));
+        ncontact++;
+    }
+    fprintf(stderr, "hertz: scale %.3g, %d points in contact, at most %.3g px off the line\n", s,
+            ncontact, worst);
+    CX_CHECK(ncontact >= 10 && worst <= 1.0);
+    test_png_free(&img);
+    solved_free(&o);
+}
+
+/* A run stopped by --max-iter 1: the banner in the warning colour where
+ * the layout puts it (not on the converged image), and the run in the
+ * text chunks, with the solve arguments that repeat it. */
+static void test_unconverged(void)
+{
+    solved o, ok;
+    solve_scene(&o, "hertz", 8, 1);
+    solve_scene(&ok, "hertz", 8, 0);
+    CX_CHECK(!o.r->run.converged && o.r->run.reason == CX_DIVERGED_MAXIT && ok.r->run.converged);
+    CX_CHECK(cx_render_unconverged(&o.r->run) && !cx_render_unconverged(&ok.r->run));
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.width = 600;
+    opt.height = 450;
+    const unsigned char warn[3] = {(unsigned char)lround(255 * 0.66), (unsigned char)lround(255 * 0.22), 0};
+    for (int pass = 0; pass < 2; pass++) {
+        solved *x = pass ? &ok : &o;
+        test_png img;
+        if (render_read(x->r, &opt, &img) != 0) {
+            CX_CHECK(0);
+            continue;
+        }
+        cx_render_layout l;
+        cx_render_layout_run(&x->r->run, img.w, img.h, &l);
+        if (pass == 0) {
+            CX_CHECK(l.banner[3] > 10);
+            /* the band's right end (past the text) and its left margin */
+            int n = 0;
+            for (int k = 0; k < 3; k++) {
+                int px = (int)(k == 0 ? l.banner[0] + 2 : l.banner[0] + l.banner[2] - 3 - 3 * k);
+                int py = (int)(l.banner[1] + (0.25 + 0.25 * k) * l.banner[3]);
+                const unsigned char *c = test_png_px(&img, px, py);
+                n += abs(c[0] - warn[0]) + abs(c[1] - warn[1]) + abs(c[2] - warn[2]) < 6;
+            }
+            CX_CHECK(n == 3);
+            /* white text on it: a few hundred near-white pixels in the band */
+            long white = 0;
+            for (int y = (int)l.banner[1]; y < (int)(l.banner[1] + l.banner[3]); y++)
+                for (int xx = (int)l.banner[0]; xx < (int)(l.banner[0] + l.banner[2]); xx++) {
+                    const unsigned char *c = test_png_px(&img, xx, y);
+                    white += c[0] > 220 && c[1] > 200 && c[2] > 200;
+                }
+            CX_CHECK(white > 150);
+            /* the body is drawn below the banner */
+            CX_CHECK(l.area[1] >= l.banner[1] + l.banner[3]);
+        } else {
+            CX_CHECK(l.banner[3] == 0);
+            CX_CHECK(test_png_count(&img, warn[0], warn[1], warn[2], 4) < 20);
+        }
+        const char *t;
+        CX_CHECK((t = test_png_text(&img, "converged")) && strcmp(t, pass ? "yes" : "no") == 0);
+        CX_CHECK((t = test_png_text(&img, "reason")) && strcmp(t, pass ? "converged" : "max_iter") == 0);
+        CX_CHECK((t = test_png_text(&img, "tolerance")) && atof(t) == 1e-10);
+        CX_CHECK((t = test_png_text(&img, "iterations")) && atoi(t) == x->r->run.iterations);
+        CX_CHECK(pass || atoi(t) == 1);
+        CX_CHECK((t = test_png_text(&img, "solve options")) &&
+                 strncmp(t, "hertz --level 8 --method ssn-tresca --set rho=0.001 --friction none --tol 1e-10 ", 80) == 0);
+        CX_CHECK(t && strstr(t, pass ? "--max-iter 500 --stop own" : "--max-iter 1 --stop own") && !strstr(t, ".png"));
+        test_png_free(&img);
+    }
+    solved_free(&o);
+    solved_free(&ok);
+}
+
+/* Units: the scene's [units] reach the labels; without them the labels
+ * say "(units of the scene)", never "units of E". */
+static void test_units(void)
+{
+    cx_run_record run;
+    memset(&run, 0, sizeof run);
+    char buf[160];
+    cx_field_axis_label(&run, CX_FIELD_VON_MISES, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "von Mises stress σ_vM (units of the scene)") == 0);
+    cx_field_axis_label(&run, CX_FIELD_UX, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "displacement u_x (units of the scene)") == 0);
+    snprintf(run.unit_stress, sizeof run.unit_stress, "MPa");
+    snprintf(run.unit_length, sizeof run.unit_length, "mm");
+    cx_field_axis_label(&run, CX_FIELD_VON_MISES, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "von Mises stress σ_vM [MPa]") == 0);
+    cx_field_axis_label(&run, CX_FIELD_PRESSURE, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "contact pressure p [MPa]") == 0);
+    cx_field_axis_label(&run, CX_FIELD_UMAG, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "displacement |u| [mm]") == 0);
+    cx_field_axis_label(&run, CX_FIELD_SXY, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "stress σ_xy [MPa]") == 0);
+    cx_quantity_label(&run, "x", 0, buf, sizeof buf);
+    CX_CHECK(strcmp(buf, "x [mm]") == 0);
+    for (int f = 0; f < CX_FIELD_COUNT; f++) {
+        cx_field_axis_label(&run, f, buf, sizeof buf);
+        CX_CHECK(!strstr(buf, "units of E"));
+    }
+
+    /* the shipped scenes: prism and twoblocks declare SI, hertz nothing */
+    char path[512];
+    cx_diag d;
+    cx_scene sc;
+    CX_CHECK_OK(cx_scene_resolve("twoblocks", path, sizeof path, &d));
+    CX_CHECK_OK(cx_scene_load(&sc, path, &d));
+    CX_CHECK(strcmp(sc.unit_length, "m") == 0 && strcmp(sc.unit_stress, "Pa") == 0);
+    CX_CHECK_OK(cx_scene_resolve("hertz", path, sizeof path, &d));
+    CX_CHECK_OK(cx_scene_load(&sc, path, &d));
+    CX_CHECK(sc.unit_length[0] == 0 && sc.unit_stress[0] == 0);
+
+    /* a scene file with [units], one with a bad name: the key's line */
+    static const char *base = "[scene]\nid = u\ndim = 2\n[mesh]\ngenerator = rectangle\n"
+                              "lo = 0 0\nhi = 1 1\ncells = 1 1\n[material]\nE = 1\nnu = 0.3\n"
+                              "[contact]\nboundary = bottom\nobstacle = plane\npoint = 0 0\n"
+                              "normal = 0 1\n";
+    const char *tails[3] = {"[units]\nlength = mm\nstress = MPa\n", "[units]\nstress = M Pa\n",
+                            "[units]\n"};
+    for (int k = 0; k < 3; k++) {
+        FILE *fp = fopen("test_figures_units.ini", "w");
+        fputs(base, fp);
+        fputs(tails[k], fp);
+        fclose(fp);
+        int rc = cx_scene_load(&sc, "test_figures_units.ini", &d);
+        if (k == 0) {
+            CX_CHECK_OK(rc);
+            CX_CHECK(strcmp(sc.unit_length, "mm") == 0 && strcmp(sc.unit_stress, "MPa") == 0);
+        } else {
+            CX_CHECK(rc == CX_EINVAL);
+            CX_CHECK(strstr(d.msg, k == 1 ? "test_figures_units.ini:18: key 'stress'" :
+                                            "test_figures_units.ini:17: section [units]") != NULL);
+            if (!strstr(d.msg, "test_figures_units.ini"))
+                fprintf(stderr, "units: %s\n", d.msg);
+        }
+    }
+    remove("test_figures_units.ini");
+}
+
+/* The height of the dark glyphs of the colour bar's lowest tick label
+ * ("0", at the bar's bottom). */
+static int bar_label_height(const test_png *img, const cx_render_layout *l)
+{
+    int x0 = (int)(l->bar[0] + l->bar[2] + 0.3 * l->font), x1 = (int)(x0 + 2.5 * l->font);
+    int yc = (int)(l->bar[1] + l->bar[3]), top = -1, bottom = -1;
+    for (int y = (int)(yc - l->font); y <= (int)(yc + l->font) && y < img->h; y++)
+        for (int x = x0; x < x1 && x < img->w; x++) {
+            const unsigned char *c = test_png_px(img, x, y);
+            if (c[0] < 110 && c[1] < 110 && c[2] < 110) {
+                if (top < 0)
+                    top = y;
+                bottom = y;
+            }
+        }
+    return top < 0 ? 0 : bottom - top + 1;
+}
+
+/* Legible at print size: the tick-label font is at least 2.2 % of the
+ * image width at the default size (measured on the glyphs: a digit is
+ * 0.73 em high in DejaVu Sans), larger with --font-scale; the status
+ * colours are out/palette.h's, on the image too. */
+static void test_legible(void)
+{
+    CX_CHECK(cx_render_font_px(1200, 900, 1) >= 0.022 * 1200 - 1e-9);
+    CX_CHECK(cx_render_font_px(400, 300, 1) >= 0.022 * 400 - 1e-9);
+    CX_CHECK_NEAR(cx_render_font_px(1200, 900, 2), 2 * cx_render_font_px(1200, 900, 1), 1e-12, 0);
+    solved o;
+    solve_scene(&o, "hertz", 8, 0);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    CX_CHECK(opt.font_scale == 1 && opt.width == 1200);
+    test_png img;
+    int hgt[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        opt.font_scale = k ? 1.5 : 1;
+        if (render_read(o.r, &opt, &img) != 0) {
+            CX_CHECK(0);
+            continue;
+        }
+        cx_render_layout l;
+        cx_render_layout_image(o.r, &opt, &l);
+        CX_CHECK_NEAR(l.font, cx_render_font_px(img.w, img.h, opt.font_scale), 1e-12, 0);
+        hgt[k] = bar_label_height(&img, &l);
+        test_png_free(&img);
+    }
+    fprintf(stderr, "legible: the bar's '0' is %d px high at font scale 1, %d at 1.5 (image 1200 px)\n",
+            hgt[0], hgt[1]);
+    CX_CHECK(hgt[0] >= 0.65 * 0.022 * 1200);   /* 0.73 em, less antialiasing */
+    CX_CHECK(hgt[0] <= 1.0 * 0.022 * 1200);
+    CX_CHECK(hgt[1] >= 1.3 * hgt[0]);
+    opt.font_scale = 10;
+    cx_diag d;
+    CX_CHECK(cx_render_png(o.r, &opt, OUT, NULL, &d) == CX_EINVAL && strstr(d.msg, "--font-scale"));
+
+    /* the palette: one table, the renderer's colours, on the image */
+    for (int st = 0; st < CX_PALETTE_NSTATUS; st++) {
+        unsigned char c[3];
+        cx_status_color(st, c);
+        CX_CHECK(memcmp(c, cx_palette_status[st], 3) == 0);
+    }
+    CX_CHECK(memcmp(cx_palette_status[CX_PT_STICK], cx_palette_status[CX_PT_SLIP_POS], 3) != 0 &&
+             memcmp(cx_palette_status[CX_PT_FREE], cx_palette_status[CX_PT_CONTACT], 3) != 0);
+    cx_render_opts_default(&opt);
+    opt.field = CX_FIELD_STATUS;
+    if (render_read(o.r, &opt, &img) == 0) {
+        cx_result *r = o.r;
+        int n = r->contact.node[0];
+        double s = cx_render_auto_scale(r), x[2] = {r->mesh->x[2 * n] + s * r->u[2 * n],
+                                                     r->mesh->x[2 * n + 1] + s * r->u[2 * n + 1]}, px[2];
+        cx_render_project(r, &opt, x, px, NULL);
+        const unsigned char *c = test_png_px(&img, (int)px[0], (int)px[1]);
+        const unsigned char *want = cx_palette_status[r->status[0]];
+        CX_CHECK(r->status[0] == CX_PT_CONTACT);
+        CX_CHECK(abs(c[0] - want[0]) + abs(c[1] - want[1]) + abs(c[2] - want[2]) < 30);
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    solved_free(&o);
+}
+
+/* Control: --cmap, --range, --no-title. */
+static void test_control(void)
+{
+    unsigned char c[3];
+    /* the published maps at their samples */
+    cx_colormap_named(CX_CMAP_MAGMA, 0, 0.5, c);
+    CX_CHECK(c[0] == 183 && c[1] == 55 && c[2] == 121);
+    cx_colormap_named(CX_CMAP_CIVIDIS, 0, 1.0, c);
+    CX_CHECK(c[0] == 254 && c[1] == 232 && c[2] == 56);
+    cx_colormap_named(CX_CMAP_GRAY, 0, 0.5, c);
+    CX_CHECK(c[0] == c[1] && c[1] == c[2]);
+    CX_CHECK(cx_cmap_from_name("magma") == CX_CMAP_MAGMA && cx_cmap_from_name("auto") == CX_CMAP_AUTO &&
+             cx_cmap_from_name("jet") == -2);
+    solved o;
+    solve_scene(&o, "hertz", 8, 0);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.width = 600;
+    opt.height = 450;
+    opt.cmap = CX_CMAP_CIVIDIS;
+    opt.has_range = 1;
+    opt.range_lo = 0;
+    opt.range_hi = 1000;
+    opt.no_title = 1;
+    test_png img;
+    if (render_read(o.r, &opt, &img) == 0) {
+        cx_render_layout l;
+        cx_render_layout_image(o.r, &opt, &l);
+        CX_CHECK(l.area[1] < l.font);   /* the drawing takes the title's room */
+        int bad = 0;
+        for (int k = 0; k <= 8; k++) {
+            double t = 0.05 + 0.9 * k / 8.0;
+            unsigned char want[3];
+            cx_colormap_named(CX_CMAP_CIVIDIS, 0, t, want);
+            const unsigned char *q = test_png_px(&img, (int)(l.bar[0] + 0.5 * l.bar[2]),
+                                                 (int)(l.bar[1] + (1 - t) * l.bar[3]));
+            bad += abs(q[0] - want[0]) + abs(q[1] - want[1]) + abs(q[2] - want[2]) > 12;
+        }
+        CX_CHECK(bad == 0);
+        const char *t = test_png_text(&img, "colour range");
+        CX_CHECK(t && strcmp(t, "0:1000 (set)") == 0);
+        CX_CHECK((t = test_png_text(&img, "colormap")) && strcmp(t, "cividis") == 0);
+        /* no title: the top rows are white */
+        long dark = 0;
+        for (int y = 0; y < (int)(0.6 * l.font); y++)
+            for (int x = 0; x < img.w; x++)
+                dark += test_png_px(&img, x, y)[0] < 200;
+        CX_CHECK(dark == 0);
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    cx_diag d;
+    opt.range_hi = -1;
+    CX_CHECK(cx_render_png(o.r, &opt, OUT, NULL, &d) == CX_EINVAL && strstr(d.msg, "--range"));
+    solved_free(&o);
+}
+
+int main(void)
+{
+    test_masonry("stackbond", 1);
+    test_masonry("runningbond", 1);
+    test_masonry("laminae", 0);
+    test_hertz_contact();
+    test_unconverged();
+    test_units();
+    test_legible();
+    test_control();
+    if (!getenv("CX_TEST_KEEP"))
+        remove(OUT);
+    return check_finish("render_figures");
+}
