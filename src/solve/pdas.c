@@ -12,6 +12,14 @@
  * Schur-complement LCP (Table 7). Start v = 0, lam = -b. Own criterion:
  * the set repeats (then the iterate solves the LCP exactly).
  *
+ * update = N (sparse systems, both stages): when at most N unknowns change
+ * sets, the previous factor is changed row by row (CHOLMOD row delete /
+ * row add, lcp.c) instead of refactorised; late iterations change a few
+ * joints. The updated and the new factor round differently, and the
+ * regularised systems (condition near amax / eps = 1e10) can turn a joint
+ * at a tie: the solution is the same to 1e-10, the iteration count may
+ * differ by a few (test_masonry). update = 0 refactorises every time.
+ *
  * search = 1 (default, ours): the step towards the new subsystem's solution
  * is shortened until the natural residual falls (lcp.h); a full step is the
  * paper's. Plain block pivoting (search = 0) cycles on running bond from
