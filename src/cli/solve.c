@@ -99,7 +99,7 @@ static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it
 static void solve_write_text(const cx_result *r, FILE *out)
 {
     const cx_run_record *run = &r->run;
-    char outcome[CX_DIAG_LEN + 160], b1[32], b2[32], b3[32];
+    char outcome[CX_DIAG_LEN + 160], b1[32], b2[32], b3[32], b4[32];
     cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
                      sizeof outcome);
     fprintf(out, "%s\n", outcome);
@@ -114,9 +114,10 @@ static void solve_write_text(const cx_result *r, FILE *out)
         fprintf(out, " %c %s", axes[k], solve_num(b1, sizeof b1, "%.6g", r->f_contact[k]));
     fprintf(out, "\n");
     if (run->has_pressure_error)
-        fprintf(out, "pressure vs Hertz: L2 error %s (%s %%), half-width b = %s\n",
+        fprintf(out, "pressure vs Hertz: L2 error %s (%s %%), half-width %s computed, b = %s Hertz\n",
                 solve_num(b1, sizeof b1, "%.4g", run->pressure_error_abs),
                 solve_num(b2, sizeof b2, "%.2f", 100 * run->pressure_error_rel),
+                solve_num(b4, sizeof b4, "%.4g", run->halfwidth),
                 solve_num(b3, sizeof b3, "%.4g", run->hertz_halfwidth));
     fprintf(out, "time:    assemble %.3f s, setup %.3f s, solve %.3f s, total %.3f s\n", run->time.assemble,
             run->time.setup, run->time.solve, run->time.total);

@@ -7,11 +7,14 @@
  * order, so indices are mapped through the inverse permutation here. */
 #include "linalg/linalg_impl.h"
 
+#include <math.h>
 #include <string.h>
 
 struct cx_ldlmod {
     cholmod_common c;
     cholmod_factor *L;
+    cholmod_factor *sym;   /* the symbolic analysis, kept for refactorisations */
+    int super;             /* factorise supernodal, then convert (create_super) */
     cx_counters *cnt;
     int n;
     int *pinv;         /* n: position in L's order of an original index */
@@ -26,13 +29,38 @@ void cx_ldlmod_destroy(cx_ldlmod **F)
         return;
     cx_ldlmod *f = *F;
     cholmod_free_factor(&f->L, &f->c);
+    cholmod_free_factor(&f->sym, &f->c);
     cholmod_finish(&f->c);
     cx_free(f->pinv), cx_free(f->ri), cx_free(f->rx), cx_free(f->w);
     cx_free(f);
     *F = NULL;
 }
 
-int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
+/* The numeric factor of A from the kept analysis: a copy of the symbolic
+ * factor (a modified L's columns may have moved), factorised, and with
+ * super the supernodal LL' converted to the simplicial LDL' that Modify
+ * needs (the supernodal factorisation is several times faster on the
+ * larger meshes; the conversion is one pass over L). */
+static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
+{
+    cholmod_free_factor(&f->L, &f->c);
+    f->L = cholmod_copy_factor(f->sym, &f->c);
+    CX_TRY(cx_cholmod_check(&f->c, f->L, "copy of the analysis (ldlmod)", d));
+    cholmod_sparse s = cx_cholmod_view(A, 1);
+    cholmod_factorize(&s, f->L, &f->c);
+    CX_TRY(cx_cholmod_check(&f->c, f->L, "LDL' factorisation", d));
+    if (f->cnt)
+        f->cnt->factorizations++;
+    if (f->L->minor < f->L->n)
+        return cx_diag_set(d, CX_ENUMERIC, "LDL' factorisation: matrix not positive definite");
+    if (f->super) {
+        cholmod_change_factor(CHOLMOD_REAL, 0, 0, 1, 1, f->L, &f->c);
+        CX_TRY(cx_cholmod_check(&f->c, f->L, "supernodal to simplicial LDL'", d));
+    }
+    return CX_OK;
+}
+
+static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, cx_counters *cnt, cx_diag *d)
 {
     int n = A->ncol;
     cx_ldlmod *f = CX_NEW(cx_ldlmod, 1);
@@ -40,8 +68,10 @@ int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *
     if (!f)
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     cx_cholmod_start(&f->c);
-    f->c.supernodal = CHOLMOD_SIMPLICIAL;   /* Modify needs a simplicial LDL' */
+    if (!super)
+        f->c.supernodal = CHOLMOD_SIMPLICIAL;   /* Modify needs a simplicial LDL' */
     f->c.final_ll = 0;
+    f->super = super;
     f->cnt = cnt;
     f->n = n;
     f->pinv = CX_NEW(int, n);
@@ -53,24 +83,53 @@ int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
     cholmod_sparse s = cx_cholmod_view(A, 1);
-    f->L = cholmod_analyze(&s, &f->c);
-    int st = cx_cholmod_check(&f->c, f->L, "analyse (ldlmod)", d);
-    if (st == CX_OK) {
-        cholmod_factorize(&s, f->L, &f->c);
-        st = cx_cholmod_check(&f->c, f->L, "LDL' factorisation", d);
-    }
-    if (st == CX_OK && f->L->minor < f->L->n)
-        st = cx_diag_set(d, CX_ENUMERIC, "LDL' factorisation: matrix not positive definite");
+    f->sym = cholmod_analyze(&s, &f->c);
+    int st = cx_cholmod_check(&f->c, f->sym, "analyse (ldlmod)", d);
+    if (st == CX_OK)
+        st = ldlmod_factor(f, A, d);
     if (st != CX_OK) {
         cx_ldlmod_destroy(&f);
         return st;
     }
     for (int k = 0; k < n; k++)
         f->pinv[cx_cholmod_column(f->L, k)] = k;
-    if (cnt)
-        cnt->factorizations++;
     *F = f;
     return CX_OK;
+}
+
+int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
+{
+    return ldlmod_new(F, A, 0, cnt, d);
+}
+
+int cx_ldlmod_create_super(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
+{
+    return ldlmod_new(F, A, 1, cnt, d);
+}
+
+int cx_ldlmod_check(cx_ldlmod *f, double amax, cx_diag *d)
+{
+    /* D(k,k) is the first entry of column k of the simplicial LDL' factor;
+     * the same relative bound as the Cholesky factorisations' (fact.c) */
+    const int *lp = f->L->p;
+    const double *lx = f->L->x;
+    for (int k = 0; k < f->n; k++) {
+        double dk = lx[lp[k]];
+        if (!(dk > CX_PIVOT_RTOL * amax))   /* also catches NaN */
+            return cx_diag_set(d, CX_ENUMERIC,
+                               "LDL' factor: matrix singular to working precision (pivot %g at column %d)",
+                               dk, cx_cholmod_column(f->L, k));
+    }
+    return CX_OK;
+}
+
+int cx_ldlmod_refactor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
+{
+    CX_TRY(ldlmod_factor(f, A, d));
+    double amax = 0;
+    for (int j = 0; j < A->ncol; j++)
+        amax = fmax(amax, fabs(cx_csc_get(A, j, j)));
+    return cx_ldlmod_check(f, amax, d);
 }
 
 int cx_ldlmod_delete(cx_ldlmod *f, int k, cx_diag *d)

@@ -136,6 +136,41 @@ int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state
     return CX_OK;
 }
 
+
+/* The contact half-width of a 2D Hertz run (cx_run_record.halfwidth). The
+ * contact set orders its points along the arc with x increasing from the
+ * symmetry axis (scene/pressure.c). In contact: pressure above 1e-12 of
+ * the largest (roundoff of the zero multipliers). */
+static double result_halfwidth(const cx_problem *p, const double *lN)
+{
+    const cx_contact_set *c = &p->contact;
+    double pmax = 0;
+    for (int i = 0; i < p->m; i++)
+        pmax = fmax(pmax, lN[i] / c->weight[i]);
+    int last = -1;
+    for (int i = 0; i < p->m; i++)
+        if (lN[i] / c->weight[i] > 1e-12 * pmax)
+            last = i;
+    if (last < 0)
+        return 0;
+    double xl = fabs(c->x[2 * last]);
+    if (last + 1 >= p->m)
+        return xl;   /* every point in contact: the half-width is at least xl */
+    double xo = fabs(c->x[2 * (last + 1)]);
+    double b = xo;
+    if (last > 0) {
+        /* p^2 = k (b^2 - x^2) through (x_{l-1}, p_{l-1}) and (x_l, p_l) */
+        double xa = fabs(c->x[2 * (last - 1)]), pa = lN[last - 1] / c->weight[last - 1];
+        double pl = lN[last] / c->weight[last];
+        double den = pa * pa - pl * pl;
+        if (den > 0) {
+            double b2 = (pa * pa * xl * xl - pl * pl * xa * xa) / den;
+            b = b2 > 0 ? sqrt(b2) : xl;
+        }
+    }
+    return fmin(fmax(b, xl), xo);
+}
+
 int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *sc, int level,
                            cx_diag *d)
 {
@@ -162,6 +197,7 @@ int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *s
             run->pressure_error_abs = pa;
             run->pressure_error_rel = pr;
             run->hertz_halfwidth = cx_scene_hertz_halfwidth(sc);
+            run->halfwidth = result_halfwidth(p, x->lN);
         }
     }
     run->level = level > 0 ? level : sc ? sc->level : 0;

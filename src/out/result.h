@@ -56,6 +56,11 @@ typedef struct cx_run_record {
     int has_pressure_error;         /* the scene has Hertz's pressure */
     double pressure_error_abs, pressure_error_rel;
     double hertz_halfwidth;         /* b (0: none) */
+    /* The computed contact half-width (result.c, cx_result_halfwidth):
+     * p^2 = (lN / weight)^2 extrapolated linearly in x^2 through the last
+     * two points in contact to p = 0 (exact for Hertz's p ~ sqrt(b^2 - x^2)),
+     * kept between the last point in contact and its open neighbour. */
+    double halfwidth;
 } cx_run_record;
 
 typedef struct cx_result {

@@ -85,6 +85,10 @@ int cx_result_write_json(const cx_result *r, FILE *out)
         cx_json_num(&j, "abs", run->pressure_error_abs);
         cx_json_num(&j, "rel", run->pressure_error_rel);
         cx_json_end_object(&j);
+        cx_json_object(&j, "contact_halfwidth");
+        cx_json_num(&j, "computed", run->halfwidth);
+        cx_json_num(&j, "hertz", run->hertz_halfwidth);
+        cx_json_end_object(&j);
     }
     cx_json_str(&j, "version", CX_VERSION);
     cx_json_end_object(&j);

@@ -217,12 +217,73 @@ int cx_lcp_solver_init(cx_lcp_solver *s, const cx_lcp *L, cx_counters *cnt, cx_d
     return cx_fact_analyze(s->F, &s->M, d);
 }
 
+int cx_lcp_solver_updates(cx_lcp_solver *s, int update_max, cx_diag *d)
+{
+    if (s->L->dense || update_max <= 0)
+        return CX_OK;
+    s->update_max = update_max;
+    if (!s->fkeep && !(s->fkeep = CX_NEW(unsigned char, s->L->n)))
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    return CX_OK;
+}
+
 void cx_lcp_solver_clear(cx_lcp_solver *s)
 {
+    cx_ldlmod_destroy(&s->ldl);
+    cx_free(s->fkeep);
     cx_fact_destroy(&s->F);
     cx_csc_clear(&s->M);
     cx_free(s->Md);
     memset(s, 0, sizeof *s);
+}
+
+/* The masked factor by row changes from the last one, or anew (update_max). */
+static int lcp_factor_mod(cx_lcp_solver *s, double eps, const unsigned char *zero, cx_diag *d)
+{
+    const cx_lcp *L = s->L;
+    int n = L->n;
+    double amax = fmax(1.0, L->amax + eps);
+    if (s->ldl && s->fvalid && s->feps == eps) {
+        int nch = 0;
+        for (int i = 0; i < n; i++)
+            nch += s->fkeep[i] != !(zero && zero[i]);
+        if (nch <= s->update_max) {
+            int st = CX_OK;
+            /* deletes first: each add then sees only the rows that stay */
+            for (int i = 0; i < n && st == CX_OK; i++)
+                if (s->fkeep[i] && zero && zero[i]) {
+                    st = cx_ldlmod_delete(s->ldl, i, d);
+                    s->fkeep[i] = 0;
+                }
+            for (int i = 0; i < n && st == CX_OK; i++)
+                if (!s->fkeep[i] && !(zero && zero[i])) {
+                    st = cx_ldlmod_add(s->ldl, i, &L->A, s->fkeep, eps, d);
+                    s->fkeep[i] = 1;
+                }
+            if (st == CX_OK)
+                st = cx_ldlmod_check(s->ldl, amax, d);
+            if (st == CX_OK)
+                return CX_OK;
+            if (st != CX_ENUMERIC)
+                return st;
+            /* no longer definite to working precision after the updates: a
+             * new factorisation decides (it reports the same singularity or
+             * recovers from the rounding of the updates) */
+        }
+    }
+    cx_lcp_factor_values(s, eps, zero, NULL);
+    s->fvalid = 0;
+    if (!s->ldl) {
+        CX_TRY(cx_ldlmod_create_super(&s->ldl, &s->M, s->cnt, d));
+        CX_TRY(cx_ldlmod_check(s->ldl, amax, d));
+    } else {
+        CX_TRY(cx_ldlmod_refactor(s->ldl, &s->M, d));
+    }
+    for (int i = 0; i < n; i++)
+        s->fkeep[i] = !(zero && zero[i]);
+    s->feps = eps;
+    s->fvalid = 1;
+    return CX_OK;
 }
 
 int cx_lcp_factor(cx_lcp_solver *s, double eps, const unsigned char *zero, const double *dadd,
@@ -241,6 +302,9 @@ int cx_lcp_factor(cx_lcp_solver *s, double eps, const unsigned char *zero, const
             return cx_diag_set(d, CX_ENUMERIC, "the (masked) LCP matrix of order %d is singular", n);
         return CX_OK;
     }
+    if (s->update_max > 0 && !dadd)
+        return lcp_factor_mod(s, eps, zero, d);
+    s->fvalid = 0;
     cx_lcp_factor_values(s, eps, zero, dadd);
     return cx_fact_factorize(s->F, &s->M, d);
 }
@@ -267,6 +331,8 @@ int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs,
         if (s->cnt)
             s->cnt->solves++;
         memcpy(x, work, sizeof(double) * (size_t)n);
+    } else if (s->update_max > 0 && s->fvalid) {
+        CX_TRY(cx_ldlmod_solve(s->ldl, work, x, d));
     } else {
         CX_TRY(cx_fact_solve(s->F, work, x, d));
     }

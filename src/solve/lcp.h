@@ -64,10 +64,22 @@ typedef struct cx_lcp_solver {
     cx_csc M;            /* sparse: A's pattern, values rebuilt per factorisation */
     double *Md;          /* dense: n x n */
     cx_counters *cnt;
+    /* updates (cx_lcp_solver_updates): a simplicial LDL' factor of the last
+     * masked matrix, changed row by row when at most update_max unknowns
+     * change their mask (same eps, no dadd), else refactorised */
+    int update_max;      /* 0: always refactorise (cx_fact) */
+    cx_ldlmod *ldl;
+    unsigned char *fkeep;   /* n: 1 where the factored matrix is A's (not masked) */
+    double feps;            /* the eps it was factored with */
+    int fvalid;             /* the factor is of (fkeep, feps) */
 } cx_lcp_solver;
 
 int cx_lcp_solver_init(cx_lcp_solver *s, const cx_lcp *L, cx_counters *cnt, cx_diag *d);
 void cx_lcp_solver_clear(cx_lcp_solver *s);
+/* Sparse solvers: factorisations without dadd update the previous factor
+ * (CHOLMOD row delete / row add) when at most update_max unknowns change
+ * their mask, and refactorise otherwise (0: always, the default). */
+int cx_lcp_solver_updates(cx_lcp_solver *s, int update_max, cx_diag *d);
 /* zero: n flags (1: the unknown is held at 0; NULL none); dadd: n values
  * added to the diagonal (NULL none). CX_ENUMERIC if singular. */
 int cx_lcp_factor(cx_lcp_solver *s, double eps, const unsigned char *zero, const double *dadd,

@@ -1,0 +1,38 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""bench paper 001 (issue 23): the parameters the paper lost and we chose
+(gamma of the approximation step, eps of the stopping rule) are printed
+with the values the runs used; --gamma changes the runs and the line."""
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from clicheck import check, finish, run  # noqa: E402
+
+
+def iters(out):
+    rows = re.findall(r"^\s+([12])\s+\d+\s+\d+ \|.*\|\s+(\d+)\s+(\d+)\s*$", out, re.M)
+    return {int(L): (int(a), int(b)) for L, a, b in rows}
+
+
+code, out, err = run("bench", "paper", "001", "--levels", "1-2", "--no-solves", "--repeat", "1")
+check(code == 0, f"bench paper 001 exits 0 ({err.strip()})")
+check("chosen by us: gamma = 12" in out, "gamma = 12 is stated")
+check("eps = 1e-12" in out, "eps = 1e-12 is stated")
+check("tuned on this prism" in out, "how gamma was chosen is stated")
+it = iters(out)
+check(set(it) == {1, 2}, f"levels 1 and 2 are printed ({it})")
+m = re.search(r"Our (\d+)-(\d+) steps against the paper's (\d+)-(\d+)", out)
+check(m is not None, "the step ranges are compared")
+if m and it:
+    check(int(m.group(1)) == min(a for a, _ in it.values()) and int(m.group(2)) == max(a for a, _ in it.values()),
+          "our range is the table's")
+    check((int(m.group(3)), int(m.group(4))) == (5, 6), "the paper's range on levels 1-2 is 5-6")
+
+code, out2, err = run("bench", "paper", "001", "--levels", "1-2", "--no-solves", "--repeat", "1", "--gamma", "1")
+check(code == 0, "bench paper 001 --gamma 1 exits 0")
+check("gamma = 1," in out2 and "(--gamma" in out2, "the chosen gamma is stated")
+it2 = iters(out2)
+check(it2 != it and all(a > 20 for a, _ in it2.values()), f"gamma = 1 cycles (many steps: {it2})")
+finish("cli_paper_001")
