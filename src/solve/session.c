@@ -202,6 +202,13 @@ int cx_session_schur(cx_session *s, cx_schur **S, const double **fc, cx_diag *d)
     return CX_OK;
 }
 
+const cx_schur *cx_session_schur_built(const cx_session *s)
+{
+    while (s->parent)
+        s = s->parent;
+    return s->schur;
+}
+
 int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build,
                          const void *arg, cx_cache_destroy_fn destroy, void **obj, cx_diag *d)
 {

@@ -196,6 +196,9 @@ const cx_counters *cx_session_cache_counters(const cx_session *s);
  * load f (*fc, nc values; fc may be NULL). Its work is counted in the cache
  * counters and, when built during a run, in the run's counters too. */
 int cx_session_schur(cx_session *s, cx_schur **S, const double **fc, cx_diag *d);
+/* The reduction onto the contact dofs if a run has built it, else NULL
+ * (for reports: builds nothing). */
+const cx_schur *cx_session_schur_built(const cx_session *s);
 /* Any other shared operator (a factorisation of K + r M, the dual operator,
  * a regularised K, ...), built lazily once per session under a key that
  * names it and every value it depends on ("ubr:K+rM r=2.2e+02"). The first
