@@ -118,6 +118,13 @@ static void test_normal_reduction(void)
     CX_CHECK_OK(cx_session_set_tresca(a, 2e-3, &d));
     CX_CHECK_OK(cx_solver_solve(a, NULL, NULL, &d));
     CX_CHECK(cx_session_cache_counters(a)->factorizations == 2);
+    /* ssstar, frictionless, on the same normal reduction: the same solution */
+    CX_CHECK_OK(cx_session_set_frictionless(a, &d));
+    CX_CHECK_OK(cx_session_set_method(a, cx_method_find("ssstar"), NULL, NULL, &d));
+    CX_CHECK_OK(cx_solver_solve(a, NULL, NULL, &d));
+    CX_CHECK(cx_session_iterate(a)->reason > 0 && !cx_session_iterate(a)->u_partial);
+    CX_CHECK(cx_session_cache_counters(a)->factorizations == 2);
+    CX_CHECK_LE(energy_diff(p, cx_session_iterate(a)->u, u_normal, &un), 1e-10 * un);
 
     /* friction first, then frictionless: the full reduction serves, and
      * gives the normal one's solution */
