@@ -307,6 +307,15 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         cx_result_write_json(res, stdout);
     else
         solve_write_text(res, summary);
+    const cx_schur *S = a.baseline && !a.json ? cx_session_schur_built(s) : NULL;
+    if (S) {   /* both orderings' predicted fill, when both were analysed */
+        const cx_schur_ordering *o = cx_schur_ordering_of(S);
+        fprintf(summary, "         ordering %s: CAMD %.3g nnz(L) %.3g Gflop %.3f s", o->chosen ? "METIS" : "CAMD",
+                o->lnz[0], o->flops[0] * 1e-9, o->seconds[0]);
+        if (o->tried)
+            fprintf(summary, "; METIS %.3g nnz(L) %.3g Gflop %.3f s", o->lnz[1], o->flops[1] * 1e-9, o->seconds[1]);
+        fprintf(summary, "\n");
+    }
     code = res->run.converged                   ? CX_EXIT_OK
            : res->run.reason == CX_CANCELLED ? CX_EXIT_INTERRUPTED
                                                : CX_EXIT_NOT_CONVERGED;

@@ -175,6 +175,22 @@ typedef struct cx_schur cx_schur;
  * naming a column, if A_ii is not positive definite. */
 int cx_schur_create(cx_schur **S, const cx_csc *A, const int *c, int nc,
                     cx_counters *cnt, cx_diag *d);
+/* The fill-reducing ordering of the factor (c last in both): CAMD on the
+ * whole matrix, or nested dissection (METIS) on the i dofs. AUTO analyses
+ * CAMD's, then METIS's unless its own cost could not be won back, and
+ * factorises the one with fewer predicted flops (the METIS run counted). */
+typedef enum cx_schur_order { CX_ORDER_CAMD = 0, CX_ORDER_METIS = 1, CX_ORDER_AUTO = 2 } cx_schur_order;
+typedef struct cx_schur_ordering {
+    cx_schur_order chosen;   /* CAMD or METIS */
+    int tried;               /* METIS analysed (its entries below are set) */
+    double lnz[2];           /* predicted factor non-zeros, by cx_schur_order */
+    double flops[2];         /* predicted factorisation flops */
+    double seconds[2];       /* ordering + symbolic analysis */
+} cx_schur_ordering;
+/* cx_schur_create with the ordering given (tests, bench comparisons). */
+int cx_schur_create_ordered(cx_schur **S, const cx_csc *A, const int *c, int nc, cx_schur_order order,
+                            cx_counters *cnt, cx_diag *d);
+const cx_schur_ordering *cx_schur_ordering_of(const cx_schur *S);
 void cx_schur_destroy(cx_schur **S);
 int cx_schur_size(const cx_schur *S);                 /* nc */
 /* S as a dense nc x nc column-major symmetric matrix, rows and columns in

@@ -80,6 +80,9 @@ void cx_session_destroy(cx_session **sp)
     session_drop_method(s);
     cx_schur_destroy(&s->schur);
     cx_free(s->schur_load);
+    cx_schur_destroy(&s->schur_n);
+    cx_free(s->schur_n_load);
+    cx_free(s->ndofs);
     cx_free(s->uc);
     for (int i = 0; i < s->nentries; i++) {
         if (s->entries[i].destroy && s->entries[i].obj)
@@ -202,6 +205,76 @@ int cx_session_schur(cx_session *s, cx_schur **S, const double **fc, cx_diag *d)
     return CX_OK;
 }
 
+/* The dofs the rows of N touch, ascending (a subset of p->cdofs). */
+static int session_normal_dofs(cx_session *s)
+{
+    const cx_csc *N = &s->p->N;
+    int nn = 0;
+    for (int j = 0; j < N->ncol; j++)
+        nn += N->p[j + 1] > N->p[j];
+    if (!(s->ndofs = CX_NEW(int, nn > 0 ? nn : 1)))
+        return CX_ENOMEM;
+    s->nn = 0;
+    for (int j = 0; j < N->ncol; j++)
+        if (N->p[j + 1] > N->p[j])
+            s->ndofs[s->nn++] = j;
+    return CX_OK;
+}
+
+int cx_session_schur_normal(cx_session *s, cx_schur **S, const double **fc, const int **dofs, int *nd,
+                            cx_diag *d)
+{
+    if (s->parent)
+        return cx_session_schur_normal(s->parent, S, fc, dofs, nd, d);
+    if (!s->ndofs && session_normal_dofs(s))
+        return cx_diag_set(d, CX_ENOMEM, "out of memory");
+    /* the full reduction serves when N touches every contact dof, and when
+     * it is built and this one is not: a frictionless run after a run with
+     * friction then factorises nothing (its dense system is larger). In 2D
+     * it always serves: the normal dofs are half the contact dofs, the
+     * dense block is small beside the factorisation, and a later change of
+     * law would pay a second factorisation for little */
+    if (s->nn == s->p->nc || s->p->dim < 3 || (s->schur && !s->schur_n)) {
+        if (S)
+            CX_TRY(cx_session_schur(s, S, fc, d));
+        if (dofs)
+            *dofs = s->p->cdofs;
+        *nd = s->p->nc;
+        return CX_OK;
+    }
+    if (dofs)
+        *dofs = s->ndofs;
+    *nd = s->nn;
+    if (!S)
+        return CX_OK;
+    if (!s->schur_n) {
+        cx_counters before = s->run;
+        int st = CX_ENOMEM;
+        if ((s->schur_n_load = CX_NEW(double, s->nn > 0 ? s->nn : 1)))
+            st = cx_schur_create(&s->schur_n, &s->p->K, s->ndofs, s->nn, &s->run, d);
+        if (st == CX_OK)
+            st = cx_schur_condense(s->schur_n, s->p->f, s->schur_n_load);
+        session_count_cache(s, &before);
+        if (st != CX_OK) {
+            cx_schur_destroy(&s->schur_n);
+            cx_free(s->schur_n_load);
+            s->schur_n_load = NULL;
+            return st == CX_ENOMEM ? cx_diag_set(d, st, "out of memory") : st;
+        }
+    }
+    *S = s->schur_n;
+    if (fc)
+        *fc = s->schur_n_load;
+    return CX_OK;
+}
+
+const cx_schur *cx_session_schur_built(const cx_session *s)
+{
+    while (s->parent)
+        s = s->parent;
+    return s->schur ? s->schur : s->schur_n;
+}
+
 int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build,
                          const void *arg, cx_cache_destroy_fn destroy, void **obj, cx_diag *d)
 {
@@ -258,7 +331,7 @@ int cx_session_cache_size(const cx_session *s)
 {
     if (s->parent)
         return cx_session_cache_size(s->parent);
-    return s->nentries + (s->schur != NULL);
+    return s->nentries + (s->schur != NULL) + (s->schur_n != NULL);
 }
 
 /* Zero the iterate and the run counters for a new run. */

@@ -24,6 +24,10 @@ struct cx_session {
     cx_schur *schur;             /* operator cache: K condensed onto p->cdofs, lazy ... */
     double *schur_load;          /* ... and f condensed with it (nc) */
     double *uc;                  /* nc: scratch to expand a partial iterate */
+    cx_schur *schur_n;           /* operator cache: K condensed onto the normal dofs only
+                                    (frictionless runs), lazy, beside schur ... */
+    double *schur_n_load;        /* ... f condensed with it ... */
+    int *ndofs, nn;              /* ... and those dofs (the columns N touches), ascending */
     cx_cache_entry *entries;     /* operator cache: everything else, by key */
     int nentries, centries;
     cx_counters cache;           /* work of building the cache, all runs */

@@ -105,8 +105,10 @@ typedef struct cx_iterate {
                             the kkt error cannot show (a regularised first
                             stage at its O(eps) floor): restarts the stall clock */
     double *u;           /* n */
-    int u_partial;       /* 1: only u's contact dofs (p->cdofs) are of this
-                            iterate, the rest is of an earlier one (below) */
+    int u_partial;       /* CX_PARTIAL_CONTACT: only u's contact dofs (p->cdofs)
+                            are of this iterate, the rest is of an earlier one
+                            (below); CX_PARTIAL_NORMAL: only its normal dofs
+                            (cx_session_schur_normal) */
     double *lN;          /* m */
     double *lT;          /* nt */
     unsigned char *status;    /* m, cx_point_status */
@@ -196,6 +198,22 @@ const cx_counters *cx_session_cache_counters(const cx_session *s);
  * load f (*fc, nc values; fc may be NULL). Its work is counted in the cache
  * counters and, when built during a run, in the run's counters too. */
 int cx_session_schur(cx_session *s, cx_schur **S, const double **fc, cx_diag *d);
+/* The reduction onto the contact dofs if a run has built it, else NULL
+ * (for reports: builds nothing). */
+const cx_schur *cx_session_schur_built(const cx_session *s);
+/* The same condensation onto the normal dofs only (the dofs the rows of N
+ * touch: in 3D on flat obstacles a third of the contact dofs), for
+ * frictionless runs, where the tangential contact dofs carry no force and
+ * may be condensed away with the interior. Cached beside the full one, so
+ * that a change of law refactorises nothing already factorised. It is the
+ * full one itself (p->cdofs) in 2D, when N touches every contact dof, or
+ * when the full one is built and this one is not (nothing new is
+ * factorised then).
+ * *dofs: *nd ascending dof indices, S and *fc in their order (fc, dofs may
+ * be NULL). S NULL: only which dofs, building nothing. */
+int cx_session_schur_normal(cx_session *s, cx_schur **S, const double **fc, const int **dofs, int *nd,
+                            cx_diag *d);
+enum { CX_PARTIAL_CONTACT = 1, CX_PARTIAL_NORMAL = 2 };   /* cx_iterate.u_partial */
 /* Any other shared operator (a factorisation of K + r M, the dual operator,
  * a regularised K, ...), built lazily once per session under a key that
  * names it and every value it depends on ("ubr:K+rM r=2.2e+02"). The first

@@ -149,9 +149,15 @@ static int solver_kkt(cx_session *s, cx_diag *d)
     }
     cx_schur *S;
     const double *fc;
-    CX_TRY(cx_session_schur(s, &S, &fc, d));
-    it->kkt = cx_kkt_error_condensed(s->p, &s->fr, cx_schur_matrix(S), fc, it->u, it->lN, it->lT,
-                                     s->work, &it->kkt_parts);
+    cx_problem q = *s->p;   /* the condensed rows are those of the reduction the iterate came from */
+    if (it->u_partial == CX_PARTIAL_NORMAL) {
+        const int *dofs;
+        CX_TRY(cx_session_schur_normal(s, &S, &fc, &dofs, &q.nc, d));
+        q.cdofs = (int *)dofs;   /* read only */
+    } else
+        CX_TRY(cx_session_schur(s, &S, &fc, d));
+    it->kkt = cx_kkt_error_condensed(&q, &s->fr, cx_schur_matrix(S), fc, it->u, it->lN, it->lT, s->work,
+                                     &it->kkt_parts);
     return CX_OK;
 }
 
@@ -162,9 +168,14 @@ static int solver_expand(cx_session *s, cx_diag *d)
     cx_iterate *it = &s->it;
     const cx_problem *p = s->p;
     cx_schur *S;
-    CX_TRY(cx_session_schur(s, &S, NULL, d));
-    for (int k = 0; k < p->nc; k++)
-        s->uc[k] = it->u[p->cdofs[k]];
+    const int *dofs = p->cdofs;
+    int nd = p->nc;
+    if (it->u_partial == CX_PARTIAL_NORMAL)
+        CX_TRY(cx_session_schur_normal(s, &S, NULL, &dofs, &nd, d));
+    else
+        CX_TRY(cx_session_schur(s, &S, NULL, d));
+    for (int k = 0; k < nd; k++)
+        s->uc[k] = it->u[dofs[k]];
     int st = cx_schur_expand(S, p->f, s->uc, it->u);
     cx_session_sync_counters_(s);
     if (st != CX_OK)

@@ -46,6 +46,10 @@
 typedef struct {
     cx_schur *S;          /* borrowed from the session's operator cache */
     int nc;               /* contact dofs (order of S) */
+    const int *dofs;      /* nc: those dofs, the session's: all contact dofs, or for a
+                             frictionless run the normal ones only (the tangential ones,
+                             free of force, are condensed away with the interior) */
+    int normal;           /* S is the normal-only reduction */
     int nrow;             /* constraint rows: m normal, then nt tangential (Tresca) */
     int *rp, *rc;         /* nrow + 1 / nnz: CSR rows over contact-dof positions */
     double *rv;           /* nnz row values */
@@ -119,8 +123,8 @@ static int ssn_build_rows(ssn_state *st, const cx_problem *p)
         return CX_ENOMEM;
     for (int j = 0; j < p->n; j++)
         pos[j] = -1;
-    for (int k = 0; k < p->nc; k++)
-        pos[p->cdofs[k]] = k;
+    for (int k = 0; k < st->nc; k++)
+        pos[st->dofs[k]] = k;
     const cx_csc *B[2] = {&p->N, &p->T};
     int nb = st->tangential ? 2 : 1;
     size_t nnz = 0;
@@ -172,7 +176,14 @@ static int ssn_init(void *state, cx_session *s, const cx_param_values *params, c
     st->dt = p->dim - 1;
     st->tangential = cx_session_friction(s)->law == CX_FRICTION_TRESCA;
     st->sb = cx_session_friction(s)->s;
+    st->normal = !st->tangential;
     st->nc = p->nc;
+    st->dofs = p->cdofs;
+    if (st->normal) {   /* which dofs, before anything is factorised */
+        int status = cx_session_schur_normal(s, NULL, NULL, &st->dofs, &st->nc, d);
+        if (status != CX_OK)
+            return status;
+    }
     st->nrow = p->m + (st->tangential ? p->nt : 0);
     int ns = st->nc + st->nrow;
     if (ns > SSN_MAX_DENSE)
@@ -202,16 +213,25 @@ static int ssn_init(void *state, cx_session *s, const cx_param_values *params, c
     int status = CX_ENOMEM;
     if (!st->unit || !st->pin || !st->fpos || !st->Mf || !st->up ||
         !st->q || !st->beta || !st->uc || !st->uprev || !st->Bu || !st->set || !st->prev || !st->act ||
-        !st->M || !st->x || !st->ipiv || !st->work || (status = ssn_build_rows(st, p)) != CX_OK) {
+        !st->M || !st->x || !st->ipiv || !st->work) {
+        ssn_destroy(st);
+        return cx_diag_set(d, status, "out of memory");
+    }
+    int nd = p->nc;
+    status = st->normal ? cx_session_schur_normal(s, &st->S, &st->fc, &st->dofs, &nd, d)
+                        : cx_session_schur(s, &st->S, &st->fc, d);
+    if (status == CX_OK && nd != st->nc)   /* the session's choice cannot change in between */
+        status = cx_diag_set(d, CX_EINVAL, "ssn-tresca: reduction onto %d dofs, expected %d", nd, st->nc);
+    if (status != CX_OK) {
+        ssn_destroy(st);
+        return status;
+    }
+    if ((status = ssn_build_rows(st, p)) != CX_OK) {
         ssn_destroy(st);
         return cx_diag_set(d, status, "out of memory");
     }
     for (int r = 0; r < st->nrow; r++)
         st->unit[r] = st->rp[r + 1] - st->rp[r] == 1 ? st->rc[st->rp[r]] : -1;
-    if ((status = cx_session_schur(s, &st->S, &st->fc, d)) != CX_OK) {
-        ssn_destroy(st);
-        return status;
-    }
     /* start from the sets of the session's starting iterate if it has
      * contact forces (cx_session_set_start, e.g. cf-fp's last step), else
      * bonded: every point in contact and sticking */
@@ -443,7 +463,7 @@ static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     if (it->iter == 0 && st->warm) {
         /* a warm start: the sets of the starting iterate */
         for (int k = 0; k < nc; k++)
-            st->uc[k] = it->u[p->cdofs[k]];
+            st->uc[k] = it->u[st->dofs[k]];
         memcpy(st->uprev, st->uc, sizeof(double) * (size_t)nc);
     }
     if (it->iter > 0 || st->warm)
@@ -465,10 +485,10 @@ static int ssn_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
     }
     CX_TRY(status);
 
-    /* u on the contact dofs only: the solver expands it when the run ends */
+    /* u on the reduction's dofs only: the solver expands it when the run ends */
     for (int k = 0; k < nc; k++)
-        it->u[p->cdofs[k]] = st->uc[k];
-    it->u_partial = 1;
+        it->u[st->dofs[k]] = st->uc[k];
+    it->u_partial = st->normal ? CX_PARTIAL_NORMAL : CX_PARTIAL_CONTACT;
 
     /* the paper's err = ||u^k - u^(k-1)|| / ||u^k||, over the contact dofs */
     cx_vec_axpy(nc, -1.0, st->uc, st->uprev);

@@ -38,6 +38,11 @@
 
 typedef struct {
     cx_schur *S;          /* borrowed from the session's operator cache */
+    const int *dofs;      /* nc: the dofs S is over, the session's: all contact dofs, or
+                             for a frictionless run in 3D the normal ones only */
+    int nc;
+    int normal;           /* frictionless: the session's normal reduction */
+    int normal_only;      /* ... which leaves out the tangential dofs (and T's rows) */
     int nv;               /* reduced unknowns: local components = contact dofs */
     int np;               /* points with at least one free component */
     int dt;               /* tangential components per point (dim - 1) */
@@ -98,7 +103,7 @@ static void ssstar_destroy(void *state)
  * obstacle), so that R is orthogonal and xi = R u_c. */
 static int ssstar_rotation(ssstar_state *st, const cx_problem *p, cx_diag *d)
 {
-    int m = p->m, dt = st->dt, nc = p->nc, status = CX_ENOMEM;
+    int m = p->m, dt = st->dt, nc = st->nc, status = CX_ENOMEM;
     int *pos = CX_NEW(int, p->n), *owner = CX_NEW(int, nc), *rowvar = CX_NEW(int, m + p->nt);
     int *cnt = CX_NEW(int, m + p->nt), *ptof = CX_NEW(int, m);
     cx_csc Nt = {0}, Tt = {0};
@@ -108,7 +113,7 @@ static int ssstar_rotation(ssstar_state *st, const cx_problem *p, cx_diag *d)
     for (int j = 0; j < p->n; j++)
         pos[j] = -1;
     for (int k = 0; k < nc; k++)
-        pos[p->cdofs[k]] = k, owner[k] = -1;
+        pos[st->dofs[k]] = k, owner[k] = -1;
     /* rows (normal i -> i, tangential r -> m + r) and their point */
     int nv = 0, np = 0;
     for (int i = 0; i < m; i++) {
@@ -116,7 +121,8 @@ static int ssstar_rotation(ssstar_state *st, const cx_problem *p, cx_diag *d)
         for (int a = -1; a < dt; a++) {
             const cx_csc *R = a < 0 ? &Nt : &Tt;
             int row = a < 0 ? i : dt * i + a;
-            cnt[a < 0 ? i : m + row] = R->p[row + 1] - R->p[row];
+            /* the normal-only reduction: no tangential rows (no force there) */
+            cnt[a < 0 ? i : m + row] = a >= 0 && st->normal_only ? 0 : R->p[row + 1] - R->p[row];
             any |= R->p[row + 1] > R->p[row];
         }
         ptof[i] = any ? np++ : -1;
@@ -239,10 +245,19 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
     ssstar_state *st = state;
     const cx_problem *p = cx_session_problem(s);
     const cx_friction_state *fr = cx_session_friction(s);
-    if (p->nc > SSSTAR_MAX_DENSE)
+    st->normal = fr->law == CX_FRICTION_NONE;
+    st->dofs = p->cdofs;
+    st->nc = p->nc;
+    if (st->normal) {   /* which dofs, before anything is factorised */
+        int status = cx_session_schur_normal(s, NULL, NULL, &st->dofs, &st->nc, d);
+        if (status != CX_OK)
+            return status;
+    }
+    st->normal_only = st->nc != p->nc;
+    if (st->nc > SSSTAR_MAX_DENSE)
         return cx_diag_set(d, CX_EUNSUPPORTED,
                            "method 'ssstar': %d contact dofs (limit %d); use a coarser level",
-                           p->nc, SSSTAR_MAX_DENSE);
+                           st->nc, SSSTAR_MAX_DENSE);
     st->dt = p->dim - 1;
     st->gamma = cx_param_get(params, "gamma");
     st->gamma_n = cx_param_get(params, "gamma_n");
@@ -252,7 +267,7 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
         ssstar_destroy(st);
         return status;
     }
-    int nv = st->nv, np = st->np, nc = p->nc;
+    int nv = st->nv, np = st->np, nc = st->nc;
     size_t nv2 = (size_t)nv * (size_t)nv;
     st->A = CX_NEW(double, nv2 ? nv2 : 1);
     st->M = CX_NEW(double, nv2 ? nv2 : 1);
@@ -276,7 +291,12 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
     const double *fc;
-    if ((status = cx_session_schur(s, &st->S, &fc, d)) != CX_OK) {
+    int nd = p->nc;
+    status = st->normal ? cx_session_schur_normal(s, &st->S, &fc, &st->dofs, &nd, d)
+                        : cx_session_schur(s, &st->S, &fc, d);
+    if (status == CX_OK && nd != nc)   /* the session's choice cannot change in between */
+        status = cx_diag_set(d, CX_EINVAL, "ssstar: reduction onto %d dofs, expected %d", nd, nc);
+    if (status != CX_OK) {
         ssstar_destroy(st);
         return status;
     }
@@ -452,7 +472,7 @@ static int ssstar_newton(ssstar_state *st, cx_counters *cnt, int iter, cx_diag *
 static int ssstar_write(ssstar_state *st, const cx_problem *p, cx_iterate *it)
 {
     int dt = st->dt;
-    memset(st->uc, 0, sizeof(double) * (size_t)p->nc);
+    memset(st->uc, 0, sizeof(double) * (size_t)st->nc);
     for (int v = 0; v < st->nv; v++)
         for (int q = st->rp[v]; q < st->rp[v + 1]; q++)
             st->uc[st->rc[q]] += st->rv[q] * st->xi[v];
@@ -469,9 +489,9 @@ static int ssstar_write(ssstar_state *st, const cx_problem *p, cx_iterate *it)
                 it->lT[dt * i + a] = -st->r[v];
         }
     }
-    for (int k = 0; k < p->nc; k++)
-        it->u[p->cdofs[k]] = st->uc[k];
-    it->u_partial = 1;
+    for (int k = 0; k < st->nc; k++)
+        it->u[st->dofs[k]] = st->uc[k];
+    it->u_partial = st->normal ? CX_PARTIAL_NORMAL : CX_PARTIAL_CONTACT;
     return CX_OK;
 }
 

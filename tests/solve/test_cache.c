@@ -5,6 +5,8 @@
 #include "check.h"
 #include "solve_fixture.h"
 
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static int builds, destroys;
@@ -46,8 +48,111 @@ static void destroy_vector(void *obj)
     cx_free(obj);
 }
 
+/* sqrt(e' K e) for e = u - v, and sqrt(u' K u). */
+static double energy_diff(const cx_problem *p, const double *u, const double *v, double *unorm)
+{
+    double *e = malloc(sizeof(double) * (size_t)p->n), *Ke = malloc(sizeof(double) * (size_t)p->n);
+    for (int i = 0; i < p->n; i++)
+        e[i] = u[i] - v[i];
+    cx_csc_gemv(&p->K, 1.0, e, 0.0, Ke);
+    double de = 0, du = 0;
+    for (int i = 0; i < p->n; i++)
+        de += e[i] * Ke[i];
+    cx_csc_gemv(&p->K, 1.0, u, 0.0, Ke);
+    for (int i = 0; i < p->n; i++)
+        du += u[i] * Ke[i];
+    free(e);
+    free(Ke);
+    *unorm = sqrt(du);
+    return sqrt(fmax(de, 0));
+}
+
+/* The two reductions of a 3D problem (session.c): a frictionless run
+ * condenses onto the normal dofs only (a third of the contact dofs on
+ * block3d's flat obstacle), a run with friction onto all of them, each
+ * built once and kept beside the other, so that switching the law back
+ * and forth factorises nothing already factorised; a frictionless run
+ * after one with friction takes the full reduction that is there. Both
+ * give the same solution to 1e-10 in the energy norm. */
+static void test_normal_reduction(void)
+{
+    cx_scene sc;
+    cx_diag d;
+    const cx_method *ssn = cx_method_find("ssn-tresca");
+    cx_session *a = fixture_session("block3d", 3, &sc);
+    const cx_problem *p = cx_session_problem(a);
+    CX_CHECK(p->dim == 3 && cx_session_friction(a)->law == CX_FRICTION_NONE);
+    const int *dofs = NULL;
+    int nd = 0;
+    cx_schur *S = NULL;
+    CX_CHECK_OK(cx_session_schur_normal(a, NULL, NULL, &dofs, &nd, &d));   /* which dofs only */
+    /* one per point; fewer than the contact dofs (some tangential ones
+     * are held by the supports) */
+    CX_CHECK(nd == p->m && nd < p->nc && cx_session_cache_counters(a)->factorizations == 0);
+    CX_CHECK(cx_session_schur_built(a) == NULL);
+
+    /* frictionless first: the normal reduction, one factorisation */
+    CX_CHECK_OK(cx_session_set_method(a, ssn, NULL, NULL, &d));
+    CX_CHECK_OK(cx_solver_solve(a, NULL, NULL, &d));
+    const cx_iterate *it = cx_session_iterate(a);
+    CX_CHECK(it->reason > 0 && !it->u_partial);
+    CX_CHECK_LE(it->kkt, 1e-10);
+    CX_CHECK(cx_session_cache_counters(a)->factorizations == 1);
+    CX_CHECK_OK(cx_session_schur_normal(a, &S, NULL, &dofs, &nd, &d));
+    CX_CHECK(cx_schur_size(S) == nd && nd == p->m);
+    double *u_normal = malloc(sizeof(double) * (size_t)p->n);
+    memcpy(u_normal, it->u, sizeof(double) * (size_t)p->n);
+
+    /* Tresca: the full reduction, built once beside it */
+    CX_CHECK_OK(cx_session_set_tresca(a, 1e-3, &d));
+    CX_CHECK_OK(cx_solver_solve(a, NULL, NULL, &d));
+    CX_CHECK(cx_session_iterate(a)->reason > 0);
+    CX_CHECK(cx_session_cache_counters(a)->factorizations == 2);
+    CX_CHECK(cx_session_cache_size(a) == 2);
+    /* back and forth: nothing more is factorised */
+    CX_CHECK_OK(cx_session_set_frictionless(a, &d));
+    CX_CHECK_OK(cx_solver_solve(a, NULL, NULL, &d));
+    CX_CHECK(cx_session_iterate(a)->reason > 0);
+    double un = 0;
+    CX_CHECK_LE(energy_diff(p, cx_session_iterate(a)->u, u_normal, &un), 1e-12 * un);
+    CX_CHECK_OK(cx_session_set_tresca(a, 2e-3, &d));
+    CX_CHECK_OK(cx_solver_solve(a, NULL, NULL, &d));
+    CX_CHECK(cx_session_cache_counters(a)->factorizations == 2);
+    /* ssstar, frictionless, on the same normal reduction: the same solution */
+    CX_CHECK_OK(cx_session_set_frictionless(a, &d));
+    CX_CHECK_OK(cx_session_set_method(a, cx_method_find("ssstar"), NULL, NULL, &d));
+    CX_CHECK_OK(cx_solver_solve(a, NULL, NULL, &d));
+    CX_CHECK(cx_session_iterate(a)->reason > 0 && !cx_session_iterate(a)->u_partial);
+    CX_CHECK(cx_session_cache_counters(a)->factorizations == 2);
+    CX_CHECK_LE(energy_diff(p, cx_session_iterate(a)->u, u_normal, &un), 1e-10 * un);
+
+    /* friction first, then frictionless: the full reduction serves, and
+     * gives the normal one's solution */
+    cx_scene sc2;
+    cx_session *b = fixture_session("block3d", 3, &sc2);
+    CX_CHECK_OK(cx_session_set_tresca(b, 1e-3, &d));   /* before the method: its init builds */
+    CX_CHECK_OK(cx_session_set_method(b, ssn, NULL, NULL, &d));
+    CX_CHECK_OK(cx_solver_solve(b, NULL, NULL, &d));
+    CX_CHECK_OK(cx_session_set_frictionless(b, &d));
+    CX_CHECK_OK(cx_session_schur_normal(b, NULL, NULL, &dofs, &nd, &d));
+    CX_CHECK(nd == p->nc);   /* the full one is there: it serves */
+    CX_CHECK_OK(cx_solver_solve(b, NULL, NULL, &d));
+    it = cx_session_iterate(b);
+    CX_CHECK(it->reason > 0 && !it->u_partial);
+    CX_CHECK(cx_session_cache_counters(b)->factorizations == 1);
+    double e = energy_diff(p, u_normal, it->u, &un);
+    fprintf(stderr, "block3d 3: normal-only against full reduction, energy norm %.3g of %.3g\n", e, un);
+    CX_CHECK(un > 0);
+    CX_CHECK_LE(e, 1e-10 * un);
+
+    free(u_normal);
+    cx_session_destroy(&a);
+    cx_session_destroy(&b);
+}
+
 int main(void)
 {
+    test_normal_reduction();
     cx_scene sc;
     cx_session *s = fixture_session("hertz", 4, &sc);
     cx_diag d;
