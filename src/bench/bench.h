@@ -323,6 +323,9 @@ int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it);
 /* cx_solver_solve under bench_observer, for the paper drivers: a run
  * stopped by Ctrl-C is CX_EIO "interrupted (Ctrl-C)", never a result. */
 int bench_solve(cx_session *s, cx_diag *d);
+/* cx_solver_solve with obs, such that Ctrl-C cancels the run inside its
+ * step (the session's cancel flag), not only between steps. */
+int bench_solve_watched(cx_session *s, cx_observer obs, void *ctx, cx_diag *d);
 
 /* ---- the benchmarks ---------------------------------------------------- */
 

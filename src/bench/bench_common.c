@@ -271,6 +271,11 @@ static double progress_t0;
 
 /* Ctrl-C during the runs: the runs stop and the table keeps those that
  * finished; a second Ctrl-C ends the program at once. */
+/* The session whose run is in progress: Ctrl-C cancels it (an atomic
+ * store, safe in a handler), so a long step ends within the method's check
+ * interval instead of at the next step. */
+static cx_session *volatile progress_running;
+
 static void progress_on_sigint(int sig)
 {
     (void)sig;
@@ -279,6 +284,9 @@ static void progress_on_sigint(int sig)
         _exit(CX_EXIT_INTERRUPTED);
     }
     progress_stop = 1;
+    cx_session *s = progress_running;
+    if (s)
+        cx_session_cancel(s);
 }
 
 /* Ctrl-C while the output is written: end now, leaving no temporary. */
@@ -308,9 +316,17 @@ int bench_observer(void *ctx, const cx_session *s, const cx_iterate *it)
     return progress_stop != 0;
 }
 
+int bench_solve_watched(cx_session *s, cx_observer obs, void *ctx, cx_diag *d)
+{
+    progress_running = s;
+    int st = cx_solver_solve(s, obs, ctx, d);
+    progress_running = NULL;
+    return st;
+}
+
 int bench_solve(cx_session *s, cx_diag *d)
 {
-    CX_TRY(cx_solver_solve(s, bench_observer, NULL, d));
+    CX_TRY(bench_solve_watched(s, bench_observer, NULL, d));
     return bench_interrupted() ? cx_diag_set(d, CX_EIO, "interrupted (Ctrl-C)") : CX_OK;
 }
 

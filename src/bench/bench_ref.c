@@ -322,14 +322,14 @@ static int ref_compute(const bench_problem_spec *spec, const cx_problem *p, doub
         if (st == CX_OK)
             st = cx_session_set_method(s, cand[k], NULL, &opt, &local);
         if (st == CX_OK)
-            st = cx_solver_solve(s, bench_observer, NULL, &local);
+            st = bench_solve_watched(s, bench_observer, NULL, &local);
         const cx_iterate *it = s ? cx_session_iterate(s) : NULL;
         if (st == CX_OK && it->reason == CX_STOPPED_OWN) {
             /* a loose own criterion (cf-fp's 1e-4): go on to the kkt tolerance */
             cx_options more = opt;
             more.own_stop = 0;
             cx_session_set_options(s, &more);
-            st = cx_solver_solve(s, bench_observer, NULL, &local);
+            st = bench_solve_watched(s, bench_observer, NULL, &local);
         }
         int usable = it && it->reason != CX_DIVERGED_NAN && it->reason != CX_DIVERGED_BREAKDOWN;
         if (st == CX_OK && usable && it->kkt < best && it->kkt <= REF_TOL_FLOOR) {

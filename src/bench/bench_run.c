@@ -120,7 +120,7 @@ void bench_run(cx_session *s, const cx_method *m, const cx_param_values *pv,
     int st = cx_session_set_method(s, m, pv, opt, &d);
     w.peak = fmax(w.peak, run_heap_mb() - w.base);
     if (st == CX_OK)
-        st = cx_solver_solve(s, run_observe, &w, &d);
+        st = bench_solve_watched(s, run_observe, &w, &d);
     r->heap_mb = w.peak;
     const cx_iterate *it = cx_session_iterate(s);
     if (st != CX_OK) {
