@@ -28,6 +28,9 @@ struct tui_run {
     int reason;            /* cx_reason of the last step */
     char reason_msg[160];  /* breakdown message, if any */
     long factorizations;   /* of the run, the cache build included */
+    cx_counters probe;     /* work of the check before the switch that
+                              opened the run (an operator it cached): the
+                              run's own, added to its counters */
 };
 
 #define TUI_MAX_RUNS 32

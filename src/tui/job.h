@@ -26,6 +26,10 @@ typedef struct tui_job {
     cx_options opt;
     cx_friction law;
     double coef;
+    /* output of a resolve: the probe's work (charged to the new run), 1 if
+     * the probe refused (the session was not touched) */
+    cx_counters probe;
+    int probed;
     /* output of a build */
     cx_session *session;
     void *worker;          /* pthread_t *, when a worker thread runs */

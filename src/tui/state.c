@@ -78,7 +78,7 @@ int tui_method_index(const char *id)
 
 /* --method auto's choice for the selected scene, level and law, if it is
  * registered (else the selection stays). */
-static void state_select_auto(tui_state *st)
+void tui_state_select_auto(tui_state *st)
 {
     const char *sets;
     int i = tui_method_index(cx_scene_auto_method(&st->scene, st->sel_level, NULL, st->sel_law, &sets));
@@ -108,7 +108,7 @@ static void state_select_scene_defaults(tui_state *st)
         }
     }
     cx_param_default(&st->sel_params, cx_method_at(st->sel_method)->params);
-    state_select_auto(st);
+    tui_state_select_auto(st);
 }
 
 static double state_sel_coef(const tui_state *st)
@@ -271,9 +271,21 @@ int tui_state_poll(tui_state *st)
             else if (st->cur_law == CX_FRICTION_TRESCA)
                 st->sel_slip = st->cur_coef;
         }
-        if (st->cur_method && (j->status == CX_OK || kind == TUI_JOB_BUILD))
+        if (st->cur_method && (j->status == CX_OK || kind == TUI_JOB_BUILD)) {
             state_new_run(st);
-        state_snapshot(st);
+            if (kind == TUI_JOB_RESOLVE)
+            {
+                tui_run *run = &st->history->runs[st->history->nruns - 1];
+                run->probe = j->probe;
+                run->factorizations = j->probe.factorizations;
+            }
+        }
+        /* a refusal the probe caught left the session untouched: the
+         * snapshot, the run and its steps stay as they were */
+        if (!j->probed)
+            state_snapshot(st);
+        else
+            st->cache = *cx_session_cache_counters(st->session);   /* the attempt's work */
     }
     if (j->status != CX_OK)
         tui_msg(st, 1, "%s", cx_diag_msg(&j->diag, j->status));
@@ -515,7 +527,7 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
         st->sel_method = i;
         cx_param_default(&st->sel_params, cx_method_at(i)->params);
     } else {
-        state_select_auto(st);   /* for the level and law asked for */
+        tui_state_select_auto(st);   /* for the level and law asked for */
     }
     st->field = TUI_F_METHOD;
     tui_job_start(st, TUI_JOB_BUILD);

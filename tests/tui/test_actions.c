@@ -115,18 +115,72 @@ static void test_hertz(void)
     CX_CHECK_NEAR(st.cur_coef, 1.25 * st.scene.slip_bound, 1e-14, 0);
     CX_CHECK(st.cache.factorizations == 1);
 
-    /* Coulomb is refused by ssn-tresca: greyed with the reason, and the
-     * session and the selection stay on Tresca */
     char reason[CX_DIAG_LEN];
-    r = tui_key(&st, 'f');
-    CX_CHECK(st.sel_law == CX_FRICTION_COULOMB);
-    CX_CHECK(strstr(tui_state_method_reason(&st, st.sel_method, reason, sizeof reason), "Coulomb") != NULL);
-    int runs_before = tui_state_nruns(&st);
-    tui_state_apply(&st, r);
-    CX_CHECK(st.cur_law == CX_FRICTION_TRESCA && st.sel_law == CX_FRICTION_TRESCA);
-    CX_CHECK(st.msg_error && strstr(st.msg, "Coulomb") != NULL);
-    CX_CHECK(tui_state_nruns(&st) == runs_before);
+    /* 'f' cycles the scene's laws and never dead-ends: Coulomb, which
+     * ssn-tresca does not support, brings --method auto's Coulomb method;
+     * four presses visit the three laws and come back to Tresca, each
+     * converging */
+    CX_CHECK(st.scene.laws == CX_SCENE_ALL_LAWS);
+    cx_friction seen[4];
+    for (int k = 0; k < 4; k++) {
+        r = tui_key(&st, 'f');
+        CX_CHECK(r & TUI_RESOLVE);
+        tui_state_apply(&st, r);
+        seen[k] = st.cur_law;
+        CX_CHECK(st.cur_law == st.sel_law && st.cur_method == tui_state_sel_method(&st));
+        CX_CHECK_OK(cx_method_check(st.cur_method, st.info, st.cur_law, &d));
+        n = run_to_end(&st, 300);
+        CX_CHECK(tui_state_run(&st)->reason > 0);
+    }
+    CX_CHECK(seen[0] == CX_FRICTION_COULOMB && seen[1] == CX_FRICTION_NONE && seen[2] == CX_FRICTION_TRESCA &&
+             seen[3] == CX_FRICTION_COULOMB);
+    CX_CHECK(strcmp(tui_state_run_at(&st, tui_state_nruns(&st) - 4)->method, "ssn-coulomb") == 0);
+    tui_state_apply(&st, tui_key(&st, 'f'));
+    tui_state_apply(&st, tui_key(&st, 'f'));
+    CX_CHECK(st.cur_law == CX_FRICTION_TRESCA && strcmp(st.cur_method->id, "ssn-tresca") == 0);
+    n = run_to_end(&st, 60);
     CX_CHECK(st.cache.factorizations == 1);
+
+    /* a switch refused at init (the dual methods need K positive definite;
+     * hertz's body is held by contact only) changes nothing: not the
+     * iterate, not the run and its steps, not the snapshot; the status
+     * line says why, and the method is greyed and skipped from then on */
+    {
+        const cx_iterate *it0 = cx_session_iterate(st.session);
+        int iter0 = it0->iter, nruns0 = tui_state_nruns(&st), nsteps0 = tui_state_run(&st)->nsteps;
+        double kkt0 = it0->kkt, p0 = st.pressure[st.m / 2];
+        long fact0 = tui_state_run(&st)->factorizations, solves0 = it0->counters.solves;
+        unsigned char status0[4096];
+        memcpy(status0, st.status, (size_t)st.m);
+        int mi = tui_method_index("mprgp");
+        CX_CHECK(mi >= 0 && !tui_state_method_reason(&st, mi, reason, sizeof reason)[0]);
+        st.field = TUI_F_METHOD;
+        tui_key(&st, TUI_KEY_ENTER);
+        for (int k = 0; k < 20; k++)
+            tui_key(&st, TUI_KEY_BACKSPACE);
+        r = type(&st, "mprgp\n");
+        CX_CHECK(r & TUI_RESOLVE);
+        tui_state_apply(&st, r);
+        CX_CHECK(st.msg_error && strstr(st.msg, "positive definite") != NULL);
+        CX_CHECK(strcmp(st.cur_method->id, "ssn-tresca") == 0 && st.sel_method == tui_method_index("ssn-tresca"));
+        const cx_iterate *it1 = cx_session_iterate(st.session);
+        CX_CHECK(it1->iter == iter0 && it1->kkt == kkt0 && it1->reason > 0);
+        CX_CHECK(it1->counters.solves == solves0);
+        CX_CHECK(tui_state_nruns(&st) == nruns0 && tui_state_run(&st)->nsteps == nsteps0);
+        CX_CHECK(tui_state_run(&st)->factorizations == fact0);
+        CX_CHECK(memcmp(status0, st.status, (size_t)st.m) == 0 && st.pressure[st.m / 2] == p0);
+        CX_CHECK(strstr(tui_state_method_reason(&st, mi, reason, sizeof reason), "positive definite") != NULL);
+        /* 's' after it: the run has ended, nothing appended */
+        tui_key(&st, 's');
+        CX_CHECK(tui_state_run(&st)->nsteps == nsteps0 && cx_session_iterate(st.session)->iter == iter0);
+        /* greyed now: typing it is refused at once, with no job */
+        tui_key(&st, TUI_KEY_ENTER);
+        for (int k = 0; k < 20; k++)
+            tui_key(&st, TUI_KEY_BACKSPACE);
+        r = type(&st, "mprgp\n");
+        CX_CHECK(!(r & TUI_RESOLVE) && st.msg_error && strstr(st.msg, "positive definite") != NULL);
+        CX_CHECK(st.sel_method == tui_method_index("ssn-tresca"));
+    }
 
     /* the method row: 'm' goes to the next method that fits. A method may
      * add the one operator of its own to the cache the first time (ubr-*:
@@ -151,7 +205,7 @@ static void test_hertz(void)
 
     /* the tolerance: options only, the run goes on */
     tui_key(&st, 's');
-    runs_before = tui_state_nruns(&st);
+    int runs_before = tui_state_nruns(&st);
     int steps_before = tui_state_run(&st)->nsteps;
     st.field = TUI_F_TOL;
     r = tui_key(&st, TUI_KEY_LEFT);

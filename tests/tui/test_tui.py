@@ -168,6 +168,38 @@ try:
     keys("q")
     exited_cleanly("q after 'signorini' alone")
 
+    # ---- a refused switch changes nothing; 'f' visits every law -------------
+    start(f"{exe} tui hertz --method ssn-tresca")
+    wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
+    keys("r")
+    wait_for(lambda t: "converged" in status(), "the run to converge")
+
+    def strip_line(text):
+        return [l for l in text.splitlines() if "pts" in l and "dofs" not in l]
+
+    before = screen()
+    keys("m")   # ssn-tresca-dual: hertz's K is singular, refused at init
+    wait_for(lambda t: "positive definite" in status(), "the refusal in the status line")
+    keys("r", "s", "p")
+    wait_for(lambda t: "rendered to" in t or "rendering not available" in t, "'p' after the refusal")
+    after = screen()
+    check(steps(after) == steps(before) and steps(before), f"iterations and kkt unchanged: {steps(before)} / {steps(after)}")
+    check(strip_line(after) == strip_line(before), f"the strip unchanged: {strip_line(before)} / {strip_line(after)}")
+    png = re.search(r"-it(\d+)\.png", after)
+    check(png is None or int(png.group(1)) == max(i for i, _ in steps(before)),
+          f"'p' renders the converged iterate: {png and png.group(0)}")
+    laws = []
+    for _ in range(4):
+        keys("f")
+        settled("'f'")
+        h = header()
+        laws.append(h[1] if h else None)
+        keys("r")
+        wait_for(lambda t: "converged" in status() and header() is not None, f"a run under {laws[-1]} to converge")
+    check(laws == ["tresca", "coulomb", "none", "tresca"], f"'f' x4 visits the three laws and comes back: {laws}")
+    keys("q")
+    exited_cleanly("q after the laws")
+
     # ---- hertz on ssn-tresca -----------------------------------------------------
     start(f"{exe} tui hertz --method ssn-tresca")
     wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
