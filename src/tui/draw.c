@@ -185,7 +185,7 @@ static void draw_pickers(const tui_state *st, tui_box b)
         }
     }
     /* the session */
-    y = b.y + b.h - 4;
+    y = b.y + b.h - 5;
     if (y <= b.y)
         return;
     tui_rule(y++, b.x, b.w, "session");
@@ -195,6 +195,12 @@ static void draw_pickers(const tui_state *st, tui_box b)
     tui_put(y++, b.x, TUI_C_NORMAL, b.w, "%d dofs, %d points", st->info->n, st->info->m);
     tui_put(y++, b.x, st->cache.factorizations == 1 ? TUI_C_OK : TUI_C_WARN, b.w, "cache %d op%s, %ld fact.",
         st->cache_size, st->cache_size == 1 ? "" : "s", st->cache.factorizations);
+    /* the run's setup apart from its iterations; the explorer's own work
+     * for drawing apart from the run's */
+    const tui_run *run = tui_state_run(st);
+    if (run)
+        tui_put(y++, b.x, TUI_C_NORMAL, b.w, "setup %.1f ms, drawing %ld solves", 1e3 * run->setup,
+            run->draw.solves);
 }
 
 /* ---- help overlay -------------------------------------------------------------------- */

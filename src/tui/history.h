@@ -13,7 +13,7 @@ typedef struct tui_step {
     int nfree, ncontact, nstick, nslip, nchanged;
     long inner;
     long solves;           /* solves with K in the run so far */
-    double time;           /* seconds of the run so far (init included) */
+    double time;           /* seconds of the run's iterations so far (its setup apart) */
     double step_time;      /* seconds of this step */
 } tui_step;
 
@@ -28,6 +28,10 @@ struct tui_run {
     int reason;            /* cx_reason of the last step */
     char reason_msg[160];  /* breakdown message, if any */
     long factorizations;   /* of the run, the cache build included */
+    double setup;          /* seconds of the method's setup (init) */
+    cx_counters draw;      /* the explorer's own work for drawing (expanding
+                              a partial iterate for the mesh view), not the
+                              run's: its counters are solve's */
     cx_counters probe;     /* work of the check before the switch that
                               opened the run (an operator it cached): the
                               run's own, added to its counters */

@@ -71,9 +71,24 @@ static void job_run(tui_state *st)
         }
     } else if (j->kind == TUI_JOB_STEP) {
         atomic_store(&j->phase, TUI_PHASE_STEP);
-        j->status = cx_solver_step(st->session, &j->diag);
-        if (j->status == CX_OK)   /* the mesh view draws the whole u */
-            j->status = cx_session_complete_iterate(st->session, &j->diag);
+        cx_session *s = st->session;
+        j->status = cx_solver_step(s, &j->diag);
+        const cx_iterate *it = cx_session_iterate(s);
+        j->kkt = it->kkt;
+        j->counters = it->counters;
+        memset(&j->draw, 0, sizeof j->draw);
+        if (j->status == CX_OK && j->expand && it->u_partial) {
+            /* the mesh view draws the whole u: expanding it is the
+             * explorer's work, not the run's (solve does not do it), so it
+             * is counted apart and the run's counters are put back. Only
+             * on single steps: a run ('r') is stepped as solve steps it */
+            cx_counters *run = cx_session_counters(s), saved = *run;
+            j->status = cx_session_complete_iterate(s, &j->diag);
+            j->draw.solves = run->solves - saved.solves;
+            j->draw.factorizations = run->factorizations - saved.factorizations;
+            j->draw.matvecs = run->matvecs - saved.matvecs;
+            *run = saved;
+        }
     } else if (j->kind == TUI_JOB_RESOLVE) {
         cx_session *s = st->session;
         cx_friction_state old = *cx_session_friction(s), fr = state_friction(j->law, j->coef, &old);
@@ -121,6 +136,7 @@ void tui_job_start(tui_state *st, int kind)
     j->coef = st->sel_law == CX_FRICTION_COULOMB ? st->sel_F : st->sel_slip;
     j->session = NULL;
     j->probed = 0;
+    j->expand = !st->running;
     memset(&j->probe, 0, sizeof j->probe);
     atomic_store(&j->phase, TUI_PHASE_IDLE);
     /* 'running' is kept: a run asked for during the job starts after it */

@@ -168,6 +168,30 @@ try:
     keys("q")
     exited_cleanly("q after 'signorini' alone")
 
+    # ---- the first run has solve's numbers ---------------------------------
+    import json
+    for scene in ("hertz", "slider", "laminae"):
+        r = subprocess.run([exe, "solve", scene, "--method", "auto", "--json"], capture_output=True, text=True,
+                           timeout=120, stdin=subprocess.DEVNULL)
+        ref = json.loads(r.stdout)
+        start(f"{exe} tui {scene}")
+        wait_for(lambda t: "built in" in t, f"{scene} to be built")
+        keys("r")
+        wait_for(lambda t: "converged" in status(), f"the {scene} run to converge")
+        keys("e")
+        wait_for(has("runs written to"), f"the {scene} export")
+        with open(os.path.join(workdir, f"signorini-{scene}-L{ref['level']}-runs.json")) as f:
+            run = json.load(f)["runs"][0]
+        last = run["steps"][-1]
+        got = (run["method"], last["iter"], f"{last['kkt']:.3e}", run["factorizations"], last["solves"])
+        want = (ref["method"], ref["iterations"], f"{ref['kkt_error']:.3e}", ref["counts"]["factorizations"],
+                ref["counts"]["solves"])
+        print(f"{scene}: explorer {got} solve {want}")
+        check(got == want, f"{scene}: the first run (method, iterations, kkt, factorisations, solves) "
+                           f"{got} equals solve --json's {want}")
+        keys("q")
+        exited_cleanly(f"q on {scene}")
+
     # ---- a refused switch changes nothing; 'f' visits every law -------------
     start(f"{exe} tui hertz --method ssn-tresca")
     wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
