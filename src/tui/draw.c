@@ -199,7 +199,7 @@ static void draw_pickers(const tui_state *st, tui_box b)
      * for drawing apart from the run's */
     const tui_run *run = tui_state_run(st);
     if (run)
-        tui_put(y++, b.x, TUI_C_NORMAL, b.w, "setup %.1f ms, drawing %ld solves", 1e3 * run->setup,
+        tui_put(y++, b.x, TUI_C_NORMAL, b.w, "setup %.1fms draw %ldK", 1e3 * run->setup,
             run->draw.solves);
 }
 

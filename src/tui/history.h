@@ -20,6 +20,8 @@ typedef struct tui_step {
 struct tui_run {
     char method[32];
     char params[160];      /* "rho=0.001 ..." */
+    char changed[160];     /* the parameters that differ from their defaults */
+    char outcome[CX_DIAG_LEN];   /* cx_reason_format's sentence when it ended */
     cx_friction law;
     double coef;
     double tol;

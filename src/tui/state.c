@@ -132,6 +132,19 @@ static void state_new_run(tui_state *st)
                          st->cur_params.table[i].key, v);
         at += w > 0 ? (size_t)w : 0;
     }
+    cx_param_values def;
+    cx_param_default(&def, st->cur_params.table);
+    at = 0;
+    for (int i = 0; i < st->cur_params.n && at < sizeof r->changed; i++) {
+        char v[CX_PARAM_STRLEN], v0[CX_PARAM_STRLEN];
+        cx_param_format(&st->cur_params, i, v, sizeof v);
+        cx_param_format(&def, i, v0, sizeof v0);
+        if (strcmp(v, v0) == 0)
+            continue;
+        int w = snprintf(r->changed + at, sizeof r->changed - at, "%s%s=%s", at ? " " : "",
+                         st->cur_params.table[i].key, v);
+        at += w > 0 ? (size_t)w : 0;
+    }
     r->law = st->cur_law;
     r->coef = st->cur_coef;
     r->tol = st->cur_opt.tol;
@@ -460,6 +473,7 @@ void tui_state_after_step(tui_state *st, int status, const cx_diag *d)
         st->running = 0;
         const char *why = cx_session_reason_msg(st->session);
         snprintf(run->reason_msg, sizeof run->reason_msg, "%s", why);
+        cx_session_outcome(st->session, run->outcome, sizeof run->outcome);
         char outcome[CX_DIAG_LEN + 128];
         tui_msg(st, it->reason < 0, "%s", cx_session_outcome(st->session, outcome, sizeof outcome));
     }

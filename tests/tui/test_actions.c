@@ -463,6 +463,37 @@ static void test_pieces(void)
     CX_CHECK(named >= 20);
 }
 
+/* Every scene opens on --method auto's choice for its default law, and
+ * that method converges on it ('r'); the run keeps the outcome sentence
+ * the runs table shows. */
+static void test_scenes_open_converging(void)
+{
+    static tui_state st;
+    cx_diag d;
+    cx_diag_clear(&d);
+    char (*ids)[CX_SCENE_NAMELEN] = NULL;
+    int n = 0;
+    CX_CHECK_OK(cx_scene_list(&ids, &n, &d));
+    CX_CHECK(n >= 9);
+    for (int k = 0; k < n; k++) {
+        CX_CHECK_OK(tui_state_init(&st, ids[k], 0, NULL, -1, 1, &d));
+        const char *sets;
+        const char *want = cx_scene_auto_method(&st.scene, st.scene.level, NULL, st.scene.friction, &sets);
+        CX_CHECK(st.cur_method && strcmp(st.cur_method->id, want) == 0);
+        CX_CHECK(st.cur_law == st.scene.friction);
+        tui_key(&st, 'r');
+        while (st.running)
+            tui_state_step(&st);
+        const tui_run *run = tui_state_run(&st);
+        CX_CHECK(run->reason > 0);
+        CX_CHECK(strncmp(run->outcome, "converged in ", 13) == 0);
+        if (run->reason <= 0)
+            fprintf(stderr, "%s: %s does not converge: %s\n", ids[k], st.cur_method->id, st.msg);
+        tui_state_clear(&st);
+    }
+    cx_free(ids);
+}
+
 int main(void)
 {
     test_pieces();
@@ -470,5 +501,6 @@ int main(void)
     test_slider();
     test_cycle();
     test_failed_build();
+    test_scenes_open_converging();
     return check_finish("tui_actions");
 }

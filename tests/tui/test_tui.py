@@ -178,6 +178,9 @@ try:
         wait_for(lambda t: "built in" in t, f"{scene} to be built")
         keys("r")
         wait_for(lambda t: "converged" in status(), f"the {scene} run to converge")
+        runs = [l for l in screen().splitlines() if re.search(re.escape(ref["method"][:10]) + r"\s+(none|tresca|coulomb) ", l)]
+        check(any(re.search(f"{ref['friction']} .* {ref['iterations']} .*  converged", l) for l in runs),
+              f"{scene}: the runs table shows the law and the outcome in words: {runs}")
         keys("e")
         wait_for(has("runs written to"), f"the {scene} export")
         with open(os.path.join(workdir, f"signorini-{scene}-L{ref['level']}-runs.json")) as f:
