@@ -7,8 +7,9 @@ a parameter, friction or tolerance change on ssn-tresca keeps
 "factorised: 1"; a second round of 'm' through the methods factorises
 nothing (the counter read after the first round stays); the contact strip
 shows stick and slip on 'slider' with Tresca; '?' shows the help; a
-resize to 40x12 says "terminal too small" and back redraws; 'q' and
-Ctrl-C exit 0 with the terminal restored; ASCII without a UTF-8 locale."""
+resize to 40x12 says "terminal too small" and back redraws; 'q' exits 0
+and Ctrl-C 130 with the terminal restored; an export under a comma-decimal
+locale (fr_FR.UTF-8, built with localedef) writes '.' decimals; ASCII without a UTF-8 locale."""
 import os
 import re
 import shutil
@@ -107,7 +108,7 @@ def settled(what):
 rcfile = os.path.join(workdir, "rc")
 
 
-def start(cmd, lang="C.UTF-8", x=80, y=24):
+def start(cmd, lang="C.UTF-8", x=80, y=24, extra=""):
     """Run cmd in a new pane; its exit status goes to rcfile (tmux's own
     pane_dead_status is not always filled in when run under meson)."""
     global sock, nstarts
@@ -117,7 +118,7 @@ def start(cmd, lang="C.UTF-8", x=80, y=24):
     sock = f"signorini-tui-{os.getpid()}-{nstarts}"
     if os.path.exists(rcfile):
         os.unlink(rcfile)
-    env = f"LANG={lang} LC_ALL={lang} SIGNORINI_SCENES={os.environ.get('SIGNORINI_SCENES', '')}"
+    env = f"LANG={lang} LC_ALL={lang} SIGNORINI_SCENES={os.environ.get('SIGNORINI_SCENES', '')} {extra}"
     tmux("new-session", "-d", "-s", "t", "-x", str(x), "-y", str(y), "-c", workdir,
          f"env {env} {cmd}; echo $? > {rcfile}.tmp && mv {rcfile}.tmp {rcfile}")
 
@@ -136,11 +137,11 @@ def steps(text):
     return rows
 
 
-def exited_cleanly(how):
+def exited_cleanly(how, want="0"):
     if wait_for(lambda t: os.path.exists(rcfile), f"the explorer to exit after {how}", 30):
         with open(rcfile) as f:
             rc = f.read().strip()
-        check(rc == "0", f"exit status 0 after {how}, got {rc}")
+        check(rc == want, f"exit status {want} after {how}, got {rc}")
         check(pane("#{alternate_on}") == "0", f"the terminal left the alternate screen after {how}")
 
 
@@ -329,13 +330,56 @@ try:
     wait_for(has("built in"), "slider at 160x48")
     check("deformed mesh" in screen(), "the mesh view beside the plot on a wide terminal")
     keys("C-c")
-    exited_cleanly("Ctrl-C")
+    exited_cleanly("Ctrl-C", "130")   # as the other subcommands: 128 + SIGINT
 
     # ---- scripted sessions end by themselves ------------------------------------
     start(f"{exe} tui slider --keys rq")
     exited_cleanly("the scripted keys 'rq'")
     start(f"{exe} tui slider --frames 3")
     exited_cleanly("--frames 3")
+
+    # ---- a comma-decimal locale: numbers stay in the C locale -------------------
+    # fr_FR.UTF-8 is built into a private directory (LOCPATH): no root needed;
+    # localedef and the locale sources come with Debian's 'locales'
+    locdir = os.path.join(workdir, "locales")
+    os.makedirs(locdir)
+    lr = subprocess.run(["localedef", "-i", "fr_FR", "-f", "UTF-8", os.path.join(locdir, "fr_FR.UTF-8")],
+                        capture_output=True, text=True, timeout=120)
+    check(os.path.isdir(os.path.join(locdir, "fr_FR.UTF-8")), f"localedef builds fr_FR.UTF-8: {lr.stderr[-300:]}")
+    probe = subprocess.run(["/usr/bin/python3", "-c", "import locale; locale.setlocale(locale.LC_ALL, ''); "
+                            "print(locale.localeconv()['decimal_point'])"], capture_output=True, text=True,
+                           env={**os.environ, "LOCPATH": locdir, "LC_ALL": "fr_FR.UTF-8"})
+    check(probe.stdout.strip() == ",", f"the locale's decimal point is a comma: {probe.stdout!r}")
+    expdir = os.path.join(workdir, "fr")
+    os.makedirs(expdir)
+    start(f"{exe} tui laminae --friction tresca --export-dir {expdir}", lang="fr_FR.UTF-8", extra=f"LOCPATH={locdir}")
+    wait_for(lambda t: "built in" in t, "laminae under fr_FR.UTF-8")
+    keys("r")
+    wait_for(lambda t: "converged" in status(), "the run under fr_FR.UTF-8")
+    keys("e")
+    wait_for(has("runs written to"), "the export under fr_FR.UTF-8")
+    keys("n")   # the next scene file is read under the same locale
+    wait_for(lambda t: "built in" in t and "laminae L" not in t, "the next scene under fr_FR.UTF-8")
+    check("expected a number" not in screen(), "the next scene reads under fr_FR.UTF-8")
+    keys("C-c")
+    exited_cleanly("Ctrl-C under fr_FR.UTF-8", "130")
+    import csv as csvmod
+    base = os.path.join(expdir, "signorini-laminae-L5-runs")
+    try:
+        with open(base + ".json") as f:
+            data = json.load(f)
+        run = data["runs"][-1]
+        check(isinstance(run["coef"], (int, float)) and isinstance(run["steps"][-1]["kkt"], float)
+              and run["steps"][-1]["kkt"] < 1e-10 and "," not in run["params"],
+              f"the JSON parses with numbers: coef {run['coef']!r}, params {run['params']!r}")
+        with open(base + ".csv") as f:
+            rows = list(csvmod.DictReader(f))
+        check(rows and all("," not in v for r in rows for k, v in r.items() if k in ("coef", "kkt", "time_s")),
+              f"the CSV's numbers have '.' decimals: {rows[:1]}")
+        check(float(rows[-1]["kkt"]) == run["steps"][-1]["kkt"] or abs(float(rows[-1]["kkt"]) - run["steps"][-1]["kkt"]) < 1e-20,
+              "CSV and JSON agree")
+    except (OSError, ValueError, KeyError) as e:
+        check(False, f"the export under fr_FR.UTF-8 reads back: {e}")
 
     # ---- no UTF-8 locale: ASCII -------------------------------------------------
     start(f"{exe} tui slider", lang="C")
