@@ -477,7 +477,7 @@ static void param_describe(const tui_state *st, int i, char *buf, size_t len)
     const cx_param *p = &st->sel_params.table[i];
     char range[96];
     cx_param_range(p, range, sizeof range);
-    snprintf(buf, len, "range %s\n%s", range, p->help ? p->help : "");
+    snprintf(buf, len, "%s: range %s\n%s", p->key, range, p->help ? p->help : "");
 }
 
 static const tui_row tui_rows[] = {

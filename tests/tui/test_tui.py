@@ -88,9 +88,21 @@ def header():
 
 
 def status():
-    """The status line (the last line that is not blank)."""
+    """The status line: the last line that is not blank above the key bar."""
     lines = [l for l in screen().splitlines() if l.strip()]
-    return lines[-1].strip() if lines else ""
+    return lines[-2].strip() if len(lines) > 1 else ""
+
+
+def status_block():
+    """The status line with the lines above it (a long message wraps
+    upwards), joined."""
+    lines = [l.strip() for l in screen().splitlines() if l.strip()]
+    return " ".join(lines[-5:-1])
+
+
+def keybar():
+    lines = [l for l in screen().splitlines() if l.strip()]
+    return lines[-1] if lines else ""
 
 
 def settled(what):
@@ -207,7 +219,10 @@ try:
 
     before = screen()
     keys("m")   # ssn-tresca-dual: hertz's K is singular, refused at init
-    wait_for(lambda t: "positive definite" in status(), "the refusal in the status line")
+    wait_for(lambda t: "positive definite (a body held only by contact); use ssn-tresca" in status_block(),
+             "the refusal in the status line, wrapped at whole words")
+    check(all(k in keybar() for k in ("m method", "f friction", "n scene", "v view", "e export", "p png")),
+          f"the key bar stays and lists m f n v e p: {keybar()!r}")
     keys("r", "s", "p")
     wait_for(lambda t: "rendered to" in t or "rendering not available" in t, "'p' after the refusal")
     after = screen()
@@ -299,6 +314,9 @@ try:
     # ---- resize down and back -------------------------------------------------
     tmux("resize-window", "-t", "t", "-x", "40", "-y", "12")
     wait_for(has("terminal too small"), "'terminal too small' at 40x12")
+    tmux("resize-window", "-t", "t", "-x", "30", "-y", "10")
+    wait_for(lambda t: "terminal too small: 30x10," in t and "needs 60x16; q quits" in t,
+             "the whole size message at 30x10")
     tmux("resize-window", "-t", "t", "-x", "80", "-y", "24")
     wait_for(lambda t: f"factorised: {nfact}" in t and "─ runs ─" in t, "the full screen back at 80x24")
     check(pane("#{pane_dead}") == "0", "alive after the resizes")
