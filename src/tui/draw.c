@@ -217,10 +217,14 @@ static void draw_pickers(const tui_state *st, tui_box b)
             tui_put(y, b.x, k == cur ? (grey ? TUI_C_GREY : TUI_C_STICK) : grey ? TUI_C_GREY : TUI_C_NORMAL, b.w,
                 "%s%s", k == cur ? tui_sym("▸ ", "> ") : "  ", id);
         }
-        if (row->greyed && row->greyed(st, i, reason, sizeof reason)[0])
-            tui_put(y++, b.x, TUI_C_WARN, b.w, "%s", reason + (strncmp(reason, "method ", 7) == 0 ? 7 : 0));
-        else if (y < bottom)
-            tui_put(y++, b.x, TUI_C_FAINT, b.w, "%s", detail);
+        /* the reason it is grey, or its description, wrapped at words */
+        int grey = row->greyed && row->greyed(st, i, reason, sizeof reason)[0];
+        const char *text = grey ? reason + (strncmp(reason, "method ", 7) == 0 ? 7 : 0) : detail;
+        const char *at[6];
+        int len[6];
+        int nl = draw_wrap(text, b.w, at, len, 6);
+        for (int k = 0; k < nl && (y < bottom || (grey && k == 0)); k++)
+            tui_put(y++, b.x, grey ? TUI_C_WARN : TUI_C_FAINT, b.w, "%.*s", len[k], at[k]);
     } else if (detail[0]) {
         /* the first line as it is, the rest wrapped */
         size_t first = strcspn(detail, "\n");
