@@ -300,7 +300,12 @@ int tui_state_poll(tui_state *st)
         else
             st->cache = *cx_session_cache_counters(st->session);   /* the attempt's work */
     }
-    if (j->status != CX_OK)
+    if (j->status != CX_OK && kind == TUI_JOB_RESOLVE && j->method &&
+        !strstr(cx_diag_msg(&j->diag, j->status), j->method->id))
+        /* which switch was refused, and that nothing changed */
+        tui_msg(st, 1, "%s refused, %s kept: %s", j->method->id, st->cur_method ? st->cur_method->id : "-",
+                cx_diag_msg(&j->diag, j->status));
+    else if (j->status != CX_OK)
         tui_msg(st, 1, "%s", cx_diag_msg(&j->diag, j->status));
     else if (kind == TUI_JOB_BUILD)
         tui_msg(st, 0, "%s level %d: %d dofs, %d contact points, built in %.2f s", st->scene.id,
