@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 packages="build-essential meson ninja-build pkg-config python3 \
 libsuitesparse-dev libopenblas0 liblapack-dev libinih-dev \
 libncurses-dev libosmesa6-dev libpng-dev libcairo2-dev fonts-dejavu-core tmux \
-python3-vtk9 clang libclang-rt-14-dev"
+python3-vtk9 clang libclang-rt-14-dev locales"
 
 missing=""
 for p in $packages; do

@@ -26,16 +26,31 @@
 
 static int select_method(tui_state *st, int index)
 {
-    st->sel_method = index;
-    cx_param_default(&st->sel_params, cx_method_at(index)->params);
     char reason[CX_DIAG_LEN];
     if (tui_state_method_reason(st, index, reason, sizeof reason)[0]) {
-        /* greyed: shown with its reason, the session keeps its method */
-        tui_msg(st, 1, "%s", reason);
+        /* greyed: the reason, and the selection and the session stay, so
+         * the row never shows a method other than the one that runs */
+        tui_msg(st, 1, "%s: %s", cx_method_at(index)->id, reason);
         return TUI_REDRAW;
     }
+    st->sel_method = index;
+    cx_param_default(&st->sel_params, cx_method_at(index)->params);
     st->msg[0] = '\0';
     return TUI_REDRAW | TUI_RESOLVE;
+}
+
+/* The next method from the selected one in direction dir that can run the
+ * scene under the selected law (greyed ones skipped), -1 if none. */
+static int next_method(const tui_state *st, int dir)
+{
+    int n = cx_method_count();
+    char reason[CX_DIAG_LEN];
+    for (int k = 1; k <= n; k++) {
+        int i = ((st->sel_method + dir * k) % n + n) % n;
+        if (!tui_state_method_reason(st, i, reason, sizeof reason)[0])
+            return i;
+    }
+    return -1;
 }
 
 /* scene */
@@ -148,11 +163,45 @@ static void friction_format(const tui_state *st, int i, char *buf, size_t len)
     snprintf(buf, len, "%s", cx_friction_name(st->sel_law));
 }
 
+/* A law chosen: if the selected method cannot run it, the method
+ * --method auto chooses for it (with its parameters), so that cycling the
+ * laws never dead-ends on a refusal. */
+static int select_law(tui_state *st, cx_friction law)
+{
+    st->sel_law = law;
+    char reason[CX_DIAG_LEN];
+    if (!tui_state_method_reason(st, st->sel_method, reason, sizeof reason)[0])
+        return TUI_REDRAW | TUI_RESOLVE;
+    const cx_method *was = tui_state_sel_method(st);
+    tui_state_select_auto(st);
+    if (tui_state_method_reason(st, st->sel_method, reason, sizeof reason)[0]) {
+        st->sel_law = st->cur_law;
+        st->sel_method = st->cur_method ? tui_method_index(st->cur_method->id) : st->sel_method;
+        st->sel_params = st->cur_params;
+        tui_msg(st, 1, "%s friction: %s", cx_friction_name(law), reason);
+        return TUI_REDRAW;
+    }
+    tui_msg(st, 0, "%s does not support %s friction: switching to %s", was->id, cx_friction_name(law),
+            tui_state_sel_method(st)->id);
+    return TUI_REDRAW | TUI_RESOLVE;
+}
+
 static int friction_step(tui_state *st, int i, int dir)
 {
     (void)i;
-    st->sel_law = (cx_friction)(((int)st->sel_law + dir + 3) % 3);
-    return TUI_REDRAW | TUI_RESOLVE;
+    /* the laws the scene allows (its 'laws' key), in order */
+    unsigned laws = st->scene.laws ? st->scene.laws : CX_SCENE_ALL_LAWS;
+    int law = (int)st->sel_law;
+    for (int k = 0; k < 3; k++) {
+        law = (law + dir + 3) % 3;
+        if (laws & (1u << law))
+            break;
+    }
+    if (law == (int)st->sel_law) {
+        tui_msg(st, 0, "scene '%s' allows only %s friction", st->scene.id, cx_friction_name(st->sel_law));
+        return TUI_REDRAW;
+    }
+    return select_law(st, (cx_friction)law);
 }
 
 static int friction_enter(tui_state *st, int i, const char *text)
@@ -163,8 +212,12 @@ static int friction_enter(tui_state *st, int i, const char *text)
         tui_msg(st, 1, "friction '%s': expected none, tresca or coulomb", text);
         return TUI_REDRAW;
     }
-    st->sel_law = (cx_friction)law;
-    return TUI_REDRAW | TUI_RESOLVE;
+    unsigned laws = st->scene.laws ? st->scene.laws : CX_SCENE_ALL_LAWS;
+    if (!(laws & (1u << law))) {
+        tui_msg(st, 1, "friction '%s': scene '%s' does not allow it", text, st->scene.id);
+        return TUI_REDRAW;
+    }
+    return select_law(st, (cx_friction)law);
 }
 
 /* the friction coefficient: Tresca slip bound or Coulomb F */
@@ -237,8 +290,12 @@ static void method_format(const tui_state *st, int i, char *buf, size_t len)
 static int method_step(tui_state *st, int i, int dir)
 {
     (void)i;
-    int n = cx_method_count();
-    return select_method(st, ((st->sel_method + dir) % n + n) % n);
+    int k = next_method(st, dir);
+    if (k < 0 || k == st->sel_method) {
+        tui_msg(st, 0, "%s is the only method that fits this scene", tui_state_sel_method(st)->id);
+        return TUI_REDRAW;
+    }
+    return select_method(st, k);
 }
 
 static int method_enter(tui_state *st, int i, const char *text)
@@ -420,7 +477,7 @@ static void param_describe(const tui_state *st, int i, char *buf, size_t len)
     const cx_param *p = &st->sel_params.table[i];
     char range[96];
     cx_param_range(p, range, sizeof range);
-    snprintf(buf, len, "range %s\n%s", range, p->help ? p->help : "");
+    snprintf(buf, len, "%s: range %s\n%s", p->key, range, p->help ? p->help : "");
 }
 
 static const tui_row tui_rows[] = {
@@ -573,20 +630,8 @@ static int act_edit(tui_state *st)
 static int act_next_method(tui_state *st)
 {
     /* the next method that can run this scene */
-    int n = cx_method_count();
-    char reason[CX_DIAG_LEN];
-    for (int k = 1; k <= n; k++) {
-        int i = (st->sel_method + k) % n;
-        if (!tui_state_method_reason(st, i, reason, sizeof reason)[0]) {
-            st->field = TUI_F_METHOD;
-            if (i == st->sel_method) {
-                tui_msg(st, 0, "%s is the only method that fits this scene", cx_method_at(i)->id);
-                return TUI_REDRAW;
-            }
-            return select_method(st, i);
-        }
-    }
-    return TUI_REDRAW;
+    st->field = TUI_F_METHOD;
+    return method_step(st, 0, +1);
 }
 
 /* Shortcuts: move to a row and change it. */

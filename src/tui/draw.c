@@ -75,9 +75,54 @@ static void draw_header(const tui_state *st, int cols)
 static const char spinner_ascii[] = "|/-\\";
 static const char *const spinner_utf8[] = {"⠋", "⠙", "⠹", "⠸", "⠼", "⠴", "⠦", "⠧", "⠇", "⠏"};
 
+/* Split text into lines of at most w columns at spaces (a word longer
+ * than w is cut, the only case): the start and length of each line into
+ * at[], len[] (up to max); the number of lines. ASCII widths: messages
+ * and diagnostics are ASCII. */
+static int draw_wrap(const char *text, int w, const char **at, int *len, int max)
+{
+    int n = 0;
+    while (*text == ' ')
+        text++;
+    while (*text && n < max) {
+        int l = (int)strlen(text);
+        if (l > w) {
+            l = w;
+            while (l > 0 && text[l] != ' ')
+                l--;
+            if (l == 0)
+                l = w;
+        }
+        at[n] = text;
+        len[n++] = l;
+        text += l;
+        while (*text == ' ')
+            text++;
+    }
+    return n;
+}
+
+/* The key bar, always on the bottom row: the keys a class needs first
+ * (m f n v e p among them), as many as fit, whole. */
+static void draw_keybar(int y, int cols)
+{
+    static const char *const items[] = {"s step", "r run", "m method", "f friction", "n scene", "v view",
+                                        "e export", "p png", "? help", "q quit", "x reset", NULL};
+    char bar[256] = "";
+    size_t at = 0;
+    for (int k = 0; items[k]; k++) {
+        size_t l = strlen(items[k]) + 2;
+        if ((int)(at + l) > cols || at + l >= sizeof bar)
+            continue;   /* a later, shorter item may still fit */
+        at += (size_t)snprintf(bar + at, sizeof bar - at, " %s ", items[k]);
+    }
+    tui_term_put(y, 0, TUI_C_LABEL, bar, cols);
+}
+
 static void draw_status(const tui_state *st, int rows, int cols)
 {
-    int y = rows - 1;
+    draw_keybar(rows - 1, cols);
+    int y = rows - 2;
     double t = cx_clock_now() - st->job.t0;
     /* a step shows progress only when it is slow */
     if (tui_state_busy(st) && (st->job.kind != TUI_JOB_STEP || t > 0.25)) {
@@ -99,12 +144,18 @@ static void draw_status(const tui_state *st, int rows, int cols)
         return;
     }
     if (st->msg[0]) {
-        tui_put(y, 0, st->msg_error == 1 ? TUI_C_ERROR : st->msg_error == 2 ? TUI_C_WARN : TUI_C_OK, cols, " %s ",
-            st->msg);
+        /* whole words: a message longer than the line wraps upwards (over
+         * the panel above), never cut mid-word */
+        const char *at[4];
+        int len[4];
+        int n = draw_wrap(st->msg, cols - 2, at, len, 4);
+        int role = st->msg_error == 1 ? TUI_C_ERROR : st->msg_error == 2 ? TUI_C_WARN : TUI_C_OK;
+        for (int k = 0; k < n; k++)
+            tui_put(y - (n - 1) + k, 0, role, cols, " %.*s%*s", len[k], at[k], cols - 1 - len[k], "");
         return;
     }
-    tui_put(y, 0, TUI_C_LABEL, cols, " s step  r run/pause  x reset  %s field  %s change  Enter edit  ? help  q quit",
-        tui_sym("↑↓", "up/dn"), tui_sym("←→", "<-/->"));
+    tui_put(y, 0, TUI_C_FAINT, cols, " %s %s rows, %s %s change, Enter types a value",
+        tui_sym("↑↓", "up/dn"), "choose", tui_sym("←→", "<-/->"), "");
 }
 
 /* ---- pickers ---------------------------------------------------------------- */
@@ -133,9 +184,14 @@ static void draw_pickers(const tui_state *st, tui_box b)
             role = sel ? TUI_C_SELECT : TUI_C_GREY;
         if (sel && st->editing)
             snprintf(val, sizeof val, "%.*s_", st->edit_len, st->edit);
-        char line[128];
-        snprintf(line, sizeof line, "%-*.*s%s%-*s", lw, lw - 1, tui_field_label(st, f),
-                 sel ? tui_sym("◂", "<") : " ", b.w, val);
+        char line[128], label[32];
+        const char *full = tui_field_label(st, f);
+        if ((int)strlen(full) > lw - 1)   /* the full name is in the detail below when selected */
+            snprintf(label, sizeof label, "%.*s%s", lw - 2, full, tui_sym("…", "~"));
+        else
+            snprintf(label, sizeof label, "%s", full);
+        int pad = lw - (int)strlen(full) > 0 ? lw - (int)strlen(full) : 1;
+        snprintf(line, sizeof line, "%s%*s%s%-*s", label, pad, "", sel ? tui_sym("◂", "<") : " ", b.w, val);
         tui_term_put(y, b.x, role, line, b.w);
     }
     y++;
@@ -161,10 +217,14 @@ static void draw_pickers(const tui_state *st, tui_box b)
             tui_put(y, b.x, k == cur ? (grey ? TUI_C_GREY : TUI_C_STICK) : grey ? TUI_C_GREY : TUI_C_NORMAL, b.w,
                 "%s%s", k == cur ? tui_sym("▸ ", "> ") : "  ", id);
         }
-        if (row->greyed && row->greyed(st, i, reason, sizeof reason)[0])
-            tui_put(y++, b.x, TUI_C_WARN, b.w, "%s", reason + (strncmp(reason, "method ", 7) == 0 ? 7 : 0));
-        else if (y < bottom)
-            tui_put(y++, b.x, TUI_C_FAINT, b.w, "%s", detail);
+        /* the reason it is grey, or its description, wrapped at words */
+        int grey = row->greyed && row->greyed(st, i, reason, sizeof reason)[0];
+        const char *text = grey ? reason + (strncmp(reason, "method ", 7) == 0 ? 7 : 0) : detail;
+        const char *at[6];
+        int len[6];
+        int nl = draw_wrap(text, b.w, at, len, 6);
+        for (int k = 0; k < nl && (y < bottom || (grey && k == 0)); k++)
+            tui_put(y++, b.x, grey ? TUI_C_WARN : TUI_C_FAINT, b.w, "%.*s", len[k], at[k]);
     } else if (detail[0]) {
         /* the first line as it is, the rest wrapped */
         size_t first = strcspn(detail, "\n");
@@ -185,7 +245,7 @@ static void draw_pickers(const tui_state *st, tui_box b)
         }
     }
     /* the session */
-    y = b.y + b.h - 4;
+    y = b.y + b.h - 5;
     if (y <= b.y)
         return;
     tui_rule(y++, b.x, b.w, "session");
@@ -195,6 +255,12 @@ static void draw_pickers(const tui_state *st, tui_box b)
     tui_put(y++, b.x, TUI_C_NORMAL, b.w, "%d dofs, %d points", st->info->n, st->info->m);
     tui_put(y++, b.x, st->cache.factorizations == 1 ? TUI_C_OK : TUI_C_WARN, b.w, "cache %d op%s, %ld fact.",
         st->cache_size, st->cache_size == 1 ? "" : "s", st->cache.factorizations);
+    /* the run's setup apart from its iterations; the explorer's own work
+     * for drawing apart from the run's */
+    const tui_run *run = tui_state_run(st);
+    if (run)
+        tui_put(y++, b.x, TUI_C_NORMAL, b.w, "setup %.1fms draw %ldK", 1e3 * run->setup,
+            run->draw.solves);
 }
 
 /* ---- help overlay -------------------------------------------------------------------- */
@@ -234,20 +300,26 @@ void tui_draw(const tui_state *st, int rows, int cols, int utf8)
     draw_utf8 = utf8;
     tui_term_clear();
     if (cols < DRAW_MIN_COLS || rows < DRAW_MIN_ROWS) {
+        /* whole words at any size, centred (30x10 shows it all) */
         char msg[96];
-        snprintf(msg, sizeof msg, "terminal too small (%dx%d, need %dx%d)", cols, rows, DRAW_MIN_COLS,
+        snprintf(msg, sizeof msg, "terminal too small: %dx%d, needs %dx%d; q quits", cols, rows, DRAW_MIN_COLS,
                  DRAW_MIN_ROWS);
-        int len = (int)strlen(msg);
-        tui_term_put(rows / 2, len < cols ? (cols - len) / 2 : 0, TUI_C_WARN, msg, cols);
-        tui_term_put(rows / 2 + 1, 0, TUI_C_FAINT, "q quits", cols);
+        const char *at[8];
+        int len[8];
+        int n = draw_wrap(msg, cols, at, len, rows < 8 ? rows : 8);
+        for (int k = 0; k < n; k++) {
+            char line[96];
+            snprintf(line, sizeof line, "%.*s", len[k], at[k]);
+            tui_term_put((rows - n) / 2 + k, (cols - len[k]) / 2, TUI_C_WARN, line, cols);
+        }
         return;
     }
     draw_header(st, cols);
-    draw_status(st, rows, cols);
     int lw = cols >= 120 ? 30 : 23;
-    draw_pickers(st, (tui_box){1, 0, rows - 2, lw});
+    draw_pickers(st, (tui_box){1, 0, rows - 3, lw});
 
-    int x = lw + 1, w = cols - x, y = 1, h = rows - 2;
+    /* the header, then the panels, the status line and the key bar */
+    int x = lw + 1, w = cols - x, y = 1, h = rows - 3;
     /* a second column for the mesh on wide terminals */
     int mesh_w = cols >= 140 ? (w * 2) / 5 : 0;
     w -= mesh_w ? mesh_w + 1 : 0;
@@ -276,6 +348,8 @@ void tui_draw(const tui_state *st, int rows, int cols, int utf8)
         tui_panel_mesh(st, (tui_box){1, mx, h - rh, mesh_w});
         tui_panel_runs(st, (tui_box){1 + h - rh, mx, rh, mesh_w});
     }
+    /* last: a long message wraps upwards over the panels */
+    draw_status(st, rows, cols);
     if (st->help)
         draw_help(rows, cols);
 }

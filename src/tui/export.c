@@ -67,6 +67,11 @@ static void export_json(const tui_state *st, FILE *f)
         cx_json_num(&j, "tol", run->tol);
         cx_json_str(&j, "reason", cx_reason_id(run->reason));
         cx_json_str(&j, "reason_msg", run->reason_msg);
+        /* the run's own work (solve's counts), its setup apart from the
+         * steps' time, and the explorer's work for drawing apart */
+        cx_json_int(&j, "factorizations", run->factorizations);
+        cx_json_num(&j, "setup_time", run->setup);
+        cx_json_int(&j, "drawing_solves", run->draw.solves);
         cx_json_array(&j, "steps");
         for (int k = 0; k < run->nsteps; k++) {
             const tui_step *s = &run->steps[k];

@@ -77,11 +77,12 @@ void tui_history_append(tui_run *r, const cx_iterate *it)
     s->nslip = it->nslip;
     s->nchanged = it->nchanged;
     s->inner = it->inner;
-    s->solves = it->counters.solves;
-    s->time = it->time;
+    s->solves = it->counters.solves + r->probe.solves;
+    s->time = it->time - it->init_time;
     s->step_time = it->step_time;
     r->reason = it->reason;
-    r->factorizations = it->counters.factorizations;
+    r->setup = it->init_time;
+    r->factorizations = it->counters.factorizations + r->probe.factorizations;
 }
 
 /* ---- the state's runs ------------------------------------------------------ */

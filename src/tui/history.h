@@ -13,13 +13,15 @@ typedef struct tui_step {
     int nfree, ncontact, nstick, nslip, nchanged;
     long inner;
     long solves;           /* solves with K in the run so far */
-    double time;           /* seconds of the run so far (init included) */
+    double time;           /* seconds of the run's iterations so far (its setup apart) */
     double step_time;      /* seconds of this step */
 } tui_step;
 
 struct tui_run {
     char method[32];
     char params[160];      /* "rho=0.001 ..." */
+    char changed[160];     /* the parameters that differ from their defaults */
+    char outcome[CX_DIAG_LEN];   /* cx_reason_format's sentence when it ended */
     cx_friction law;
     double coef;
     double tol;
@@ -28,6 +30,13 @@ struct tui_run {
     int reason;            /* cx_reason of the last step */
     char reason_msg[160];  /* breakdown message, if any */
     long factorizations;   /* of the run, the cache build included */
+    double setup;          /* seconds of the method's setup (init) */
+    cx_counters draw;      /* the explorer's own work for drawing (expanding
+                              a partial iterate for the mesh view), not the
+                              run's: its counters are solve's */
+    cx_counters probe;     /* work of the check before the switch that
+                              opened the run (an operator it cached): the
+                              run's own, added to its counters */
 };
 
 #define TUI_MAX_RUNS 32

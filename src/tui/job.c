@@ -5,6 +5,7 @@
 
 #include <pthread.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Runs on the worker (or inline): touches only the job, the scene (read)
  * and, for a resolve, the session, which the main thread leaves alone. */
@@ -18,6 +19,33 @@ static cx_friction_state state_friction(cx_friction law, double coef, const cx_f
     else if (law == CX_FRICTION_COULOMB)
         fr.F = coef;
     return fr;
+}
+
+/* Try the switch on a nested session over the same system (its own
+ * friction state, the shared operator cache) before touching the session:
+ * a method that refuses at init (a dual method when K is singular) then
+ * leaves the session's iterate, run and counters exactly as they were.
+ * The probe's work (an operator it put in the cache) is returned in *work
+ * so that the run it opens is charged with it. */
+static int job_probe(cx_session *s, const cx_friction_state *fr, tui_job *j, cx_counters *work)
+{
+    cx_counters *run = cx_session_counters(s), saved = *run;
+    cx_session *child = NULL;
+    int status = cx_session_nested_create(&child, s, &j->diag);
+    if (status == CX_OK)
+        status = cx_session_set_friction(child, fr, &j->diag);
+    if (status == CX_OK)
+        status = cx_session_set_method(child, j->method, &j->params, &j->opt, &j->diag);
+    cx_session_destroy(&child);
+    work->factorizations = run->factorizations - saved.factorizations;
+    work->solves = run->solves - saved.solves;
+    work->matvecs = run->matvecs - saved.matvecs;
+    work->dual_products = run->dual_products - saved.dual_products;
+    work->updates = run->updates - saved.updates;
+    work->dense_factorizations = run->dense_factorizations - saved.dense_factorizations;
+    *run = saved;   /* the current run did not do it */
+    j->probed = status != CX_OK;
+    return status;
 }
 
 static void job_run(tui_state *st)
@@ -43,22 +71,45 @@ static void job_run(tui_state *st)
         }
     } else if (j->kind == TUI_JOB_STEP) {
         atomic_store(&j->phase, TUI_PHASE_STEP);
-        j->status = cx_solver_step(st->session, &j->diag);
-        if (j->status == CX_OK)   /* the mesh view draws the whole u */
-            j->status = cx_session_complete_iterate(st->session, &j->diag);
+        cx_session *s = st->session;
+        j->status = cx_solver_step(s, &j->diag);
+        const cx_iterate *it = cx_session_iterate(s);
+        j->kkt = it->kkt;
+        j->counters = it->counters;
+        memset(&j->draw, 0, sizeof j->draw);
+        if (j->status == CX_OK && j->expand && it->u_partial) {
+            /* the mesh view draws the whole u: expanding it is the
+             * explorer's work, not the run's (solve does not do it), so it
+             * is counted apart and the run's counters are put back. Only
+             * on single steps: a run ('r') is stepped as solve steps it */
+            cx_counters *run = cx_session_counters(s), saved = *run;
+            j->status = cx_session_complete_iterate(s, &j->diag);
+            j->draw.solves = run->solves - saved.solves;
+            j->draw.factorizations = run->factorizations - saved.factorizations;
+            j->draw.matvecs = run->matvecs - saved.matvecs;
+            *run = saved;
+        }
     } else if (j->kind == TUI_JOB_RESOLVE) {
         cx_session *s = st->session;
         cx_friction_state old = *cx_session_friction(s), fr = state_friction(j->law, j->coef, &old);
         double coef = old.law == CX_FRICTION_COULOMB ? old.F : old.slip_bound;
-        old.s = old.Fi = NULL;   /* restored from the scalars, as they were set */
+        int law_changes = j->law != old.law || j->coef != coef;
         atomic_store(&j->phase, TUI_PHASE_FACTORISE);
-        if (j->law != old.law || j->coef != coef)
+        memset(&j->probe, 0, sizeof j->probe);
+        if (cx_session_method(s))
+            j->status = job_probe(s, &fr, j, &j->probe);
+        if (j->status == CX_OK && law_changes) {
+            /* the old method may not support the new law: it goes first */
+            if (j->method != cx_session_method(s))
+                cx_session_clear_method(s);
             j->status = cx_session_set_friction(s, &fr, &j->diag);
+        }
         if (j->status == CX_OK)
             j->status = cx_session_set_method(s, j->method, &j->params, &j->opt, &j->diag);
-        if (j->status != CX_OK && st->cur_method) {
-            /* refused (e.g. at init): the session goes back to what it was,
-             * so the explorer always has a method to step */
+        if (j->status != CX_OK && st->cur_method && !j->probed) {
+            /* refused where the probe passed (or no probe): back to the
+             * old method, so the explorer always has a method to step */
+            old.s = old.Fi = NULL;   /* restored from the scalars, as they were set */
             cx_session_set_friction(s, &old, NULL);
             cx_session_set_method(s, st->cur_method, &st->cur_params, &st->cur_opt, NULL);
         }
@@ -84,6 +135,9 @@ void tui_job_start(tui_state *st, int kind)
     j->law = st->sel_law;
     j->coef = st->sel_law == CX_FRICTION_COULOMB ? st->sel_F : st->sel_slip;
     j->session = NULL;
+    j->probed = 0;
+    j->expand = !st->running;
+    memset(&j->probe, 0, sizeof j->probe);
     atomic_store(&j->phase, TUI_PHASE_IDLE);
     /* 'running' is kept: a run asked for during the job starts after it */
     if (!st->sync) {

@@ -26,6 +26,16 @@ typedef struct tui_job {
     cx_options opt;
     cx_friction law;
     double coef;
+    /* output of a resolve: the probe's work (charged to the new run), 1 if
+     * the probe refused (the session was not touched) */
+    cx_counters probe;
+    int probed;
+    /* a step: expand a partial iterate afterwards (for drawing) */
+    int expand;
+    /* output of a step: the kkt error and counters as the step left them
+     * (solve's), and the work of the expansion for drawing */
+    double kkt;
+    cx_counters counters, draw;
     /* output of a build */
     cx_session *session;
     void *worker;          /* pthread_t *, when a worker thread runs */

@@ -5,6 +5,7 @@
 #include "tui/tui_impl.h"
 #include "base/opt_solve.h"
 
+#include <locale.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,10 +21,10 @@ static const char tui_usage[] =
 
 static volatile sig_atomic_t loop_quit;
 
+/* the signal that ends the loop (its exit status is 128 + it) */
 static void loop_on_signal(int sig)
 {
-    (void)sig;
-    loop_quit = 1;
+    loop_quit = sig;
 }
 
 /* Out of memory in the explorer (the core's hook, tui_on_oom): restore the
@@ -109,6 +110,11 @@ int tui_main(int argc, char **argv)
     if (r >= 0)
         return r;
     int law = a.friction;
+    /* numbers in the C locale from the start (the scene is read before the
+     * terminal opens); tui_term_open takes the user's locale for the
+     * characters and keeps LC_NUMERIC at C */
+    setlocale(LC_ALL, "");
+    setlocale(LC_NUMERIC, "C");
     tui_state *st = NULL;
     cx_diag d;
     cx_diag_clear(&d);
@@ -168,8 +174,13 @@ int tui_main(int argc, char **argv)
         }
         if (key != TUI_KEY_NONE) {
             int react = tui_key(st, key);
-            if (react & TUI_QUIT)
+            if (react & TUI_QUIT) {
+                /* Ctrl-C (a key in raw mode) exits as an interrupt does,
+                 * 130, like the other subcommands */
+                if (key == TUI_KEY_CTRL_C)
+                    loop_quit = SIGINT;
                 break;
+            }
             tui_state_apply(st, react);
             dirty = 1;
         }
@@ -179,10 +190,11 @@ int tui_main(int argc, char **argv)
         }
     }
     tui_term_close();
+    int status = loop_quit ? 128 + (int)loop_quit : 0;
     if (tui_state_busy(st)) {
         /* a build cannot be interrupted: leave it to the exit */
         fflush(stdout);
-        _exit(0);
+        _exit(status);
     }
     /* the steps' own times (the method's step and the bookkeeping) */
     for (int r = 0; r < tui_state_nruns(st); r++)
@@ -192,5 +204,5 @@ int tui_main(int argc, char **argv)
         fprintf(stderr, "explorer: %d redraws, median %.3f ms; %d steps, median %.3f ms\n", ndraw,
                1e3 * median(draw_t, ndraw), nstep, 1e3 * median(step_t, nstep));
     tui_state_destroy(&st);
-    return 0;
+    return status;
 }

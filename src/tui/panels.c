@@ -386,8 +386,14 @@ void tui_panel_mesh(const tui_state *st, tui_box b)
 void tui_panel_runs(const tui_state *st, tui_box b)
 {
     tui_rule(b.y, b.x, b.w, "runs");
-    tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-14s %-7s %5s %9s %8s %6s  %s", "method", "law", "iter", "kkt", "time ms",
-        "nK", "outcome");
+    /* narrow: the time and K-solve columns go, the outcome stays */
+    int wide = b.w >= 84;
+    if (wide)
+        tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-11s %-7s %-7s %4s %7s %7s %4s  %s", "method", "law", "F/slip",
+            "iter", "kkt", "ms", "nK", "outcome; changed parameters");
+    else
+        tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-10s %-7s %-6s %4s %7s  %s", "method", "law", "F/slip", "iter",
+            "kkt", "outcome; changed");
     int rows = b.h - 2;
     int first = tui_state_nruns(st) - rows;
     if (first < 0)
@@ -395,13 +401,38 @@ void tui_panel_runs(const tui_state *st, tui_box b)
     for (int r = first, y = b.y + 2; r < tui_state_nruns(st); r++, y++) {
         const tui_run *run = tui_state_run_at(st, r);
         const tui_step *s = run->nsteps ? &run->steps[run->nsteps - 1] : NULL;
-        char kkt[24];
-        fmt_num(kkt, sizeof kkt, s ? s->kkt : NAN, 9);
+        char kkt[24], coef[24], outcome[CX_DIAG_LEN];
+        fmt_num(kkt, sizeof kkt, s ? s->kkt : NAN, 7);
+        if (run->law == CX_FRICTION_NONE)
+            snprintf(coef, sizeof coef, "-");
+        else
+            snprintf(coef, sizeof coef, "%s%.3g", run->law == CX_FRICTION_COULOMB ? "F " : "s ", run->coef);
+        /* the outcome in words: cx_reason_format's sentence up to its
+         * colon ("converged in 7 iterations", "did not converge in 500
+         * iterations"), the numbers being in the columns */
+        if (run->reason && run->outcome[0])
+            snprintf(outcome, sizeof outcome, "%.*s", (int)strcspn(run->outcome, ":"), run->outcome);
+        else
+            snprintf(outcome, sizeof outcome, "%s",
+                     run->reason ? cx_reason_str(run->reason) : r == tui_state_nruns(st) - 1 ? "current" : "stopped");
         int role = run->reason > 0 ? TUI_C_OK : run->reason < 0 ? TUI_C_ERROR : TUI_C_NORMAL;
         if (r == tui_state_nruns(st) - 1 && run->reason == 0)
             role = TUI_C_CURRENT;
-        tui_put(y, b.x, role, b.w, "%-14.14s %-7s %5d %s %8.1f %6ld  %s", run->method, cx_friction_name(run->law),
-            s ? s->iter : 0, kkt, s ? 1e3 * s->time : 0, s ? s->solves : 0,
-            run->reason ? cx_reason_str(run->reason) : r == tui_state_nruns(st) - 1 ? "current" : "stopped");
+        if (wide)
+            tui_put(y, b.x, role, b.w, "%-11.11s %-7s %-7.7s %4d %s %7.1f %4ld  %s%s%s", run->method,
+                cx_friction_name(run->law), coef, s ? s->iter : 0, kkt, s ? 1e3 * s->time : 0, s ? s->solves : 0,
+                outcome, run->changed[0] ? "; " : "", run->changed);
+        else {
+            /* the sentence if it fits, else the outcome's word (the
+             * iterations are in their column), cut with an ellipsis only
+             * when even that is too long */
+            int avail = b.w - 40;
+            if ((int)strlen(outcome) > avail && run->reason)
+                snprintf(outcome, sizeof outcome, "%s", cx_reason_str(run->reason));
+            if ((int)strlen(outcome) > avail && avail > 1)
+                snprintf(outcome + avail - 1, sizeof outcome - (size_t)avail + 1, "%s", tui_sym("…", "~"));
+            tui_put(y, b.x, role, b.w, "%-10.10s %-7s %-6.6s %4d %s  %s%s%s", run->method, cx_friction_name(run->law),
+                coef, s ? s->iter : 0, kkt, outcome, run->changed[0] ? "; " : "", run->changed);
+        }
     }
 }

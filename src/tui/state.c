@@ -78,7 +78,7 @@ int tui_method_index(const char *id)
 
 /* --method auto's choice for the selected scene, level and law, if it is
  * registered (else the selection stays). */
-static void state_select_auto(tui_state *st)
+void tui_state_select_auto(tui_state *st)
 {
     const char *sets;
     int i = tui_method_index(cx_scene_auto_method(&st->scene, st->sel_level, NULL, st->sel_law, &sets));
@@ -108,7 +108,7 @@ static void state_select_scene_defaults(tui_state *st)
         }
     }
     cx_param_default(&st->sel_params, cx_method_at(st->sel_method)->params);
-    state_select_auto(st);
+    tui_state_select_auto(st);
 }
 
 static double state_sel_coef(const tui_state *st)
@@ -129,6 +129,19 @@ static void state_new_run(tui_state *st)
         char v[CX_PARAM_STRLEN];
         cx_param_format(&st->cur_params, i, v, sizeof v);
         int w = snprintf(r->params + at, sizeof r->params - at, "%s%s=%s", i ? " " : "",
+                         st->cur_params.table[i].key, v);
+        at += w > 0 ? (size_t)w : 0;
+    }
+    cx_param_values def;
+    cx_param_default(&def, st->cur_params.table);
+    at = 0;
+    for (int i = 0; i < st->cur_params.n && at < sizeof r->changed; i++) {
+        char v[CX_PARAM_STRLEN], v0[CX_PARAM_STRLEN];
+        cx_param_format(&st->cur_params, i, v, sizeof v);
+        cx_param_format(&def, i, v0, sizeof v0);
+        if (strcmp(v, v0) == 0)
+            continue;
+        int w = snprintf(r->changed + at, sizeof r->changed - at, "%s%s=%s", at ? " " : "",
                          st->cur_params.table[i].key, v);
         at += w > 0 ? (size_t)w : 0;
     }
@@ -271,11 +284,28 @@ int tui_state_poll(tui_state *st)
             else if (st->cur_law == CX_FRICTION_TRESCA)
                 st->sel_slip = st->cur_coef;
         }
-        if (st->cur_method && (j->status == CX_OK || kind == TUI_JOB_BUILD))
+        if (st->cur_method && (j->status == CX_OK || kind == TUI_JOB_BUILD)) {
             state_new_run(st);
-        state_snapshot(st);
+            if (kind == TUI_JOB_RESOLVE)
+            {
+                tui_run *run = &st->history->runs[st->history->nruns - 1];
+                run->probe = j->probe;
+                run->factorizations = j->probe.factorizations;
+            }
+        }
+        /* a refusal the probe caught left the session untouched: the
+         * snapshot, the run and its steps stay as they were */
+        if (!j->probed)
+            state_snapshot(st);
+        else
+            st->cache = *cx_session_cache_counters(st->session);   /* the attempt's work */
     }
-    if (j->status != CX_OK)
+    if (j->status != CX_OK && kind == TUI_JOB_RESOLVE && j->method &&
+        !strstr(cx_diag_msg(&j->diag, j->status), j->method->id))
+        /* which switch was refused, and that nothing changed */
+        tui_msg(st, 1, "%s refused, %s kept: %s", j->method->id, st->cur_method ? st->cur_method->id : "-",
+                cx_diag_msg(&j->diag, j->status));
+    else if (j->status != CX_OK)
         tui_msg(st, 1, "%s", cx_diag_msg(&j->diag, j->status));
     else if (kind == TUI_JOB_BUILD)
         tui_msg(st, 0, "%s level %d: %d dofs, %d contact points, built in %.2f s", st->scene.id,
@@ -398,7 +428,16 @@ static void state_watch_cycles(tui_state *st, const tui_run *run)
     if (n < 4 || st->cycle_iter)
         return;
     double k0 = run->steps[n - 1].kkt, k1 = run->steps[n - 2].kkt, k2 = run->steps[n - 3].kkt;
-    if (st->status_hash[0] == st->status_hash[2] && fabs(k0 - k2) <= 1e-10 * k0 && fabs(k0 - k1) > 1e-8 * k0)
+    /* truly cycled: the set and the kkt error of iteration n-2 come back at
+     * n, after a different error at n-1, and so does the method's own
+     * criterion when it has one. An error that merely sits at a plateau
+     * while the method makes headway is no cycle (lssnn on halfball sits
+     * at kkt 1 for its first steps, its own criterion moving, then
+     * converges in 85 as in solve) */
+    double o0 = run->steps[n - 1].own, o2 = run->steps[n - 3].own;
+    int own_repeats = (isnan(o0) && isnan(o2)) || fabs(o0 - o2) <= 1e-10 * fabs(o0);
+    if (st->status_hash[0] == st->status_hash[2] && fabs(k0 - k2) <= 1e-10 * k0 && fabs(k0 - k1) > 1e-8 * k0 &&
+        own_repeats)
         st->cycle_iter = run->steps[n - 1].iter;
 }
 
@@ -408,6 +447,16 @@ void tui_state_after_step(tui_state *st, int status, const cx_diag *d)
     const cx_iterate *it = cx_session_iterate(st->session);
     tui_run *run = &st->history->runs[st->history->nruns - 1];
     tui_history_append(run, it);
+    /* the step as solve saw it, before any expansion for drawing */
+    const tui_job *j = &st->job;
+    tui_step *last = &run->steps[run->nsteps - 1];
+    if (it->reason == CX_ITERATING)
+        last->kkt = j->kkt;
+    last->solves = j->counters.solves + run->probe.solves;
+    run->factorizations = j->counters.factorizations + run->probe.factorizations;
+    run->draw.solves += j->draw.solves;
+    run->draw.factorizations += j->draw.factorizations;
+    run->draw.matvecs += j->draw.matvecs;
     state_snapshot(st);
     int seen = st->cycle_iter;
     state_watch_cycles(st, run);
@@ -429,6 +478,7 @@ void tui_state_after_step(tui_state *st, int status, const cx_diag *d)
         st->running = 0;
         const char *why = cx_session_reason_msg(st->session);
         snprintf(run->reason_msg, sizeof run->reason_msg, "%s", why);
+        cx_session_outcome(st->session, run->outcome, sizeof run->outcome);
         char outcome[CX_DIAG_LEN + 128];
         tui_msg(st, it->reason < 0, "%s", cx_session_outcome(st->session, outcome, sizeof outcome));
     }
@@ -515,7 +565,7 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
         st->sel_method = i;
         cx_param_default(&st->sel_params, cx_method_at(i)->params);
     } else {
-        state_select_auto(st);   /* for the level and law asked for */
+        tui_state_select_auto(st);   /* for the level and law asked for */
     }
     st->field = TUI_F_METHOD;
     tui_job_start(st, TUI_JOB_BUILD);

@@ -41,7 +41,11 @@ static const struct {
 
 int tui_term_open(int mono, int ascii)
 {
+    /* the user's locale for the characters (UTF-8 drawing), the C locale
+     * for numbers: scene files are read and exports written with '.'
+     * whatever LC_ALL or LC_NUMERIC say */
     setlocale(LC_ALL, "");
+    setlocale(LC_NUMERIC, "C");
     const char *cs = nl_langinfo(CODESET);
     term_utf8 = !ascii && cs && (strcmp(cs, "UTF-8") == 0 || strcmp(cs, "utf8") == 0);
     if (!initscr())

@@ -140,6 +140,9 @@ struct tui_state {
 const cx_method *tui_state_sel_method(const tui_state *st);
 /* Why method index cannot run this scene ("" if it can), for greying out. */
 const char *tui_state_method_reason(const tui_state *st, int index, char *buf, size_t len);
+/* Select the method (and parameters) --method auto chooses for the
+ * selected scene, level and law. */
+void tui_state_select_auto(tui_state *st);
 /* The registry index of method id, -1 if none. */
 int tui_method_index(const char *id);
 

@@ -7,8 +7,9 @@ a parameter, friction or tolerance change on ssn-tresca keeps
 "factorised: 1"; a second round of 'm' through the methods factorises
 nothing (the counter read after the first round stays); the contact strip
 shows stick and slip on 'slider' with Tresca; '?' shows the help; a
-resize to 40x12 says "terminal too small" and back redraws; 'q' and
-Ctrl-C exit 0 with the terminal restored; ASCII without a UTF-8 locale."""
+resize to 40x12 says "terminal too small" and back redraws; 'q' exits 0
+and Ctrl-C 130 with the terminal restored; an export under a comma-decimal
+locale (fr_FR.UTF-8, built with localedef) writes '.' decimals; ASCII without a UTF-8 locale."""
 import os
 import re
 import shutil
@@ -87,9 +88,21 @@ def header():
 
 
 def status():
-    """The status line (the last line that is not blank)."""
+    """The status line: the last line that is not blank above the key bar."""
     lines = [l for l in screen().splitlines() if l.strip()]
-    return lines[-1].strip() if lines else ""
+    return lines[-2].strip() if len(lines) > 1 else ""
+
+
+def status_block():
+    """The status line with the lines above it (a long message wraps
+    upwards), joined."""
+    lines = [l.strip() for l in screen().splitlines() if l.strip()]
+    return " ".join(lines[-5:-1])
+
+
+def keybar():
+    lines = [l for l in screen().splitlines() if l.strip()]
+    return lines[-1] if lines else ""
 
 
 def settled(what):
@@ -107,7 +120,7 @@ def settled(what):
 rcfile = os.path.join(workdir, "rc")
 
 
-def start(cmd, lang="C.UTF-8", x=80, y=24):
+def start(cmd, lang="C.UTF-8", x=80, y=24, extra=""):
     """Run cmd in a new pane; its exit status goes to rcfile (tmux's own
     pane_dead_status is not always filled in when run under meson)."""
     global sock, nstarts
@@ -117,7 +130,7 @@ def start(cmd, lang="C.UTF-8", x=80, y=24):
     sock = f"signorini-tui-{os.getpid()}-{nstarts}"
     if os.path.exists(rcfile):
         os.unlink(rcfile)
-    env = f"LANG={lang} LC_ALL={lang} SIGNORINI_SCENES={os.environ.get('SIGNORINI_SCENES', '')}"
+    env = f"LANG={lang} LC_ALL={lang} SIGNORINI_SCENES={os.environ.get('SIGNORINI_SCENES', '')} {extra}"
     tmux("new-session", "-d", "-s", "t", "-x", str(x), "-y", str(y), "-c", workdir,
          f"env {env} {cmd}; echo $? > {rcfile}.tmp && mv {rcfile}.tmp {rcfile}")
 
@@ -136,11 +149,11 @@ def steps(text):
     return rows
 
 
-def exited_cleanly(how):
+def exited_cleanly(how, want="0"):
     if wait_for(lambda t: os.path.exists(rcfile), f"the explorer to exit after {how}", 30):
         with open(rcfile) as f:
             rc = f.read().strip()
-        check(rc == "0", f"exit status 0 after {how}, got {rc}")
+        check(rc == want, f"exit status {want} after {how}, got {rc}")
         check(pane("#{alternate_on}") == "0", f"the terminal left the alternate screen after {how}")
 
 
@@ -167,6 +180,68 @@ try:
     check(header() is not None and header()[2] == 1, f"factorised: 1 after the build: {header()}")
     keys("q")
     exited_cleanly("q after 'signorini' alone")
+
+    # ---- the first run has solve's numbers ---------------------------------
+    import json
+    for scene in ("hertz", "slider", "laminae"):
+        r = subprocess.run([exe, "solve", scene, "--method", "auto", "--json"], capture_output=True, text=True,
+                           timeout=120, stdin=subprocess.DEVNULL)
+        ref = json.loads(r.stdout)
+        start(f"{exe} tui {scene}")
+        wait_for(lambda t: "built in" in t, f"{scene} to be built")
+        keys("r")
+        wait_for(lambda t: "converged" in status(), f"the {scene} run to converge")
+        runs = [l for l in screen().splitlines() if re.search(re.escape(ref["method"][:10]) + r"\s+(none|tresca|coulomb) ", l)]
+        check(any(re.search(f"{ref['friction']} .* {ref['iterations']} .*  converged", l) for l in runs),
+              f"{scene}: the runs table shows the law and the outcome in words: {runs}")
+        keys("e")
+        wait_for(has("runs written to"), f"the {scene} export")
+        with open(os.path.join(workdir, f"signorini-{scene}-L{ref['level']}-runs.json")) as f:
+            run = json.load(f)["runs"][0]
+        last = run["steps"][-1]
+        got = (run["method"], last["iter"], f"{last['kkt']:.3e}", run["factorizations"], last["solves"])
+        want = (ref["method"], ref["iterations"], f"{ref['kkt_error']:.3e}", ref["counts"]["factorizations"],
+                ref["counts"]["solves"])
+        print(f"{scene}: explorer {got} solve {want}")
+        check(got == want, f"{scene}: the first run (method, iterations, kkt, factorisations, solves) "
+                           f"{got} equals solve --json's {want}")
+        keys("q")
+        exited_cleanly(f"q on {scene}")
+
+    # ---- a refused switch changes nothing; 'f' visits every law -------------
+    start(f"{exe} tui hertz --method ssn-tresca")
+    wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
+    keys("r")
+    wait_for(lambda t: "converged" in status(), "the run to converge")
+
+    def strip_line(text):
+        return [l for l in text.splitlines() if "pts" in l and "dofs" not in l]
+
+    before = screen()
+    keys("m")   # ssn-tresca-dual: hertz's K is singular, refused at init
+    wait_for(lambda t: "positive definite (a body held only by contact); use ssn-tresca" in status_block(),
+             "the refusal in the status line, wrapped at whole words")
+    check(all(k in keybar() for k in ("m method", "f friction", "n scene", "v view", "e export", "p png")),
+          f"the key bar stays and lists m f n v e p: {keybar()!r}")
+    keys("r", "s", "p")
+    wait_for(lambda t: "rendered to" in t or "rendering not available" in t, "'p' after the refusal")
+    after = screen()
+    check(steps(after) == steps(before) and steps(before), f"iterations and kkt unchanged: {steps(before)} / {steps(after)}")
+    check(strip_line(after) == strip_line(before), f"the strip unchanged: {strip_line(before)} / {strip_line(after)}")
+    png = re.search(r"-it(\d+)\.png", after)
+    check(png is None or int(png.group(1)) == max(i for i, _ in steps(before)),
+          f"'p' renders the converged iterate: {png and png.group(0)}")
+    laws = []
+    for _ in range(4):
+        keys("f")
+        settled("'f'")
+        h = header()
+        laws.append(h[1] if h else None)
+        keys("r")
+        wait_for(lambda t: "converged" in status() and header() is not None, f"a run under {laws[-1]} to converge")
+    check(laws == ["tresca", "coulomb", "none", "tresca"], f"'f' x4 visits the three laws and comes back: {laws}")
+    keys("q")
+    exited_cleanly("q after the laws")
 
     # ---- hertz on ssn-tresca -----------------------------------------------------
     start(f"{exe} tui hertz --method ssn-tresca")
@@ -239,6 +314,9 @@ try:
     # ---- resize down and back -------------------------------------------------
     tmux("resize-window", "-t", "t", "-x", "40", "-y", "12")
     wait_for(has("terminal too small"), "'terminal too small' at 40x12")
+    tmux("resize-window", "-t", "t", "-x", "30", "-y", "10")
+    wait_for(lambda t: "terminal too small: 30x10," in t and "needs 60x16; q quits" in t,
+             "the whole size message at 30x10")
     tmux("resize-window", "-t", "t", "-x", "80", "-y", "24")
     wait_for(lambda t: f"factorised: {nfact}" in t and "─ runs ─" in t, "the full screen back at 80x24")
     check(pane("#{pane_dead}") == "0", "alive after the resizes")
@@ -270,13 +348,56 @@ try:
     wait_for(has("built in"), "slider at 160x48")
     check("deformed mesh" in screen(), "the mesh view beside the plot on a wide terminal")
     keys("C-c")
-    exited_cleanly("Ctrl-C")
+    exited_cleanly("Ctrl-C", "130")   # as the other subcommands: 128 + SIGINT
 
     # ---- scripted sessions end by themselves ------------------------------------
     start(f"{exe} tui slider --keys rq")
     exited_cleanly("the scripted keys 'rq'")
     start(f"{exe} tui slider --frames 3")
     exited_cleanly("--frames 3")
+
+    # ---- a comma-decimal locale: numbers stay in the C locale -------------------
+    # fr_FR.UTF-8 is built into a private directory (LOCPATH): no root needed;
+    # localedef and the locale sources come with Debian's 'locales'
+    locdir = os.path.join(workdir, "locales")
+    os.makedirs(locdir)
+    lr = subprocess.run(["localedef", "-i", "fr_FR", "-f", "UTF-8", os.path.join(locdir, "fr_FR.UTF-8")],
+                        capture_output=True, text=True, timeout=120)
+    check(os.path.isdir(os.path.join(locdir, "fr_FR.UTF-8")), f"localedef builds fr_FR.UTF-8: {lr.stderr[-300:]}")
+    probe = subprocess.run(["/usr/bin/python3", "-c", "import locale; locale.setlocale(locale.LC_ALL, ''); "
+                            "print(locale.localeconv()['decimal_point'])"], capture_output=True, text=True,
+                           env={**os.environ, "LOCPATH": locdir, "LC_ALL": "fr_FR.UTF-8"})
+    check(probe.stdout.strip() == ",", f"the locale's decimal point is a comma: {probe.stdout!r}")
+    expdir = os.path.join(workdir, "fr")
+    os.makedirs(expdir)
+    start(f"{exe} tui laminae --friction tresca --export-dir {expdir}", lang="fr_FR.UTF-8", extra=f"LOCPATH={locdir}")
+    wait_for(lambda t: "built in" in t, "laminae under fr_FR.UTF-8")
+    keys("r")
+    wait_for(lambda t: "converged" in status(), "the run under fr_FR.UTF-8")
+    keys("e")
+    wait_for(has("runs written to"), "the export under fr_FR.UTF-8")
+    keys("n")   # the next scene file is read under the same locale
+    wait_for(lambda t: "built in" in t and "laminae L" not in t, "the next scene under fr_FR.UTF-8")
+    check("expected a number" not in screen(), "the next scene reads under fr_FR.UTF-8")
+    keys("C-c")
+    exited_cleanly("Ctrl-C under fr_FR.UTF-8", "130")
+    import csv as csvmod
+    base = os.path.join(expdir, "signorini-laminae-L5-runs")
+    try:
+        with open(base + ".json") as f:
+            data = json.load(f)
+        run = data["runs"][-1]
+        check(isinstance(run["coef"], (int, float)) and isinstance(run["steps"][-1]["kkt"], float)
+              and run["steps"][-1]["kkt"] < 1e-10 and "," not in run["params"],
+              f"the JSON parses with numbers: coef {run['coef']!r}, params {run['params']!r}")
+        with open(base + ".csv") as f:
+            rows = list(csvmod.DictReader(f))
+        check(rows and all("," not in v for r in rows for k, v in r.items() if k in ("coef", "kkt", "time_s")),
+              f"the CSV's numbers have '.' decimals: {rows[:1]}")
+        check(float(rows[-1]["kkt"]) == run["steps"][-1]["kkt"] or abs(float(rows[-1]["kkt"]) - run["steps"][-1]["kkt"]) < 1e-20,
+              "CSV and JSON agree")
+    except (OSError, ValueError, KeyError) as e:
+        check(False, f"the export under fr_FR.UTF-8 reads back: {e}")
 
     # ---- no UTF-8 locale: ASCII -------------------------------------------------
     start(f"{exe} tui slider", lang="C")
