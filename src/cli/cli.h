@@ -47,6 +47,9 @@ int cli_fail(const char *cmd, const char *msg);
 int cli_usage(const char *cmd, const char *msg);
 /* The help of a command: usage (its first lines), then each table. */
 void cli_help(const char *usage, const cx_opt *const *tables, FILE *out);
+/* signorini help-man [COMMAND] (hidden): the man page of the program or of
+ * COMMAND in roff, from the --help that run(argc, argv) prints (cli/man.c). */
+int cli_man(int argc, char **argv, int (*run)(int, char **));
 
 
 #endif
