@@ -19,7 +19,7 @@
 enum { MAN_HELP_COL = 23, MAN_MAXKINDS = 32 };
 
 /* The output of run(n, args) on stdout, NUL-terminated (free), or NULL. */
-static char *man_capture(int (*run)(int, char **), int n, char **args)
+char *cli_capture(int (*run)(int, char **), int n, char **args)
 {
     fflush(stdout);
     FILE *t = tmpfile();
@@ -199,7 +199,7 @@ int cli_man(int argc, char **argv, int (*run)(int, char **))
     const char *cmd = argc > 1 ? argv[1] : NULL;
     char prog[] = "signorini", help[] = "--help", paper[] = "paper";
     char *top_args[] = {prog, help, NULL};
-    char *top = man_capture(run, 2, top_args);
+    char *top = cli_capture(run, 2, top_args);
     if (!top)
         return cli_fail("help-man", "cannot capture the help");
     int known = !cmd;
@@ -235,7 +235,7 @@ int cli_man(int argc, char **argv, int (*run)(int, char **))
     char cmdbuf[32];
     snprintf(cmdbuf, sizeof cmdbuf, "%s", cmd);
     char *args[] = {prog, cmdbuf, help, NULL};
-    char *text = man_capture(run, 3, args);
+    char *text = cli_capture(run, 3, args);
     if (!text)
         return cli_fail("help-man", "cannot capture the help");
     man_body(text, 1, out);
@@ -245,7 +245,7 @@ int cli_man(int argc, char **argv, int (*run)(int, char **))
         int np = man_block_words(text, "\npapers:", papers, MAN_MAXKINDS);
         for (int k = 0; k < nk; k++) {
             char *kargs[] = {prog, cmdbuf, kinds[k], help, NULL};
-            char *kt = man_capture(run, 4, kargs);
+            char *kt = cli_capture(run, 4, kargs);
             fputs(".SH \"BENCH ", out);
             man_upper(kinds[k], out);
             fputs("\"\n", out);
@@ -256,7 +256,7 @@ int cli_man(int argc, char **argv, int (*run)(int, char **))
                 continue;
             for (int q = 0; q < np; q++) {
                 char *pargs[] = {prog, cmdbuf, paper, papers[q], help, NULL};
-                char *pt = man_capture(run, 5, pargs);
+                char *pt = cli_capture(run, 5, pargs);
                 fprintf(out, ".SS \"paper %s\"\n", papers[q]);
                 if (pt)
                     man_body(pt, 0, out);

@@ -33,6 +33,10 @@ soname=$(objdump -p "$lib" | awk '/SONAME/ {print $2}')
 [ "$soname" = libsignorini.so.0 ] || fail "soname '$soname', expected libsignorini.so.0"
 [ -f "$p/include/signorini/signorini.h" ] || fail "no include/signorini/signorini.h"
 if find "$p/include" -name '*_impl.h' | grep -q .; then fail "an *_impl.h is installed"; fi
+for f in man/man1/signorini.1 man/man1/signorini-solve.1 bash-completion/completions/signorini \
+         zsh/site-functions/_signorini; do
+    [ -f "$p/share/$f" ] || fail "no share/$f"
+done
 pc=$(find "$p" -name signorini.pc)
 [ -n "$pc" ] || fail "no signorini.pc"
 
@@ -55,6 +59,9 @@ if [ "$render" = 1 ]; then
     cmp -s hertz.png builtin.png || fail "the built-in shaders draw another image"
     mv "$tmp/shaders.away" "$p/share/signorini/shaders"
 fi
+
+# the completion's scene list is the moved prefix's
+"$p/bin/signorini" help-completion scenes | grep -qx hertz || fail "help-completion scenes: no hertz"
 
 # the program alone (no share/ beside it): an error, not an empty list
 mkdir -p "$tmp/lonely/bin"

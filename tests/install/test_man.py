@@ -2,15 +2,20 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """A man page exists for the program and every command, and mentions every
 option of the command's help (bench: of every kind and paper too); groff
-reads each page without a warning."""
+reads each page without a warning; the bash and zsh completions name every
+option too, and bash completes commands, options, scenes and methods."""
 import os
 import re
 import shutil
 import subprocess
 import sys
 
-exe, mandir = sys.argv[1], sys.argv[2]
-commands = sys.argv[3:]
+exe, mandir, bashfile, zshfile = sys.argv[1:5]
+commands = sys.argv[5:]
+with open(bashfile, encoding="utf-8") as f:
+    bash = f.read()
+with open(zshfile, encoding="utf-8") as f:
+    zsh = f.read()
 failed = []
 
 
@@ -68,9 +73,35 @@ for c in commands:
             count += 1
             if "\\-\\-" + o.replace("-", "\\-") not in text:
                 failed.append(f"signorini-{c}.1: no --{o} (of '{' '.join(args)} --help')")
+            ctx = " ".join(args)
+            bctx = re.search(r"^    '" + re.escape(ctx) + r"'\)\n        opts='([^']*)'", bash, re.M)
+            if not bctx or "--" + o not in bctx.group(1).split():
+                failed.append(f"bash completion: no --{o} in '{ctx}'")
+            zctx = re.search(r"^  '" + re.escape(ctx) + r"'\)\n    _arguments -s \\\n((?:      .*\n)+)", zsh, re.M)
+            if not zctx or f"'--{o}[" not in zctx.group(1):
+                failed.append(f"zsh completion: no --{o} in '{ctx}'")
     if count == 0:
         failed.append(f"signorini-{c}.1: no options found in its helps")
     print(f"signorini-{c}.1: {count} options of {len(helps)} helps")
+
+# bash: what a user gets for a few partial command lines
+script = f""". '{bashfile}'
+t() {{ COMP_WORDS=("$@"); COMP_CWORD=$(($# - 1)); COMPREPLY=(); _signorini; echo "${{COMPREPLY[*]}}"; }}
+t '{exe}' so
+t '{exe}' solve he
+t '{exe}' solve hertz --max
+t '{exe}' solve hertz --method ssn-tresca-g
+t '{exe}' bench st
+t '{exe}' render hertz --view c
+"""
+want = ["solve", "hertz", "--max-iter", "ssn-tresca-glob", "stress", "contact"]
+got = subprocess.run(["bash", "-c", script], capture_output=True, text=True).stdout.splitlines()
+if got != want:
+    failed.append(f"bash completion: got {got}, expected {want}")
+if shutil.which("zsh"):
+    r = subprocess.run(["zsh", "-n", zshfile], capture_output=True, text=True)
+    if r.returncode:
+        failed.append(f"zsh -n: {r.stderr.strip()}")
 
 for f in failed:
     print("FAIL", f)
