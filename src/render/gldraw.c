@@ -26,7 +26,7 @@ static int gl_read_shader(const char *name, char **src, cx_diag *d)
     int ndirs = cx_data_dirs("shaders", "SIGNORINI_SHADERS", dirs);
     for (int i = 0; i < ndirs; i++) {
         char path[CX_DATA_PATHLEN + 64];
-        snprintf(path, sizeof path, "%s/%s", dirs[i], name);
+        snprintf(path, sizeof path, "%.*s/%s", CX_DATA_PATHLEN - 1, dirs[i], name);
         FILE *f = fopen(path, "rb");
         if (!f)
             continue;
