@@ -2,7 +2,7 @@
 /* The GL pass: shaders read from shaders/ at run time, one vertex buffer
  * per array (one draw call each, whatever the number of bodies), the
  * scalar mapped through a colormap texture, 4x MSAA through a multisample
- * FBO resolved by a blit (research/toolchain.md §3c). */
+ * FBO resolved by a blit (doc/toolchain.md §3c). */
 #define GL_GLEXT_PROTOTYPES 1
 #include "render/render_impl.h"
 #include "render/glctx.h"

@@ -7,7 +7,7 @@
  * only by the contact makes the first Newton step from zero singular, so
  * 2D, where the scenes are such bodies, is not offered). The problem is reduced to the contact dofs
  * with the session's Schur complement (A = S, b = f condensed; one sparse
- * Cholesky with the contact dofs ordered last, DESIGN.md §5) and rotated into
+ * Cholesky with the contact dofs ordered last, doc/design.md §5) and rotated into
  * each point's frame (tangential, normal), so that the generalized equation
  * (7) 0 in A u - b + (lT, lN) with lT in s d|u_T|, lN in N_{R+}-complement
  * splits into per-point convex parts. One step is:
