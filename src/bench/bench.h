@@ -203,7 +203,8 @@ void bench_meta_machine(bench_table *t);
 
 void bench_table_print(const bench_table *t, FILE *out);
 /* Write the CSV ("# key: value" lines, then the header row and the rows)
- * or the JSON object {"meta": {...}, "rows": [{...}]} to path through a
+ * or the JSON object {"meta": {...}, "rows": [{...}]} (typed: numbers and
+ * booleans where the text is one, bench_table.c) to path through a
  * temporary file and a rename; path "-" is stdout. */
 int bench_table_write_csv(const bench_table *t, const char *path, cx_diag *d);
 int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d);
