@@ -6,11 +6,15 @@
 # tree), a program alone says it found no scenes, SIGNORINI_DATA points it
 # at data, a removed shaders/ falls back to the compiled-in shaders, and
 # examples/client.c builds against the installed signorini.pc and solves.
-# usage: test_install.sh BUILDDIR SOURCEDIR HAVE_RENDER CC...
+# usage: test_install.sh BUILDDIR SOURCEDIR HAVE_RENDER SANITIZE CC...
+# (SANITIZE: meson's b_sanitize, e.g. "address,undefined" or "none": a
+# client of an instrumented library is built with the same flags)
 set -eu
-build=$1 src=$2 render=$3
-shift 3
+build=$1 src=$2 render=$3 sanitize=$4
+shift 4
 cc=${*:-cc}
+san=
+[ "$sanitize" = none ] || san="-fsanitize=$sanitize"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 unset SIGNORINI_DATA SIGNORINI_SCENES SIGNORINI_SHADERS
@@ -77,7 +81,7 @@ SIGNORINI_SCENES=$p/share/signorini/scenes "$tmp/lonely/bin/signorini" solve her
 export PKG_CONFIG_PATH="$(dirname "$pc")"
 libdir=$(pkg-config --variable=libdir signorini)
 # shellcheck disable=SC2046
-$cc -std=c11 -Wall -Wextra -Werror -o client "$src/examples/client.c" \
+$cc -std=c11 -Wall -Wextra -Werror $san -o client "$src/examples/client.c" \
     $(pkg-config --cflags --libs signorini) -Wl,-rpath,"$libdir" || fail "examples/client.c does not build"
 ./client hertz ssn-tresca >client.txt || { cat client.txt >&2; fail "client failed"; }
 cat client.txt
