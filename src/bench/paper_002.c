@@ -21,7 +21,7 @@
 static const int p2_hertz_levels[5] = {20, 40, 80, 160, 192};
 static const int p2_ball_levels[5] = {4, 6, 10, 17, 20};
 
-/* The paper's figures (seed_benchmarks.md §3.4). */
+/* The paper's figures (doc/papers.md §3.4). */
 static const char *const p2_hertz_sizes[5] = {"442/35", "1692/69", "6619/137", "26181/271", "37473/329"};
 static const char *const p2_ball_sizes[5] = {"198/45", "739/122", "2357/260", "10761/769", "17887/1042"};
 static const int p2_t1_ubr[5] = {47, 40, 46, 45, 47}, p2_t1_ssn[5] = {7, 8, 9, 10, 10};

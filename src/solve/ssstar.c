@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssstar — the semismooth* Newton method of Gfrerer and Outrata for Tresca
- * friction, paper 001 §2–§4 (reconstruction: seed_benchmarks.md §1.3–1.5).
+ * friction, paper 001 §2–§4 (reconstruction: doc/papers.md §1.3–1.5).
  *
  * Solves Tresca friction and frictionless contact (slip bound 0) in 3D, one
  * body on a rigid obstacle (the code is written for 2D too, but a body held
@@ -307,7 +307,7 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
     return CX_OK;
 }
 
-/* The approximation step (001 §4, seed_benchmarks §1.3) from (xi, lam):
+/* The approximation step (001 §4, doc/papers.md §1.3) from (xi, lam):
  * uh, lh and y*^ (ys, ysl). r = A xi - b on entry. */
 static void ssstar_approximate(ssstar_state *st)
 {
