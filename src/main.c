@@ -75,6 +75,10 @@ int main(int argc, char **argv)
         return bench_main(argc - 1, argv + 1);
     if (strcmp(cmd, "version") == 0)
         return main_version(argc - 1, argv + 1);
+    if (strcmp(cmd, "help-man") == 0)   /* hidden: the man pages, made at build time */
+        return cli_man(argc - 1, argv + 1, main);
+    if (strcmp(cmd, "help-completion") == 0)   /* hidden: shell completions, made at build time */
+        return cli_completion(argc - 1, argv + 1, main);
     if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "-V") == 0)
         return main_version(1, argv + 1);
     char safe[256];

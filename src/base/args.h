@@ -19,7 +19,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-/* The process exit statuses (DESIGN.md §6). */
+/* The process exit statuses (doc/design.md §6). */
 enum {
     CX_EXIT_OK = 0,             /* success (converged) */
     CX_EXIT_ERROR = 1,          /* an error of the run: one line on stderr */

@@ -45,7 +45,7 @@ void bench_friction(const bench_problem_spec *spec, cx_friction_state *fr);
  * (*s NULL on failure). */
 int bench_session(const bench_problem_spec *spec, cx_session **s, double *t_assemble, cx_diag *d);
 
-/* ---- the reference solution (DESIGN.md §3) -------------------------- */
+/* ---- the reference solution (doc/design.md §3) -------------------------- */
 
 typedef struct bench_ref {
     int n, m, nt;
@@ -145,7 +145,7 @@ void bench_run_paired(const bench_problem_spec *spec, const cx_method *m, const 
                       const cx_options *opt, const bench_ref *ref, int repeat, bench_result *res,
                       bench_paired *out);
 
-/* The baseline of p (DESIGN.md §5: analyse + factorise + solve K): the
+/* The baseline of p (doc/design.md §5: analyse + factorise + solve K): the
  * median of n timings (n clipped to [1, BENCH_MAX_REPEAT]). */
 int bench_baseline(const cx_problem *p, int n, double *seconds, cx_diag *d);
 
@@ -203,7 +203,8 @@ void bench_meta_machine(bench_table *t);
 
 void bench_table_print(const bench_table *t, FILE *out);
 /* Write the CSV ("# key: value" lines, then the header row and the rows)
- * or the JSON object {"meta": {...}, "rows": [{...}]} to path through a
+ * or the JSON object {"meta": {...}, "rows": [{...}]} (typed: numbers and
+ * booleans where the text is one, bench_table.c) to path through a
  * temporary file and a rename; path "-" is stdout. */
 int bench_table_write_csv(const bench_table *t, const char *path, cx_diag *d);
 int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d);

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The reference solution of DESIGN.md §3: computed once per scene, level,
+/* The reference solution of doc/design.md §3: computed once per scene, level,
  * friction law and value (and stress variant) by the most robust method to
  * kkt < 1e-12, stored on disk under a hash of the parsed scene and those
  * values (bench_ref_key), and read back by the next benchmark run.

@@ -8,6 +8,7 @@
 #include "out/out.h"
 #include "cx_config.h"
 
+#include <ctype.h>
 #include <dlfcn.h>
 #include <math.h>
 #include <stdarg.h>
@@ -204,6 +205,66 @@ int bench_table_write_csv(const bench_table *t, const char *path, cx_diag *d)
     return cx_outfile_close(&f, 1, d);
 }
 
+/* JSON is typed where the table's text is prose (doc/design.md §6): a
+ * text that is a whole number ("0.0001") is a number; a column whose every
+ * text is yes, no or n/a is boolean (n/a: null, the run did not happen);
+ * a header value "0.00309 s (...)" is the number of seconds under its key
+ * and the sentence under "KEY text". Ids that look like numbers but start
+ * with 0 ("000") stay text, as do the CSV and the table. */
+static int json_number(const char *s, double *x)
+{
+    char *end;
+    if (!s[0] || isspace((unsigned char)s[0]) || (s[0] == '0' && isdigit((unsigned char)s[1])) ||
+        !strpbrk(s, "0123456789"))
+        return 0;
+    *x = strtod(s, &end);
+    return end != s && *end == '\0' && isfinite(*x);
+}
+
+static int json_yesno(const char *s)
+{
+    return strcmp(s, "yes") == 0 ? 1 : strcmp(s, "no") == 0 ? 0 : strcmp(s, "n/a") == 0 ? -1 : -2;
+}
+
+static int json_bool_column(const bench_table *t, int c)
+{
+    int any = 0;
+    for (int r = 0; r < t->nrows; r++) {
+        const bench_cell *cell = t->cells + (size_t)r * t->ncols + c;
+        if (cell->kind == 0)
+            continue;
+        if (cell->kind != 3 || json_yesno(cell->s) == -2)
+            return 0;
+        any |= json_yesno(cell->s) >= 0;
+    }
+    return any;
+}
+
+static void json_meta(cx_json *j, const char *key, const char *v)
+{
+    double x;
+    char *end;
+    if (json_number(v, &x)) {
+        cx_json_num(j, key, x);
+        return;
+    }
+    if (json_yesno(v) >= 0) {
+        cx_json_bool(j, key, json_yesno(v));
+        return;
+    }
+    /* "NUMBER s" or "NUMBER s (...)": seconds */
+    x = strtod(v, &end);
+    if (end != v && isdigit((unsigned char)v[0]) && isfinite(x) && strncmp(end, " s", 2) == 0 &&
+        (end[2] == '\0' || end[2] == ' ')) {
+        char tkey[200];
+        cx_json_num(j, key, x);
+        snprintf(tkey, sizeof tkey, "%s text", key);
+        cx_json_str(j, tkey, v);
+        return;
+    }
+    cx_json_str(j, key, v);
+}
+
 int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d)
 {
     cx_outfile f;
@@ -213,17 +274,27 @@ int bench_table_write_json(const bench_table *t, const char *path, cx_diag *d)
     cx_json_object(&j, NULL);
     cx_json_object(&j, "meta");
     for (int k = 0; k < t->nmeta; k++)
-        cx_json_str(&j, t->meta[k][0], t->meta[k][1]);
+        json_meta(&j, t->meta[k][0], t->meta[k][1]);
     cx_json_end_object(&j);
+    int boolean[BENCH_MAX_COLS];
+    for (int c = 0; c < t->ncols; c++)
+        boolean[c] = json_bool_column(t, c);
     cx_json_array(&j, "rows");
     for (int r = 0; r < t->nrows; r++) {
         cx_json_object(&j, NULL);
         for (int c = 0; c < t->ncols; c++) {
             const bench_cell *cell = t->cells + (size_t)r * t->ncols + c;
+            double x;
             if (cell->kind == 1)
                 cx_json_num(&j, t->cols[c], cell->v);
             else if (cell->kind == 2)
                 cx_json_int(&j, t->cols[c], (long)cell->v);
+            else if (cell->kind == 3 && boolean[c] && json_yesno(cell->s) >= 0)
+                cx_json_bool(&j, t->cols[c], json_yesno(cell->s));
+            else if (cell->kind == 3 && boolean[c])
+                cx_json_null(&j, t->cols[c]);
+            else if (cell->kind == 3 && json_number(cell->s, &x))
+                cx_json_num(&j, t->cols[c], x);
             else if (cell->kind == 3)
                 cx_json_str(&j, t->cols[c], cell->s);
             else

@@ -5,7 +5,7 @@
  * analysis + factorisation + solve of K, median of --repeat runs).
  * Per level: assembly (scene build: mesh, K, loads, contact rows), the
  * reduction to the contact face both ways (the factor's trailing block,
- * DESIGN.md §5, and one solve per contact dof as the paper), the ssstar
+ * doc/design.md §5, and one solve per contact dof as the paper), the ssstar
  * solve from zero to its own stopping rule (Newton steps = the paper's
  * iterations), one post-processing expansion, the process's peak memory. */
 #include "bench/bench.h"

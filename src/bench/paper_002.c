@@ -21,7 +21,7 @@
 static const int p2_hertz_levels[5] = {20, 40, 80, 160, 192};
 static const int p2_ball_levels[5] = {4, 6, 10, 17, 20};
 
-/* The paper's figures (seed_benchmarks.md §3.4). */
+/* The paper's figures (doc/papers.md §3.4). */
 static const char *const p2_hertz_sizes[5] = {"442/35", "1692/69", "6619/137", "26181/271", "37473/329"};
 /* Table 3 prints the same mesh's Gc as 273 (Table 1: 271): each as printed */
 static const char *const p2_hertz_sizes_t3[5] = {"442/35", "1692/69", "6619/137", "26181/273", "37473/329"};

@@ -50,6 +50,15 @@ int cli_fail(const char *cmd, const char *msg);
 int cli_usage(const char *cmd, const char *msg);
 /* The help of a command: usage (its first lines), then each table. */
 void cli_help(const char *usage, const cx_opt *const *tables, FILE *out);
+/* signorini help-man [COMMAND] (hidden): the man page of the program or of
+ * COMMAND in roff, from the --help that run(argc, argv) prints (cli/man.c). */
+int cli_man(int argc, char **argv, int (*run)(int, char **));
+/* What run(n, args) prints on stdout, NUL-terminated (free), or NULL. */
+char *cli_capture(int (*run)(int, char **), int n, char **args);
+/* signorini help-completion bash|zsh|scenes (hidden): the shell completion
+ * scripts from the commands' --help, and the scene ids they ask for at
+ * completion time (cli/complete.c). */
+int cli_completion(int argc, char **argv, int (*run)(int, char **));
 
 
 #endif

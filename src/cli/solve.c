@@ -82,6 +82,7 @@ static const char *solve_num(char *buf, size_t len, const char *fmt, double v)
 typedef struct {
     int quiet;
     FILE *out;
+    cx_history *history;   /* --json: every iterate, for its "history" */
 } solve_watch;
 
 static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it)
@@ -89,6 +90,8 @@ static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it
     (void)s;
     const solve_watch *w = ctx;
     char kkt[32], own[32];
+    if (w->history && cx_history_add(w->history, it))
+        return 1;   /* out of memory: stop; the run reads as stopped by the observer */
     if (!w->quiet)
         fprintf(w->out, "%6d  %10s  %10s  %7d %6d %6d %7d  %9.4f\n", it->iter,
                 solve_num(kkt, sizeof kkt, "%.3e", it->kkt), solve_num(own, sizeof own, "%.3e", it->own),
@@ -254,6 +257,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         }
     }
 
+    cx_history history = {0};
     cx_session *s = NULL;
     if (cx_session_create(&s, &p, &d)) {
         cx_problem_destroy(&p);
@@ -280,7 +284,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         fprintf(summary, "  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
         fflush(summary);   /* the run may be long: show where it is */
     }
-    solve_watch w = {a.json || a.quiet, summary};
+    solve_watch w = {a.json || a.quiet, summary, a.json ? &history : NULL};
     int solved = cx_solver_solve(s, solve_print_step, &w, &d);
     solve_running = NULL;
     if (solved) {
@@ -304,7 +308,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     res->run.time.baseline = t_base;
     res->run.method_auto = is_auto;
     if (a.json)
-        cx_result_write_json(res, stdout);
+        cx_result_write_json_history(res, &history, stdout);
     else
         solve_write_text(res, summary);
     const cx_schur *S = a.baseline && !a.json ? cx_session_schur_built(s) : NULL;
@@ -323,6 +327,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         code = cli_fail(cmd, d.msg);
     cx_result_destroy(&res);
 done:
+    cx_history_clear(&history);
     cx_session_destroy(&s);
     /* a summary or JSON lost on a full disk is an error, not a result */
     if (code != CX_EXIT_ERROR && cx_outfile_close_stdout(&d))

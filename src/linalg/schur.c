@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Static condensation of a symmetric matrix onto a subset c of its dofs
- * from one sparse Cholesky factorisation (DESIGN.md §5). With the c dofs
+ * from one sparse Cholesky factorisation (doc/design.md §5). With the c dofs
  * ordered last, the factor of M = A + D splits as
  *     P M P' = [L11 0; L21 L22] [L11 0; L21 L22]'
  * and L22 L22' = A_cc + D - A_ci A_ii^-1 A_ic = S + D. D = diag(A_cc) on

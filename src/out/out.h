@@ -23,9 +23,31 @@
  * CX_ENOMEM, CX_ENUMERIC (stresses), each with "PATH: reason". */
 int cx_vtu_write(cx_result *r, const char *path, int ascii, cx_diag *d);
 
-/* The JSON object of 'signorini solve --json' (DESIGN.md §6) for r.
- * CX_EIO if a write to out failed. */
+/* The JSON object of 'signorini solve --json' (doc/design.md, "Output")
+ * for r. CX_EIO if a write to out failed. */
 int cx_result_write_json(const cx_result *r, FILE *out);
+
+/* The iterations of a run as the observer saw them (the "history" array of
+ * 'solve --json'): kkt error, the method's own criterion, the contact
+ * counts, inner iterations, the work counters and the time so far. */
+typedef struct cx_history_row {
+    int iter;
+    double kkt, own;             /* own: NaN if the method has none */
+    int ncontact, nstick, nslip, nchanged;
+    long inner;
+    long factorizations, solves, matvecs;
+    double time;                 /* seconds of the run so far */
+} cx_history_row;
+typedef struct cx_history {
+    cx_history_row *rows;
+    int n, cap;
+} cx_history;
+/* Append the iterate it (CX_ENOMEM); cx_history_clear frees the rows. A
+ * zeroed cx_history is empty. */
+int cx_history_add(cx_history *h, const cx_iterate *it);
+void cx_history_clear(cx_history *h);
+/* cx_result_write_json with the history (h may be NULL: none). */
+int cx_result_write_json_history(const cx_result *r, const cx_history *h, FILE *out);
 
 /* The JSON of 'signorini list --json': the scenes ids[nids] (each opened
  * for its details; one that cannot be read gets "error") and every

@@ -1,11 +1,82 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The JSON object of 'signorini solve --json' (DESIGN.md §6). */
+/* The JSON object of 'signorini solve --json' (doc/design.md, "Output"),
+ * with the run's per-iteration history when the program kept one. */
 #include "out/out.h"
 #include "cx_config.h"
 
 #include <math.h>
 
+int cx_history_add(cx_history *h, const cx_iterate *it)
+{
+    if (h->n == h->cap) {
+        int ncap = h->cap ? 2 * h->cap : 64;
+        void *grown = cx_realloc(h->rows, (size_t)ncap * sizeof *h->rows);
+        if (!grown)
+            return CX_ENOMEM;
+        h->rows = grown;
+        h->cap = ncap;
+    }
+    cx_history_row *row = &h->rows[h->n++];
+    row->iter = it->iter;
+    row->kkt = it->kkt;
+    row->own = it->own;
+    row->ncontact = it->ncontact + it->nstick + it->nslip;
+    row->nstick = it->nstick;
+    row->nslip = it->nslip;
+    row->nchanged = it->nchanged;
+    row->inner = it->inner;
+    row->factorizations = it->counters.factorizations;
+    row->solves = it->counters.solves;
+    row->matvecs = it->counters.matvecs;
+    row->time = it->time;
+    return CX_OK;
+}
+
+void cx_history_clear(cx_history *h)
+{
+    cx_free(h->rows);
+    h->rows = NULL;
+    h->n = h->cap = 0;
+}
+
+/* A number, or null when it is not finite (JSON has no NaN or Inf). */
+static void rj_num(cx_json *j, const char *key, double v)
+{
+    if (isfinite(v))
+        cx_json_num(j, key, v);
+    else
+        cx_json_null(j, key);
+}
+
+static void rj_history(cx_json *j, const cx_history *h)
+{
+    cx_json_array(j, "history");
+    for (int k = 0; k < h->n; k++) {
+        const cx_history_row *row = &h->rows[k];
+        cx_json_object(j, NULL);
+        cx_json_int(j, "iter", row->iter);
+        rj_num(j, "kkt", row->kkt);
+        rj_num(j, "own", row->own);
+        cx_json_int(j, "contact", row->ncontact);
+        cx_json_int(j, "stick", row->nstick);
+        cx_json_int(j, "slip", row->nslip);
+        cx_json_int(j, "changed", row->nchanged);
+        cx_json_int(j, "inner", row->inner);
+        cx_json_int(j, "factorizations", row->factorizations);
+        cx_json_int(j, "solves", row->solves);
+        cx_json_int(j, "matvecs", row->matvecs);
+        cx_json_num(j, "time", row->time);
+        cx_json_end_object(j);
+    }
+    cx_json_end_array(j);
+}
+
 int cx_result_write_json(const cx_result *r, FILE *out)
+{
+    return cx_result_write_json_history(r, NULL, out);
+}
+
+int cx_result_write_json_history(const cx_result *r, const cx_history *h, FILE *out)
 {
     const cx_run_record *run = &r->run;
     cx_json j;
@@ -90,6 +161,8 @@ int cx_result_write_json(const cx_result *r, FILE *out)
         cx_json_num(&j, "hertz", run->hertz_halfwidth);
         cx_json_end_object(&j);
     }
+    if (h)
+        rj_history(&j, h);
     cx_json_str(&j, "version", CX_VERSION);
     cx_json_end_object(&j);
     return ferror(out) ? CX_EIO : CX_OK;

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The OSMesa context (research/toolchain.md §3c, §5): link OSMesa only,
+/* The OSMesa context (doc/toolchain.md §3c, §5): link OSMesa only,
  * request the depth buffer, rows are bottom-up. */
 #define GL_GLEXT_PROTOTYPES 1
 #include "render/glctx.h"

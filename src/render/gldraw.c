@@ -2,7 +2,7 @@
 /* The GL pass: shaders read from shaders/ at run time, one vertex buffer
  * per array (one draw call each, whatever the number of bodies), the
  * scalar mapped through a colormap texture, 4x MSAA through a multisample
- * FBO resolved by a blit (research/toolchain.md §3c). */
+ * FBO resolved by a blit (doc/toolchain.md §3c). */
 #define GL_GLEXT_PROTOTYPES 1
 #include "render/render_impl.h"
 #include "render/glctx.h"
@@ -13,18 +13,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cx_config.h"
+#include "base/data.h"
+#include "shaders_builtin.h"
 
-/* Read shaders/NAME from $SIGNORINI_SHADERS, the source tree, then the
- * install directory. *src is cx_malloc'ed. */
+/* Read shaders/NAME from the data directories (base/data.h:
+ * $SIGNORINI_SHADERS, $SIGNORINI_DATA/shaders, the source tree for the build
+ * tree's code, share/signorini/shaders beside the installed library), then
+ * the copy compiled into the library. *src is cx_malloc'ed. */
 static int gl_read_shader(const char *name, char **src, cx_diag *d)
 {
-    const char *dirs[3] = {getenv("SIGNORINI_SHADERS"), CX_SHADER_DIR_BUILD, CX_SHADER_DIR_INSTALL};
-    for (int i = 0; i < 3; i++) {
-        if (!dirs[i] || !dirs[i][0])
-            continue;
-        char path[1024];
-        snprintf(path, sizeof path, "%s/%s", dirs[i], name);
+    char dirs[CX_DATA_MAXDIRS][CX_DATA_PATHLEN];
+    int ndirs = cx_data_dirs("shaders", "SIGNORINI_SHADERS", dirs);
+    for (int i = 0; i < ndirs; i++) {
+        char path[CX_DATA_PATHLEN + 64];
+        snprintf(path, sizeof path, "%.*s/%s", CX_DATA_PATHLEN - 1, dirs[i], name);
         FILE *f = fopen(path, "rb");
         if (!f)
             continue;
@@ -42,8 +44,18 @@ static int gl_read_shader(const char *name, char **src, cx_diag *d)
         *src = s;
         return CX_OK;
     }
-    return cx_diag_set(d, CX_EEXTERNAL, "shader '%s' not found in $SIGNORINI_SHADERS, %s or %s",
-                       name, CX_SHADER_DIR_BUILD, CX_SHADER_DIR_INSTALL);
+    for (int i = 0; gl_builtin_shaders[i].name; i++) {
+        if (strcmp(gl_builtin_shaders[i].name, name) != 0)
+            continue;
+        size_t n = strlen(gl_builtin_shaders[i].src);
+        char *s = cx_malloc(n + 1);
+        if (!s)
+            return cx_diag_set(d, CX_ENOMEM, "out of memory reading shader '%s'", name);
+        memcpy(s, gl_builtin_shaders[i].src, n + 1);
+        *src = s;
+        return CX_OK;
+    }
+    return cx_diag_set(d, CX_EEXTERNAL, "shader '%s' not found (nor compiled in)", name);
 }
 
 static int gl_compile(GLenum kind, const char *name, GLuint *out, cx_diag *d)

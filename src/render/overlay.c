@@ -286,7 +286,7 @@ static int ov_visible(const cx_render_scene *sc, int i)
 }
 
 /* The slip direction of point i on the image (unit, pixels), that of lT
- * (DESIGN.md §2: T u = c lT; the friction force on the body is -T' lT). */
+ * (doc/design.md §2: T u = c lT; the friction force on the body is -T' lT). */
 static int ov_slip_dir(const cx_render_scene *sc, int i, double u[2])
 {
     const cx_contact_set *cs = &sc->r->contact;

@@ -54,7 +54,7 @@ static int pngfile_encode(pngfile_job *job)
     }
     png_init_io(png, job->fp);
     /* Rendered images are smooth: SUB/UP filters at level 6 are a good
-     * size/speed balance (research/toolchain.md §4). */
+     * size/speed balance (doc/toolchain.md §4). */
     png_set_compression_level(png, 6);
     png_set_filter(png, 0, PNG_FILTER_SUB | PNG_FILTER_UP);
     png_set_IHDR(png, info, (png_uint_32)job->w, (png_uint_32)job->h, 8, PNG_COLOR_TYPE_RGB,

@@ -14,10 +14,11 @@
  *
  * The OpenGL context (OSMesa, render/glctx.c) is created inside
  * cx_render_png() and destroyed before it returns; nothing is created when
- * only plots are written. Shaders are read at run time from
- * $SIGNORINI_SHADERS, then the source tree's shaders/, then the installed
- * share/signorini/shaders. The same result rendered twice gives the same
- * bytes. */
+ * only plots are written. Shaders are read at run time from the data
+ * directories of base/data.h ($SIGNORINI_SHADERS, $SIGNORINI_DATA, the
+ * source tree for the build tree, share/signorini beside the installed
+ * library), else from the copies compiled in. The same result rendered
+ * twice gives the same bytes. */
 #ifndef CX_RENDER_H
 #define CX_RENDER_H
 

@@ -183,7 +183,7 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
         st = build_overflow(s, s->line_contact, d, "section [contact]: the gaps or normals");
         goto fail;
     }
-    /* contact points are the points with a free dof (DESIGN.md §2: Dirichlet
+    /* contact points are the points with a free dof (doc/design.md §2: Dirichlet
      * dofs are eliminated; a clamped point's row would be empty) */
     if ((st = cx_contact_drop_clamped(&cs, &map)))
         goto fail;

@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* Scene ids and paths. The scene directories are searched in order:
- * $SIGNORINI_SCENES (one directory, or several separated by ':'), the
- * source tree's scenes/ (CX_SCENE_DIR_BUILD) and the installed
- * share/signorini/scenes (CX_SCENE_DIR_INSTALL); the first NAME.ini found
+/* Scene ids and paths. The scene directories are those of
+ * cx_data_dirs("scenes", "SIGNORINI_SCENES") (base/data.h: the override,
+ * $SIGNORINI_DATA, then the source tree for the build tree's code or
+ * share/signorini beside the installed library); the first NAME.ini found
  * wins. Missing directories are skipped. */
 #include "scene/scene.h"
 
-#include "cx_config.h"
+#include "base/data.h"
 
 #include <ctype.h>
 #include <dirent.h>
@@ -16,26 +16,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define FIND_MAXDIRS 16
-#define FIND_PATHLEN 1024
+#define FIND_MAXDIRS CX_DATA_MAXDIRS
+#define FIND_PATHLEN CX_DATA_PATHLEN
 
 static int find_dirs(char dirs[FIND_MAXDIRS][FIND_PATHLEN])
 {
-    int n = 0;
-    const char *env = getenv("SIGNORINI_SCENES");
-    while (env && *env && n < FIND_MAXDIRS - 2) {
-        size_t len = strcspn(env, ":");
-        if (len > 0 && len < FIND_PATHLEN) {
-            memcpy(dirs[n], env, len);
-            dirs[n++][len] = '\0';
-        }
-        env += len;
-        if (*env == ':')
-            env++;
-    }
-    snprintf(dirs[n++], FIND_PATHLEN, "%s", CX_SCENE_DIR_BUILD);
-    snprintf(dirs[n++], FIND_PATHLEN, "%s", CX_SCENE_DIR_INSTALL);
-    return n;
+    return cx_data_dirs("scenes", "SIGNORINI_SCENES", dirs);
 }
 
 /* A scene id: lower-case letters, digits, '_' and '-', as [scene] id. */
@@ -131,6 +117,12 @@ int cx_scene_list(char (**ids)[CX_SCENE_NAMELEN], int *count, cx_diag *d)
             list[n++][len - 4] = '\0';
         }
         closedir(dir);
+    }
+    if (n == 0) {
+        /* an empty list would look like a successful run with no scenes */
+        char where[512];
+        cx_data_describe("scenes", "SIGNORINI_SCENES", where, sizeof where);
+        return cx_diag_set(d, CX_EIO, "no scenes found in %s (set SIGNORINI_DATA or SIGNORINI_SCENES)", where);
     }
     if (n > 1)
         qsort(list, (size_t)n, sizeof *list, find_cmp);

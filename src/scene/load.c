@@ -983,7 +983,7 @@ int cx_scene_parse(cx_scene *s, const char *path, const char *text, size_t len, 
     L.text = text;
     L.len = len;
 
-    /* Debian's inih: its compile-time options are globals (toolchain.md, 8),
+    /* Debian's inih: its compile-time options are globals (doc/toolchain.md §5.8),
      * so two scenes loaded on two threads take turns */
     static pthread_mutex_t ini_lock = PTHREAD_MUTEX_INITIALIZER;
     pthread_mutex_lock(&ini_lock);

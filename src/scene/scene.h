@@ -4,9 +4,11 @@
  * of the section's keys; errors are one line "file:line: key 'E': expected a
  * positive number" (CX_EINVAL). Unknown sections and keys are errors.
  *
- * Scene ids are file names without ".ini" found in the scene directories:
- * $SIGNORINI_SCENES (one directory, or several separated by ':'), then the
- * source tree's scenes/, then the installed share/signorini/scenes. */
+ * Scene ids are file names without ".ini" found in the scene directories
+ * of base/data.h: $SIGNORINI_SCENES (one directory, or several separated by
+ * ':'), $SIGNORINI_DATA/scenes, then the source tree's scenes/ for the
+ * build tree's code or share/signorini/scenes beside the installed library
+ * or program. No scene anywhere is an error of cx_scene_list. */
 #ifndef CX_SCENE_H
 #define CX_SCENE_H
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The floor every contact solve is measured against (DESIGN.md §5): one
+/* The floor every contact solve is measured against (doc/design.md §5): one
  * analysis, factorisation and solve of K with CHOLMOD's default ordering.
  * Springs diag(K) on the contact dofs make K definite when only the contact
  * holds the body (as on 'hertz'); they change values, not the cost. */

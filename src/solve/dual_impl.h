@@ -54,7 +54,7 @@ void cx_dual_project(int nd, const double *lo, const double *hi, double *x);
 /* q(lambda) = 1/2 l'(g - b) with g = A l - b. */
 double cx_dual_objective(int nd, const double *lambda, const double *g, const double *b);
 
-/* MPRGP's gradients at x in the box (Dostál; research/seed_benchmarks.md
+/* MPRGP's gradients at x in the box (Dostál; doc/papers.md
  * §2.3): the free gradient phi (nd), the chopped gradient beta (nd, may be
  * NULL), and *gp2 = ||g^P||^2, *b2 = ||beta||^2, *rp = phi~'phi with phi~
  * the free gradient reduced for the steplength abar. */

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The one error measure of DESIGN.md §3: dimensionless, solver-independent,
+/* The one error measure of doc/design.md §3: dimensionless, solver-independent,
  * zero exactly at a solution, and unchanged when the scene's units change
  * (every term is a ratio of like quantities; rho = mult / disp). */
 #include "solve/problem.h"

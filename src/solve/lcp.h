@@ -4,7 +4,7 @@
  *     A v + Sigma = b,  v_S >= 0,  Sigma_S <= 0,  Sigma_S' v_S = 0,  Sigma_E = 0,
  * where the constrained unknowns S are the slacks of the contact rows.
  *
- * From the problem of DESIGN.md §2 (frictionless): each contact row r gets
+ * From the problem of doc/design.md §2 (frictionless): each contact row r gets
  * a pivot dof p(r) that no other row touches (node-to-node and node-to-
  * plane rows always have one), and the change of variables u = u0 + T v
  * puts the slack v_p(r) = g_r - (N u)_r in that dof's slot and keeps the

@@ -10,7 +10,7 @@
  * successive Tresca problems with the fixed-point wrapper cf-fp
  * (--set inner=mprgp).
  *
- * One step is one MPRGP iteration (research/seed_benchmarks.md §2.3):
+ * One step is one MPRGP iteration (doc/papers.md §2.3):
  * a conjugate gradient step on the free set while the iterate is
  * proportional (||beta||^2 <= Gamma^2 phi~'phi, phi~ the reduced free
  * gradient), an expansion step (to the boundary, then the fixed step

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The discrete contact problem in the one convention of DESIGN.md §2:
+/* The discrete contact problem in the one convention of doc/design.md §2:
  *     K u - f + N' lN + T' lT = 0
  *     N u - g <= 0,  lN >= 0,  lN_i (N u - g)_i = 0
  *     |lT_i| <= s_i, |lT_i| < s_i => (T u)_i = 0, |lT_i| = s_i => (T u)_i = c lT_i
@@ -79,7 +79,7 @@ int cx_problem_create(cx_problem **p, cx_mesh **mesh, cx_material **mats,
                       const cx_csc *Kall, const double *fall, cx_diag *d);
 void cx_problem_destroy(cx_problem **p);
 
-/* DESIGN.md §3: the solver-independent, dimensionless error, the largest of
+/* doc/design.md §3: the solver-independent, dimensionless error, the largest of
  * the relative equilibrium residual and the natural-map residuals of the
  * contact and friction conditions. Zero exactly at a solution; +inf if an
  * input is not finite. work: at least n + m + nt doubles. Counts one

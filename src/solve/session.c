@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The session: a problem, its friction state, its cache of shared
  * operators, the current method with its private state, and the iterate.
- * Switching method, parameters or friction keeps the cache (DESIGN.md §5:
+ * Switching method, parameters or friction keeps the cache (doc/design.md §5:
  * assemble and factorise once). */
 #include "solve/session_impl.h"
 

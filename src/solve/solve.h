@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* solve/: the session (a problem, its cache of shared operators, the current
- * method and its history) and the generic stepping of DESIGN.md §4.
+ * method and its history) and the generic stepping of doc/design.md §4.
  *
  * A method is a constant descriptor (cx_method) in the one registry table
  * (registry.c). cx_solver_step() calls the method's step and then, in one
@@ -20,7 +20,7 @@
 
 /* ---- outcomes -------------------------------------------------------- *
  *
- * The one table of outcome words (DESIGN.md §3): every output (text, JSON,
+ * The one table of outcome words (doc/design.md §3): every output (text, JSON,
  * explorer, bench tables, PNG metadata) names an outcome by its id and
  * describes it with cx_reason_format's sentence. A run is converged only
  * when its kkt error is at or below the tolerance: positive values are
@@ -97,7 +97,7 @@ void cx_options_default(cx_options *o);
 typedef struct cx_iterate {
     int iter;            /* outer iterations done */
     int reason;          /* cx_reason */
-    double kkt;          /* DESIGN.md §3 error */
+    double kkt;          /* doc/design.md §3 error */
     cx_kkt kkt_parts;
     double own;          /* the method's own criterion (NaN if none) */
     int own_done;        /* set by the method when its own criterion is met */
@@ -352,7 +352,7 @@ int cx_session_set_start(cx_session *s, const double *u, const double *lN, const
  * obstacle can reach. In the units of the problem (force / length^d). */
 double cx_ubr_auto_r(const cx_problem *p, double E);
 
-/* The baseline of DESIGN.md §5: analyse + factorise + solve K (with springs
+/* The baseline of doc/design.md §5: analyse + factorise + solve K (with springs
  * diag(K) on the contact dofs when K alone is singular, as every contact
  * method effectively does), CHOLMOD's default ordering, timed. */
 int cx_problem_baseline(const cx_problem *p, double *seconds, cx_diag *d);

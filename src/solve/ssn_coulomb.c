@@ -21,7 +21,7 @@
  * Linear algebra: the Newton matrix differs from K only in the contact
  * rows, so the system is condensed onto the contact dofs with the
  * session's Schur complement S of K (one sparse Cholesky for the whole
- * session, DESIGN.md §5): S u_c + N'lN + T'lT = f_c. Slip rows are
+ * session, doc/design.md §5): S u_c + N'lN + T'lT = f_c. Slip rows are
  * substituted (lT_i = +-F_i lN_i puts F_i T_i' into lN_i's column), and
  * each step is one dense LU (non-symmetric by that column) of order
  * nc + |active rows|, the multipliers scaled by the stiffness scale kappa

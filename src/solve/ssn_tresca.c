@@ -28,7 +28,7 @@
  *
  * Linear algebra: the saddle-point system is condensed onto the contact
  * dofs with the session's Schur complement S of K (one sparse Cholesky for
- * the whole session, DESIGN.md §5), so each iteration is one dense
+ * the whole session, doc/design.md §5), so each iteration is one dense
  * symmetric-indefinite solve of order nc + |active| (Bunch-Kaufman: S may
  * be singular when only the contact holds the body), or, when every active
  * row pins a dof of its own (a flat obstacle along an axis), a Cholesky of

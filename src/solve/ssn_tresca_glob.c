@@ -7,7 +7,7 @@
  * decrease q, with MPRGP's adaptive precision, the sets of (15), (18),
  * (19) in place of MPRGP's and rho in the role of its steplength; it then
  * converges from any feasible start. The text gives no more, so this is our
- * concrete rule (research/seed_benchmarks.md §2.4):
+ * concrete rule (doc/papers.md §2.4):
  *  1. an outer iteration starts with the projection l <- P(l - rho g),
  *     rho = rho_scale / alpha_max (000: 20): its clipped components are
  *     the SSN sets I, the rest the face A. If that step raised q (rho may

@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* ssstar — the semismooth* Newton method of Gfrerer and Outrata for Tresca
- * friction, paper 001 §2–§4 (reconstruction: seed_benchmarks.md §1.3–1.5).
+ * friction, paper 001 §2–§4 (reconstruction: doc/papers.md §1.3–1.5).
  *
  * Solves Tresca friction and frictionless contact (slip bound 0) in 3D, one
  * body on a rigid obstacle (the code is written for 2D too, but a body held
  * only by the contact makes the first Newton step from zero singular, so
  * 2D, where the scenes are such bodies, is not offered). The problem is reduced to the contact dofs
  * with the session's Schur complement (A = S, b = f condensed; one sparse
- * Cholesky with the contact dofs ordered last, DESIGN.md §5) and rotated into
+ * Cholesky with the contact dofs ordered last, doc/design.md §5) and rotated into
  * each point's frame (tangential, normal), so that the generalized equation
  * (7) 0 in A u - b + (lT, lN) with lT in s d|u_T|, lN in N_{R+}-complement
  * splits into per-point convex parts. One step is:
@@ -327,7 +327,7 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
     return CX_OK;
 }
 
-/* The approximation step (001 §4, seed_benchmarks §1.3) from (xi, lam):
+/* The approximation step (001 §4, doc/papers.md §1.3) from (xi, lam):
  * uh, lh and y*^ (ys, ysl). r = A xi - b on entry. */
 static void ssstar_approximate(ssstar_state *st)
 {

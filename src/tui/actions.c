@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Actions: one table maps keys to functions that change the state and
- * return reactions (STYLE.md C12). Only scene and level changes raise
+ * return reactions (doc/style.md C12). Only scene and level changes raise
  * TUI_REASSEMBLE; method, parameter, friction and tolerance changes raise
  * TUI_RESOLVE, which the session serves from its operator cache. No
  * curses here. */

@@ -20,7 +20,7 @@ void tui_msg(tui_state *st, int error, const char *fmt, ...)
     st->msg_error = error;
 }
 
-/* Fail fast on OOM in the explorer (STYLE.md C5) through the program's
+/* Fail fast on OOM in the explorer (doc/style.md C5) through the program's
  * hook, which restores the terminal first: the core never calls the loop. */
 static void (*_Atomic state_oom_hook)(const char *msg);
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The terminal: the only file that includes curses (STYLE.md C12). Keys
+/* The terminal: the only file that includes curses (doc/style.md C12). Keys
  * become TUI_KEY_* codes, colour roles become colour pairs or, without
  * colours, attributes (bold, dim, reverse, underline). */
 #include "tui/tui_impl.h"

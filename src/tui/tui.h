@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* tui/: the explorer, an ncurses program layer beside cli/ (STYLE.md C12).
+/* tui/: the explorer, an ncurses program layer beside cli/ (doc/style.md C12).
  *
  * The core (state.c, actions.c, job.c, history.c, meshview.c, export.c,
  * canvas.c: no curses, linked alone into tests/tui) holds the scene, the
@@ -67,7 +67,7 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
                    int law, int sync, cx_diag *d);
 void tui_state_clear(tui_state *st);
 
-/* Out of memory in the explorer is fatal (STYLE.md C5): the core calls
+/* Out of memory in the explorer is fatal (doc/style.md C5): the core calls
  * hook (the loop restores the terminal, prints, exits); without a hook, or
  * if it returns, abort(). */
 void tui_on_oom(void (*hook)(const char *msg));

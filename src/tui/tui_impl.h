@@ -189,7 +189,7 @@ int tui_export(const tui_state *st, const char *dir, char *csv, char *json, size
  * renderer. Returns CX_EUNSUPPORTED while rendering is not in this build. */
 int tui_render_png(const tui_state *st, char *file, size_t len, cx_diag *d);
 
-/* Colour roles (STYLE.md C12), mapped to a scheme in term.c with a
+/* Colour roles (doc/style.md C12), mapped to a scheme in term.c with a
  * monochrome fallback. On a canvas a higher role wins a shared cell. */
 enum {
     TUI_C_NORMAL,

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The layer order of DESIGN.md §1, checked on every #include of src/:
+"""The layer order of doc/design.md §1, checked on every #include of src/:
 a layer includes only its own headers and those of the layers below it.
 The program layers (cli/, tui/) sit on top and never include each other,
 nor declare or call each other's functions (cli_*, tui_*) by hand. The

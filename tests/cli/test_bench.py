@@ -110,7 +110,12 @@ with tempfile.TemporaryDirectory() as tmp:
     j = json.loads(out)
     ref = j["meta"]["reference"]
     check("cached" in ref and "0 factorisations" in ref, f"reference reused, no work: {ref}")
-    check(len(j["rows"]) == 3 and [r["value"] for r in j["rows"]] == ["0.0001", "0.001", "0.01"],
+    # typed JSON: seconds as a number (the sentence beside it), booleans for yes/no
+    check(isinstance(j["meta"]["baseline"], float) and j["meta"]["baseline"] > 0
+          and j["meta"]["baseline text"].startswith("%.4g s" % j["meta"]["baseline"]),
+          f"baseline a number: {j['meta'].get('baseline')!r}")
+    check(all(r["converged"] is True for r in j["rows"]), "converged is a boolean")
+    check(len(j["rows"]) == 3 and [r["value"] for r in j["rows"]] == [0.0001, 0.001, 0.01],
           f"--methods ssn-tresca: the default sweep of rho (3 values) x 1 tolerance, got {len(j['rows'])}")
     check(all(r["err_u"] is not None and r["err_u"] <= 1e-8 for r in j["rows"]),
           "errors against the cached reference")
@@ -146,9 +151,9 @@ with tempfile.TemporaryDirectory() as tmp:
     rows = [r for r in j["rows"] if r["method"] == "ssn-tresca"]
     check([r["case"] for r in rows] == ["nominal", "load-1e-8"], f"cases {[r['case'] for r in rows]}")
     for r in rows:
-        check(r["converged"] == "no" and r["reason"] == "max_iter" and r["iterations"] == 2,
+        check(r["converged"] is False and r["reason"] == "max_iter" and r["iterations"] == 2,
               f"forced failure row {r}")
-        check(r["nonfinite"] == "no" and r["kkt"] is not None and r["kkt"] > 1e-10, "a finite kkt, not small")
+        check(r["nonfinite"] is False and r["kkt"] is not None and r["kkt"] > 1e-10, "a finite kkt, not small")
 
     # a duplicated contact point: a row with the reason, whatever it is
     code, out, err = run("bench", "stress", "hertz", "--level", "8", "--cases", "coincident", "--json",
@@ -161,7 +166,7 @@ with tempfile.TemporaryDirectory() as tmp:
     code, out, err = run("bench", "stress", "hertz", "slider", "--level", "8", "--cases", "gap-1,load",
                          "--methods", "ssn-tresca", "--json", "--cache", cache)
     j = json.loads(out)
-    act = {(r["scene"], r["case"]): r["active"] for r in j["rows"] if r["converged"] == "yes"}
+    act = {(r["scene"], r["case"]): r["active"] for r in j["rows"] if r["converged"] is True}
     check(code == 0 and len(act) == 14, f"14 converged rows (gap-1 is a prefix of gap-1e-*): {act}")
     # slider: a gap of the body size, the punch's 0.01 cannot close it
     check(act.get(("slider", "nominal")) == 65 and act.get(("slider", "gap-1")) == 0, f"slider {act}")
@@ -176,7 +181,7 @@ with tempfile.TemporaryDirectory() as tmp:
                          "--methods", "ssn-tresca", "--json", "--cache", cache)
     check(code == 0, f"stress units runs ({code}, {err})")
     j = json.loads(out)
-    units = [r for r in j["rows"] if r["case"] == "units" and r["converged"] != "n/a"]
+    units = [r for r in j["rows"] if r["case"] == "units" and r["converged"] is not None]
     check(len(units) >= 2, f"units rows on hertz and slider: {len(units)}")
     for r in units:
         nominal = [q for q in j["rows"] if q["case"] == "nominal" and q["scene"] == r["scene"]
@@ -198,7 +203,7 @@ with tempfile.TemporaryDirectory() as tmp:
     try:
         j = json.loads(out)
         check("interrupted" in j["meta"], "the header says it was interrupted")
-        check(all(r["converged"] == "yes" for r in j["rows"]), "only finished runs are kept")
+        check(all(r["converged"] is True for r in j["rows"]), "only finished runs are kept")
     except json.JSONDecodeError:
         check(False, f"valid JSON after Ctrl-C: {out[:200]!r}")
     check("interrupted" in err, f"a note on stderr: {err!r}")

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* Shared by the allocation-failure tests (STYLE.md C5): make the N-th
+/* Shared by the allocation-failure tests (doc/style.md C5): make the N-th
  * allocation fail for N = 0, 1, 2, ... through scene building, session
  * creation, the friction law, method selection and a solve; every failure
  * must come back as CX_ENOMEM (or an outcome) with nothing of ours leaked,

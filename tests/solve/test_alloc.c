@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* Allocation failures (STYLE.md C5) through scene building, session
+/* Allocation failures (doc/style.md C5) through scene building, session
  * creation, method selection and a solve on hertz (alloc_fixture.h). */
 #include "alloc_fixture.h"
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* Allocation failures (STYLE.md C5) through the paper-000 path: the
+/* Allocation failures (doc/style.md C5) through the paper-000 path: the
  * two-block mesh, node-to-segment rows, the session, the dual operator in
  * the cache and each paper-000 method's init and solve. The N-th
  * allocation fails for N = 0, 1, ...; every failure must come back as

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* solve/: the kkt error of DESIGN.md §3 — zero at a solution, positive off
+/* solve/: the kkt error of doc/design.md §3 — zero at a solution, positive off
  * it, unchanged when the units of the scene change. */
 #include "solve_fixture.h"
 #include "check.h"

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The conformance harness (STYLE.md C14): every registered method that
+/* The conformance harness (doc/style.md C14): every registered method that
  * supports a case must reach the case's kkt tolerance within its iteration
  * band, agree with the reference solution, balance the load, and keep its
  * counters consistent; a method that does not support a case must refuse it

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The explorer's state and actions without a terminal: keys give the
- * reactions of STYLE.md C12 (only scene and level changes reassemble),
+ * reactions of doc/style.md C12 (only scene and level changes reassemble),
  * stepping fills the history, switching method / parameter / friction /
  * tolerance keeps the one factorisation, refused switches keep the
  * session, export writes every step, and the braille canvas and the strip
