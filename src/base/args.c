@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* The option tables: parsing argv and writing the help (see args.h). */
 #include "base/args.h"
+#include "base/escape.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 /* The row as a cx_param, so that the range is checked and written by the
@@ -224,4 +226,16 @@ void cx_opt_help(const cx_opt *table, FILE *out)
         }
         fputc('\n', out);
     }
+}
+
+int cx_arg_report(FILE *out, const char *cmd, const char *msg, int status)
+{
+    char safe[2048];   /* msg may quote input: written escaped */
+    cx_escape(safe, sizeof safe, msg, strlen(msg));
+    /* a usage error points at the help, unless the message already does */
+    if (status == CX_EXIT_USAGE && !strstr(msg, "(see "))
+        fprintf(out, "signorini %s: %s (see 'signorini %s --help')\n", cmd, safe, cmd);
+    else
+        fprintf(out, "signorini %s: %s\n", cmd, safe);
+    return status;
 }

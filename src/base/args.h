@@ -101,4 +101,9 @@ void cx_opt_range(const cx_opt *o, char *buf, size_t len);
 /* Write one line per row of table ("  --name ARG   help; range"). */
 void cx_opt_help(const cx_opt *table, FILE *out);
 
+/* The one line of a failed command: "signorini CMD: MSG" on out (the
+ * program's stderr), MSG escaped; a usage error (CX_EXIT_USAGE) adds a
+ * pointer to the command's help. Returns status. */
+int cx_arg_report(FILE *out, const char *cmd, const char *msg, int status);
+
 #endif

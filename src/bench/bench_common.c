@@ -69,18 +69,12 @@ void bench_common_default(bench_common *c, int repeat)
 
 int bench_fail(const char *cmd, const char *msg)
 {
-    fprintf(stderr, "signorini %s: %s\n", cmd, msg);
-    return CX_EXIT_ERROR;
+    return cx_arg_report(stderr, cmd, msg, CX_EXIT_ERROR);
 }
 
 int bench_usage(const char *cmd, const char *msg)
 {
-    /* a message that names where to look already is not given a second pointer */
-    if (strstr(msg, "(see "))
-        fprintf(stderr, "signorini %s: %s\n", cmd, msg);
-    else
-        fprintf(stderr, "signorini %s: %s (see 'signorini %s --help')\n", cmd, msg, cmd);
-    return CX_EXIT_USAGE;
+    return cx_arg_report(stderr, cmd, msg, CX_EXIT_USAGE);
 }
 
 int bench_parse_fail(const char *cmd, int status, const char *msg)

@@ -8,19 +8,12 @@
 
 int cli_fail(const char *cmd, const char *msg)
 {
-    char safe[2048];   /* msg may quote input: print it escaped */
-    fprintf(stderr, "signorini %s: %s\n", cmd, cx_escape(safe, sizeof safe, msg, strlen(msg)));
-    return CX_EXIT_ERROR;
+    return cx_arg_report(stderr, cmd, msg, CX_EXIT_ERROR);
 }
 
 int cli_usage(const char *cmd, const char *msg)
 {
-    /* a message that names where to look already is not given a second pointer */
-    if (strstr(msg, "(see "))
-        fprintf(stderr, "signorini %s: %s\n", cmd, msg);
-    else
-        fprintf(stderr, "signorini %s: %s (see 'signorini %s --help')\n", cmd, msg, cmd);
-    return CX_EXIT_USAGE;
+    return cx_arg_report(stderr, cmd, msg, CX_EXIT_USAGE);
 }
 
 void cli_help(const char *usage, const cx_opt *const *tables, FILE *out)
