@@ -47,6 +47,7 @@ static int result_contact_copy(cx_contact_set *c, const cx_contact_set *src)
     c->dim = dim;
     c->m = m;
     c->nall = src->nall;
+    c->nclamped = src->nclamped;
     c->node = result_dup(src->node, sizeof(int) * (size_t)m, &bad);
     c->x = result_dup(src->x, sizeof(double) * (size_t)dim * m, &bad);
     c->weight = result_dup(src->weight, sizeof(double) * (size_t)m, &bad);

@@ -94,6 +94,7 @@ int cx_result_write_json_history(const cx_result *r, const cx_history *h, FILE *
     cx_json_int(&j, "dim", r->dim);
     cx_json_int(&j, "dofs", r->n);
     cx_json_int(&j, "contact_points", r->m);
+    cx_json_int(&j, "clamped_points", r->contact.nclamped);   /* on the contact boundary, held by a support */
     cx_json_int(&j, "iterations", run->iterations);
     cx_json_bool(&j, "converged", run->converged);
     cx_json_str(&j, "reason", cx_reason_id(run->reason));

@@ -96,7 +96,7 @@ check(b"contact: 40 of 40 points" in out, f"prism contact line: {out!r}")
 code, out, err = run_bytes(["solve", "prism", "--level", "2", "--method", "pdas", "--friction", "none",
                             "--json"])
 r = json.loads(out) if code == 0 else {}
-check(r.get("contact_points") == 40 and r.get("converged") is True and r.get("kkt_error", 1) <= 1e-10,
+check(r.get("contact_points") == 40 and r.get("clamped_points") == 5 and r.get("converged") is True and r.get("kkt_error", 1) <= 1e-10,
       f"pdas on prism: {code} {err!r} {r.get('contact_points')} {r.get('kkt_error')}")
 
 finish("scene_input_cli")
