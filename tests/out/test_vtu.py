@@ -199,5 +199,22 @@ with tempfile.TemporaryDirectory() as tmp:
             check(abs(abs(tt[sl_nodes, 0]) - js["slip_bound"]).max() < 1e-9,
                   f"slider: tangential traction = slip bound {js['slip_bound']} where slipping")
 
+    # ---- --vtu-series: one VTU per iteration and a .pvd listing them
+    series = os.path.join(tmp, "series")
+    js, g = solve(tmp, "slider", "slider-final", "--vtu-series", series)
+    import xml.etree.ElementTree as ET
+    files = [ds.get("file") for ds in ET.parse(os.path.join(series, "series.pvd")).iter("DataSet")]
+    check(len(files) == js["iterations"] and js["iterations"] > 1,
+          f"series.pvd lists {js['iterations']} iterates, got {len(files)}")
+    for k, name in enumerate(files, 1):
+        reader = vtk.vtkXMLUnstructuredGridReader()
+        reader.SetFileName(os.path.join(series, name))
+        reader.Update()
+        gk = reader.GetOutput()
+        check(field(gk, "iterations") == k, f"series {name}: iterations {k}")
+        if k == len(files):
+            d = abs(point(gk, "displacement") - point(g, "displacement")).max()
+            check(d == 0, f"the series' last iterate is the solution (max difference {d})")
+
 print(f"vtu: {checks} checks, {failures} failed")
 sys.exit(1 if failures else 0)
