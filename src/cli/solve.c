@@ -3,8 +3,10 @@
 #include "cli/cli.h"
 #include "out/out.h"
 
+#include <errno.h>
 #include <math.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -22,6 +24,7 @@ static const char solve_usage[] =
 typedef struct {
     cx_solve_args s;          /* the options every solve has (base/opt_solve.h) */
     int json, baseline, quiet;
+    const char *vtu_series;   /* --vtu-series DIR */
     cli_render_args render;   /* --png, --vtu and the drawing options (cli/render.c) */
 } solve_args;
 
@@ -36,6 +39,10 @@ static const cx_opt solve_own_opts[] = {
     {"baseline", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "also time one factorisation + solve of K alone",
      offsetof(solve_args, baseline), NULL},
     {"quiet", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no per-iteration lines", offsetof(solve_args, quiet),
+     NULL},
+    {"vtu-series", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR",
+     "write every iterate as DIR/iter_NNNN.vtu and DIR/series.pvd (a ParaView time series, time = "
+     "iteration); each iterate is completed first, as the explorer does", offsetof(solve_args, vtu_series),
      NULL},
     {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
 };
@@ -83,13 +90,50 @@ typedef struct {
     int quiet;
     FILE *out;
     cx_history *history;   /* --json: every iterate, for its "history" */
+    const char *series;    /* --vtu-series DIR (NULL: none) */
+    cx_session *s;         /* the session observed (to complete its iterate) */
+    const cx_scene *sc;
+    int level, nseries;
+    cx_diag *d;
 } solve_watch;
+
+/* One iterate of --vtu-series: DIR/iter_NNNN.vtu. Non-zero on an error
+ * (in w->d), which stops the run. */
+static int solve_series_step(solve_watch *w, int iter)
+{
+    char path[4096];
+    cx_result *r = NULL;
+    if (cx_session_complete_iterate(w->s, w->d) ||
+        cx_result_from_session(&r, w->s, w->sc, w->level, w->d))
+        return 1;
+    snprintf(path, sizeof path, "%s/iter_%04d.vtu", w->series, iter);
+    int rc = cx_vtu_write(r, path, 0, w->d);
+    cx_result_destroy(&r);
+    w->nseries = rc ? w->nseries : iter;
+    return rc != CX_OK;
+}
+
+/* DIR/series.pvd: the iterates 1..n as time steps. */
+static int solve_series_pvd(const solve_watch *w, cx_diag *d)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/series.pvd", w->series);
+    cx_outfile out;
+    CX_TRY(cx_outfile_open(&out, path, d));
+    fprintf(out.f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n");
+    for (int k = 1; k <= w->nseries; k++)
+        fprintf(out.f, "    <DataSet timestep=\"%d\" part=\"0\" file=\"iter_%04d.vtu\"/>\n", k, k);
+    fprintf(out.f, "  </Collection>\n</VTKFile>\n");
+    return cx_outfile_close(&out, 1, d);
+}
 
 static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it)
 {
     (void)s;
-    const solve_watch *w = ctx;
+    solve_watch *w = ctx;
     char kkt[32], own[32];
+    if (w->series && solve_series_step(w, it->iter))
+        return 1;   /* the file could not be written: stop (the error is in w->d) */
     if (w->history && cx_history_add(w->history, it))
         return 1;   /* out of memory: stop; the run reads as stopped by the observer */
     if (!w->quiet)
@@ -284,11 +328,22 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         fprintf(summary, "  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
         fflush(summary);   /* the run may be long: show where it is */
     }
-    solve_watch w = {a.json || a.quiet, summary, a.json ? &history : NULL};
+    cx_diag series_d = {0};
+    solve_watch w = {a.json || a.quiet, summary, a.json ? &history : NULL, a.vtu_series, s, &sc,
+                     a.s.level, 0, &series_d};
+    if (a.vtu_series && mkdir(a.vtu_series, 0777) != 0 && errno != EEXIST) {
+        cx_diag_set(&d, CX_EIO, "--vtu-series %s: %s", a.vtu_series, strerror(errno));
+        cli_fail(cmd, d.msg);
+        goto done;
+    }
     int solved = cx_solver_solve(s, solve_print_step, &w, &d);
     solve_running = NULL;
     if (solved) {
         cli_fail(cmd, d.msg);
+        goto done;
+    }
+    if (a.vtu_series && (series_d.msg[0] || solve_series_pvd(&w, &series_d))) {
+        cli_fail(cmd, series_d.msg);
         goto done;
     }
     double t_total = cx_clock_now() - t0;

@@ -71,6 +71,7 @@ void cx_result_destroy(cx_result **r)
     cx_free(x->status);
     cx_free(x->stress_cache);
     cx_free(x->vm_cache);
+    cx_free(x->tu);
     cx_free(x);
     *r = NULL;
 }
@@ -97,7 +98,8 @@ int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state
     x->lN = CX_NEW(double, (size_t)p->m + 1);
     x->lT = CX_NEW(double, (size_t)p->nt + 1);
     x->status = CX_NEW(unsigned char, (size_t)p->m + 1);
-    if (!x->mesh || !x->mats || !x->u || !x->lN || !x->lT || !x->status ||
+    x->tu = CX_NEW(double, (size_t)p->nt + 1);
+    if (!x->mesh || !x->mats || !x->u || !x->lN || !x->lT || !x->status || !x->tu ||
         result_contact_copy(&x->contact, &p->contact) != CX_OK) {
         cx_result_destroy(&x);
         return cx_diag_set(d, CX_ENOMEM, "result: out of memory");
@@ -112,6 +114,11 @@ int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state
     if (lT && p->nt > 0)
         memcpy(x->lT, lT, sizeof(double) * (size_t)p->nt);
     memcpy(x->f_applied, p->f_applied, sizeof x->f_applied);
+    /* T u over the all-dof numbering (contact.h); the copy keeps no rows */
+    const cx_triplet *T = &p->contact.T;
+    for (size_t k = 0; k < T->nnz; k++)
+        if (T->i[k] < p->nt && T->j[k] < p->dim * pm->nnodes)
+            x->tu[T->i[k]] += T->x[k] * x->u[T->j[k]];
     /* the contact's resultant on the body: -(N'lN + T'lT), per component */
     const cx_contact_set *c = &p->contact;
     int dim = p->dim, dt = dim - 1;

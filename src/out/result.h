@@ -83,6 +83,11 @@ typedef struct cx_result {
     cx_run_record run;
     double *stress_cache;     /* private: see cx_result_stress */
     double *vm_cache;
+    /* The tangential relative displacement T u of each point (nt values,
+     * rows as lT; the rows T of the problem applied to the full u), so
+     * that node-to-node points slip by u_k - u_l; the slip of a point
+     * that slips (status CX_PT_SLIP_*), read with the status. */
+    double *tu;
 } cx_result;
 
 /* A result for the solution (u: the n free dofs, lN: m, lT: nt or NULL for

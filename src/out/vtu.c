@@ -29,15 +29,18 @@ static void vtu_base64(FILE *f, const unsigned char *b, size_t n)
 }
 
 /* One DataArray of n values of the given VTK type (Float64, Int64, Int32,
- * UInt8) taken from data (the matching C type). */
-static int vtu_array(vtu_out *o, const char *type, const char *name, int ncomp, const void *data,
-                     size_t n)
+ * UInt8) taken from data (the matching C type); cnames (NULL: none) names
+ * the ncomp components, which ParaView shows instead of 0, 1, 2... */
+static int vtu_array_named(vtu_out *o, const char *type, const char *name, int ncomp,
+                           const char *const *cnames, const void *data, size_t n)
 {
     fprintf(o->f, "        <DataArray type=\"%s\"", type);
     if (name)
         fprintf(o->f, " Name=\"%s\"", name);
     if (ncomp > 1)
         fprintf(o->f, " NumberOfComponents=\"%d\"", ncomp);
+    for (int k = 0; cnames && k < ncomp; k++)
+        fprintf(o->f, " ComponentName%d=\"%s\"", k, cnames[k]);
     fprintf(o->f, " format=\"%s\">\n", o->ascii ? "ascii" : "binary");
     size_t size = strcmp(type, "Float64") == 0 || strcmp(type, "Int64") == 0 ? 8
                   : strcmp(type, "Int32") == 0 ? 4 : 1;
@@ -70,6 +73,70 @@ static int vtu_array(vtu_out *o, const char *type, const char *name, int ncomp, 
     return CX_OK;
 }
 
+static int vtu_array(vtu_out *o, const char *type, const char *name, int ncomp, const void *data,
+                     size_t n)
+{
+    return vtu_array_named(o, type, name, ncomp, NULL, data, n);
+}
+
+/* A FieldData string (one tuple), always ASCII: VTK's XML form of a string
+ * is its character codes, each string ended by a 0. Characters XML or the
+ * reader would trip on are not expected (ids, numbers, messages). */
+static void vtu_field_string(vtu_out *o, const char *name, const char *str)
+{
+    fprintf(o->f, "      <DataArray type=\"String\" Name=\"%s\" NumberOfTuples=\"1\" format=\"ascii\">\n        ",
+            name);
+    for (const unsigned char *c = (const unsigned char *)str; *c; c++)
+        fprintf(o->f, "%u ", *c);
+    fprintf(o->f, "0\n      </DataArray>\n");
+}
+
+static void vtu_field_double(vtu_out *o, const char *name, double v)
+{
+    fprintf(o->f, "      <DataArray type=\"Float64\" Name=\"%s\" NumberOfTuples=\"1\" format=\"ascii\">%.17g</DataArray>\n",
+            name, v);
+}
+
+static void vtu_field_int(vtu_out *o, const char *name, long v)
+{
+    fprintf(o->f, "      <DataArray type=\"Int64\" Name=\"%s\" NumberOfTuples=\"1\" format=\"ascii\">%ld</DataArray>\n",
+            name, v);
+}
+
+/* What contact_status holds at a node (the README's VTU paragraph says the same). */
+static const char vtu_status_codes[] =
+    "-1 no contact point at the node; 0 free (open gap); 1 in contact (frictionless); "
+    "2 stick; 3 slip (2D: lT along +t; 3D: any slip); 4 slip (2D: lT along -t). "
+    "A node holding several contact points (multibody joints) shows the largest code; "
+    "contact_points counts them.";
+
+/* The run record as FieldData: the numbers ParaView's Information panel
+ * shows and a script can read (the XML comment is for a human with less). */
+static void vtu_field_data(vtu_out *o, const cx_result *r)
+{
+    const cx_run_record *run = &r->run;
+    char args[512];
+    fprintf(o->f, "    <FieldData>\n");
+    vtu_field_string(o, "scene", run->scene);
+    vtu_field_int(o, "level", run->level);
+    vtu_field_string(o, "method", run->method);
+    vtu_field_string(o, "params", run->params_text);
+    vtu_field_string(o, "friction", cx_friction_name(run->friction));
+    vtu_field_double(o, "F", run->F);
+    vtu_field_double(o, "slip_bound", run->slip_bound);
+    vtu_field_double(o, "tol", run->tol);
+    vtu_field_int(o, "iterations", run->iterations);
+    vtu_field_int(o, "converged", run->converged);
+    vtu_field_int(o, "reason_code", run->reason);
+    vtu_field_string(o, "reason", run->method[0] ? cx_reason_id(run->reason) : "");
+    vtu_field_double(o, "kkt", run->kkt);
+    vtu_field_string(o, "solve_args", cx_run_record_solve_args(run, args, sizeof args));
+    vtu_field_string(o, "unit_length", run->unit_length);
+    vtu_field_string(o, "unit_stress", run->unit_stress);
+    vtu_field_string(o, "contact_status_codes", vtu_status_codes);
+    fprintf(o->f, "    </FieldData>\n");
+}
+
 static int vtu_celltype(cx_elem_type t)
 {
     switch (t) {
@@ -94,17 +161,75 @@ static int vtu_body(vtu_out *o, cx_result *r, cx_diag *d)
     int32_t *status = cx_malloc(sizeof(int32_t) * (size_t)nn + 1), *body = cx_malloc(sizeof(int32_t) * (size_t)ne + 1);
     int64_t *conn = cx_malloc(sizeof(int64_t) * nc + 1), *off = cx_malloc(sizeof(int64_t) * (size_t)ne + 1);
     uint8_t *types = cx_malloc((size_t)ne + 1);
+    /* the stress as VTK's symmetric tensor (XX YY ZZ XY YZ XZ), 2D included */
+    double *s6 = CX_NEW(double, 6 * (size_t)nn + 1);
+    /* per node, summed over the contact points at it: weight, the forces
+     * on the body (normal, tangential), the slip; traction = force / weight */
+    double *cw = CX_NEW(double, (size_t)nn + 1), *tn = CX_NEW(double, 3 * (size_t)nn + 1);
+    double *tt = CX_NEW(double, 3 * (size_t)nn + 1), *sl = CX_NEW(double, 3 * (size_t)nn + 1);
+    int32_t *npts = CX_NEW(int32_t, (size_t)nn + 1);
     int rc = CX_ENOMEM;
-    if (!x3 || !u3 || !pr || !stv || !status || !body || !conn || !off || !types)
+    if (!x3 || !u3 || !pr || !stv || !status || !body || !conn || !off || !types || !s6 || !cw ||
+        !tn || !tt || !sl || !npts)
         goto done;
+    /* the material of a node: that of the body of an element using it (as
+     * cx_result_stress takes it for von Mises); npts is borrowed, reset below */
+    for (int e = 0; m->body && e < ne; e++)
+        for (int a = 0; a < m->npe; a++)
+            npts[m->conn[m->npe * e + a]] = m->body[e];
+    for (int i = 0; i < nn; i++) {
+        const double *v = sig + (size_t)ns * i;
+        double *t = s6 + 6 * (size_t)i;
+        if (dim == 3) {   /* Voigt xx yy zz yz xz xy */
+            t[0] = v[0], t[1] = v[1], t[2] = v[2], t[3] = v[5], t[4] = v[3], t[5] = v[4];
+        } else {          /* xx yy xy; szz of plane strain as cx_fem_von_mises has it */
+            const cx_material *mat = &r->mats[npts[i]];
+            t[0] = v[0], t[1] = v[1], t[3] = v[2], t[4] = t[5] = 0;
+            t[2] = mat->model == CX_PLANE_STRAIN ? mat->nu * (v[0] + v[1]) : 0;
+        }
+    }
+    memset(npts, 0, sizeof(int32_t) * (size_t)nn);
+    const cx_contact_set *cs = &r->contact;
+    int dt = dim - 1;
+    for (int i = 0; i < cs->m; i++) {
+        int k = cs->node[i], st = r->status[i];
+        npts[k]++;
+        cw[k] += cs->weight[i];
+        status[k] = npts[k] == 1 || st > status[k] ? st : status[k];
+        for (int c = 0; c < dim; c++) {
+            tn[3 * k + c] -= r->lN[i] * cs->normal[dim * i + c];
+            for (int q = 0; q < dt; q++) {
+                const double *tq = cs->tangent + dim * (dt * i + q);
+                if (r->run.friction != CX_FRICTION_NONE)
+                    tt[3 * k + c] -= r->lT[dt * i + q] * tq[c];
+                if (st == CX_PT_SLIP_POS || st == CX_PT_SLIP_NEG)
+                    sl[3 * k + c] += r->tu[dt * i + q] * tq[c];
+            }
+        }
+    }
+    for (int k = 0; k < nn; k++) {
+        for (int c = 0; c < 3; c++) {
+            tn[3 * k + c] = cw[k] > 0 ? tn[3 * k + c] / cw[k] : 0;
+            tt[3 * k + c] = cw[k] > 0 ? tt[3 * k + c] / cw[k] : 0;
+        }
+    }
     cx_result_nodal_pressure(r, pr);
     cx_result_nodal_status(r, stv);
+    for (int i = 0; i < cs->m; i++) {   /* a shared node: the points' total over their weight */
+        int k = cs->node[i];
+        pr[k] = 0;
+    }
+    for (int i = 0; i < cs->m; i++) {
+        int k = cs->node[i];
+        pr[k] += cw[k] > 0 ? r->lN[i] / cw[k] : 0;
+    }
     for (int i = 0; i < nn; i++) {
         for (int k = 0; k < dim; k++) {
             x3[3 * i + k] = m->x[dim * i + k];
             u3[3 * i + k] = r->u[dim * i + k];
         }
-        status[i] = (int32_t)stv[i];
+        if (npts[i] == 0)
+            status[i] = (int32_t)stv[i];
     }
     for (size_t i = 0; i < nc; i++)
         conn[i] = m->conn[i];
@@ -121,17 +246,29 @@ static int vtu_body(vtu_out *o, cx_result *r, cx_diag *d)
     fprintf(f, "  <!-- signorini: scene %s, level %d, method %s, kkt error %.6e -->\n",
             r->run.scene, r->run.level, r->run.method, r->run.kkt);
     fprintf(f, "  <UnstructuredGrid>\n");
+    vtu_field_data(o, r);
     fprintf(f, "    <Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n", nn, ne);
     fprintf(f, "      <PointData Vectors=\"displacement\" Scalars=\"von_mises\">\n");
     if ((rc = vtu_array(o, "Float64", "displacement", 3, u3, 3 * (size_t)nn)) != CX_OK)
         goto done;
-    if ((rc = vtu_array(o, "Float64", "stress", ns, sig, (size_t)ns * nn)) != CX_OK)
+    static const char *const tensor_names[6] = {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};
+    if ((rc = vtu_array_named(o, "Float64", "stress", 6, tensor_names, s6, 6 * (size_t)nn)) != CX_OK)
         goto done;
     if ((rc = vtu_array(o, "Float64", "von_mises", 1, vm, (size_t)nn)) != CX_OK)
         goto done;
     if ((rc = vtu_array(o, "Float64", "contact_pressure", 1, pr, (size_t)nn)) != CX_OK)
         goto done;
     if ((rc = vtu_array(o, "Int32", "contact_status", 1, status, (size_t)nn)) != CX_OK)
+        goto done;
+    if ((rc = vtu_array(o, "Int32", "contact_points", 1, npts, (size_t)nn)) != CX_OK)
+        goto done;
+    if ((rc = vtu_array(o, "Float64", "contact_weight", 1, cw, (size_t)nn)) != CX_OK)
+        goto done;
+    if ((rc = vtu_array(o, "Float64", "contact_traction_normal", 3, tn, 3 * (size_t)nn)) != CX_OK)
+        goto done;
+    if ((rc = vtu_array(o, "Float64", "contact_traction_tangential", 3, tt, 3 * (size_t)nn)) != CX_OK)
+        goto done;
+    if ((rc = vtu_array(o, "Float64", "contact_slip", 3, sl, 3 * (size_t)nn)) != CX_OK)
         goto done;
     fprintf(f, "      </PointData>\n      <CellData Scalars=\"body\">\n");
     if ((rc = vtu_array(o, "Int32", "body", 1, body, (size_t)ne)) != CX_OK)
@@ -158,6 +295,12 @@ done:
     cx_free(conn);
     cx_free(off);
     cx_free(types);
+    cx_free(s6);
+    cx_free(cw);
+    cx_free(tn);
+    cx_free(tt);
+    cx_free(sl);
+    cx_free(npts);
     return rc == CX_OK ? CX_OK : cx_diag_set(d, rc, "%s", cx_status_str(rc));
 }
 

@@ -82,7 +82,7 @@ with tempfile.TemporaryDirectory() as tmp:
         attrs, arr = vtu_arrays(vtu)
         n, ne = int(attrs["NumberOfPoints"]), int(attrs["NumberOfCells"])
         check(n == 9 * 9 and ne == 2 * 8 * 8, f"hertz level 8: 81 points, 128 cells, got {n}, {ne}")
-        for name, comps in [("displacement", 3), ("stress", 3), ("von_mises", 1),
+        for name, comps in [("displacement", 3), ("stress", 6), ("von_mises", 1),
                             ("contact_pressure", 1), ("contact_status", 1), ("Points", 3)]:
             c, vals = arr[name]
             check(c == comps and len(vals) == comps * n, f"{name}: {comps} x {n} values, got {c} x {len(vals)}")
