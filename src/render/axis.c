@@ -18,7 +18,10 @@ static double axis_nice_step(double span, int target)
 
 static void axis_make_linear(cx_axis *a, double lo, double hi, int target, int expand)
 {
-    if (!(hi > lo)) {
+    /* a span of rounding noise (a uniform pressure 1 ± 1e-8) reads as a
+     * constant, not as ticks with nine digits */
+    if (!(hi - lo > 1e-6 * fmax(fabs(lo), fabs(hi)))) {
+        lo = hi = 0.5 * (lo + hi);
         double c = lo, w = fabs(lo) > 0 ? 0.1 * fabs(lo) : 1.0;
         lo = c - w;
         hi = c + w;

@@ -305,9 +305,26 @@ static void plot_axes(cairo_t *cr, const cx_plot *p, const plot_frame *f, double
         maxw = fmax(maxw, w);
     }
     /* axis labels and title */
-    cx_text(cr, p->xlabel, 0.5 * (f->x0 + f->x1), f->y1 + 30 * s, 16 * s, 0, 0.5, 0.0);
+    /* labels and title shrink to fit the image's width rather than be
+     * cut, and are centred on the image when the frame's centre leaves
+     * them too little room on one side */
+    double W = cairo_image_surface_get_width(cairo_get_target(cr)), room = W - 8 * s;
+    double fx = 16 * s, ft = 18 * s, wx = cx_text_width(cr, p->xlabel, fx, 0);
+    double wt = cx_text_width(cr, p->title, ft, 1);
+    if (wx > room) {
+        fx *= room / wx;
+        wx = room;
+    }
+    if (wt > room) {
+        ft *= room / wt;
+        wt = room;
+    }
+    double mid = 0.5 * (f->x0 + f->x1);
+    double xc = 0.5 * wx + 4 * s > fmin(mid, W - mid) ? 0.5 * W : mid;
+    double tc = 0.5 * wt + 4 * s > fmin(mid, W - mid) ? 0.5 * W : mid;
+    cx_text(cr, p->xlabel, xc, f->y1 + 30 * s, fx, 0, 0.5, 0.0);
     cx_text_vertical(cr, p->ylabel, f->x0 - maxw - 24 * s, 0.5 * (f->y0 + f->y1), 16 * s, 0);
-    cx_text(cr, p->title, 0.5 * (f->x0 + f->x1), f->y0 - 14 * s, 18 * s, 1, 0.5, 1.0);
+    cx_text(cr, p->title, tc, f->y0 - 14 * s, ft, 1, 0.5, 1.0);
 }
 
 static void plot_refs(cairo_t *cr, const cx_plot *p, const plot_frame *f, double s)
