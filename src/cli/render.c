@@ -101,11 +101,13 @@ const cx_opt cli_render_opts[] = {
      offsetof(cli_render_args, vtu_ascii), NULL},
     {"plot", 0, CX_OPT_CHOICE, 0, 0, 0, "pressure|convergence|work", "pressure|convergence|work",
      "a line plot instead of the image: the contact pressure along\n"
-     "the boundary (with Hertz's where the scene has it); the kkt\n"
-     "error per iteration of every method of the scene (semilog);\n"
-     "or work-precision: the kkt error against the time spent\n"
-     "(log-log), with the baseline (one factorisation + solve of\n"
-     "K) marked", offsetof(cli_render_args, plot), NULL},
+     "the boundary (with Hertz's where the scene has it; 3D: along\n"
+     "one line of the contact face, through the peak); the kkt\n"
+     "error per iteration of the method run, with its --set (each\n"
+     "--method given; with --method auto every method of the\n"
+     "scene for the law) (semilog); or work-precision: the kkt\n"
+     "error against the time spent (log-log), with the baseline\n"
+     "(one factorisation + solve of K) marked", offsetof(cli_render_args, plot), NULL},
     {"timing", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "print the time of each rendering stage",
      offsetof(cli_render_args, timing), NULL},
     {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
