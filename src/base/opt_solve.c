@@ -15,9 +15,10 @@ static int solve_check_set(const char *text, cx_diag *d)
 }
 
 const cx_opt cx_solve_opts[] = {
-    {"method", 0, CX_OPT_STRING, 0, 0, 0, NULL, "ID|auto",
+    {"method", 0, CX_OPT_LIST, 0, 0, 0, NULL, "ID|auto",
      "solver (default auto: the fastest measured for the scene\n"
-     "and law, or a rule from the problem; see the README)", offsetof(cx_solve_args, method), NULL},
+     "and law, or a rule from the problem; see the README);\n"
+     "repeatable with --plot convergence|work (one series each)", offsetof(cx_solve_args, methods), NULL},
     CX_OPT_ROW_FRICTION(cx_solve_args, friction),
     CX_OPT_ROW_F(cx_solve_args, F),
     CX_OPT_ROW_SLIP(cx_solve_args, slip),

@@ -42,7 +42,8 @@
 /* The values of cx_solve_opts. F and slip are NaN when not given (the
  * scene's), friction -1, level 0, method NULL (auto). */
 typedef struct cx_solve_args {
-    const char *method;
+    const char *method;    /* the first of methods (set by the program after parsing) */
+    cx_opt_list methods;   /* --method, each use (several: a comparison plot) */
     int friction;
     double F, slip;
     int level;

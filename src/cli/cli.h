@@ -28,7 +28,15 @@ typedef struct cli_render_args {
     int cmap, no_title;  /* --cmap index (0 auto, then cx_cmap + 1), --no-title */
     const char *range, *title;   /* --range MIN:MAX, --title TEXT */
     int w, h, view, edges, vtu_ascii, timing;
+    /* the solve's --method and --set (borrowed): a convergence or work
+     * plot runs each method named */
+    const cx_opt_list *methods, *sets;
 } cli_render_args;
+/* --set KEY=VALUE into pv; with several --method (nmethods > 1) a key pv's
+ * method has not is skipped (it is another method's). */
+int cli_param_set_for(cx_param_values *pv, const char *pair, int nmethods, const char *owner, cx_diag *d);
+/* With several --method: each --set key is some named method's. */
+int cli_sets_check(const cx_opt_list *methods, const cx_opt_list *sets, cx_diag *d);
 void cli_render_args_init(cli_render_args *r);
 /* Their table (values into a cli_render_args). */
 extern const cx_opt cli_render_opts[];

@@ -101,11 +101,13 @@ const cx_opt cli_render_opts[] = {
      offsetof(cli_render_args, vtu_ascii), NULL},
     {"plot", 0, CX_OPT_CHOICE, 0, 0, 0, "pressure|convergence|work", "pressure|convergence|work",
      "a line plot instead of the image: the contact pressure along\n"
-     "the boundary (with Hertz's where the scene has it); the kkt\n"
-     "error per iteration of every method of the scene (semilog);\n"
-     "or work-precision: the kkt error against the time spent\n"
-     "(log-log), with the baseline (one factorisation + solve of\n"
-     "K) marked", offsetof(cli_render_args, plot), NULL},
+     "the boundary (with Hertz's where the scene has it; 3D: along\n"
+     "one line of the contact face, through the peak); the kkt\n"
+     "error per iteration of the method run, with its --set (each\n"
+     "--method given; with --method auto every method of the\n"
+     "scene for the law) (semilog); or work-precision: the kkt\n"
+     "error against the time spent (log-log), with the baseline\n"
+     "(one factorisation + solve of K) marked", offsetof(cli_render_args, plot), NULL},
     {"timing", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "print the time of each rendering stage",
      offsetof(cli_render_args, timing), NULL},
     {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
@@ -129,6 +131,37 @@ void cli_render_finish(cli_render_args *r)
     }
 }
 
+int cli_param_set_for(cx_param_values *pv, const char *pair, int nmethods, const char *owner, cx_diag *d)
+{
+    char key[64];
+    size_t n = strcspn(pair, "=");
+    snprintf(key, sizeof key, "%.*s", (int)(n < sizeof key ? n : sizeof key - 1), pair);
+    if (nmethods > 1 && cx_param_find(pv, key) < 0)
+        return CX_OK;
+    return cx_param_set_pair(pv, pair, owner, d);
+}
+
+int cli_sets_check(const cx_opt_list *methods, const cx_opt_list *sets, cx_diag *d)
+{
+    for (int i = 0; i < sets->n; i++) {
+        char key[64];
+        size_t n = strcspn(sets->v[i], "=");
+        snprintf(key, sizeof key, "%.*s", (int)(n < sizeof key ? n : sizeof key - 1), sets->v[i]);
+        int had = 0;
+        for (int k = 0; k < methods->n && !had; k++) {
+            const cx_method *m = cx_method_find(methods->v[k]);
+            cx_param_values pv;
+            if (m) {
+                cx_param_default(&pv, m->params);
+                had = cx_param_find(&pv, key) >= 0;
+            }
+        }
+        if (!had)
+            return cx_diag_set(d, CX_EINVAL, "--set '%s': none of the methods named has '%s'", sets->v[i], key);
+    }
+    return CX_OK;
+}
+
 #if CX_HAVE_RENDER
 
 /* The contact pressure lN / weight along the boundary, with Hertz's. */
@@ -142,22 +175,74 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     double *hx = yh + m, *hy = hx + NH;
     if (!x)
         return cx_diag_set(d, CX_ENOMEM, "plot: out of memory");
-    for (int i = 0; i < m; i++) {
-        x[i] = cs->x[dim * i];   /* the first coordinate */
-        y[i] = cs->weight[i] > 0 ? res->lN[i] / cs->weight[i] : 0;
-        yh[i] = cx_scene_hertz_pressure(sc, x[i]);
+    /* 2D: every point against its x. 3D: a profile, the points near one
+     * line of the contact face (along its first in-plane axis, through the
+     * peak), since every point against x mixes the whole face */
+    int ax = 0, bx = 1, n = 0;
+    double b0 = 0, band = 0;
+    if (dim == 3 && m > 0) {
+        double lo[3], hi[3];
+        for (int k = 0; k < 3; k++) {
+            lo[k] = INFINITY;
+            hi[k] = -INFINITY;
+            for (int i = 0; i < m; i++) {
+                lo[k] = fmin(lo[k], cs->x[3 * i + k]);
+                hi[k] = fmax(hi[k], cs->x[3 * i + k]);
+            }
+        }
+        int nrm = 0;   /* the face's normal axis: the one it hardly spreads along */
+        for (int k = 1; k < 3; k++)
+            if (hi[k] - lo[k] < hi[nrm] - lo[nrm])
+                nrm = k;
+        ax = nrm == 0 ? 1 : 0;
+        bx = nrm == 2 ? 1 : 2;
+        int peak = 0;
+        for (int i = 0; i < m; i++) {
+            double pi = cs->weight[i] > 0 ? res->lN[i] / cs->weight[i] : 0;
+            double pp = cs->weight[peak] > 0 ? res->lN[peak] / cs->weight[peak] : 0;
+            if (pi > pp)
+                peak = i;
+        }
+        b0 = cs->x[3 * peak + bx];
+        /* half a mean spacing of the points either side of the line */
+        band = 0.5 * sqrt(fmax((hi[ax] - lo[ax]) * (hi[bx] - lo[bx]), 0) / m);
     }
-    char title[200];
-    snprintf(title, sizeof title, "%s level %d: contact pressure (%s, kkt %.1e)", sc->id,
-             res->run.level, res->run.method, res->run.kkt);
+    for (int i = 0; i < m; i++) {
+        if (dim == 3 && fabs(cs->x[3 * i + bx] - b0) > band)
+            continue;
+        x[n] = cs->x[dim * i + ax];
+        y[n] = cs->weight[i] > 0 ? res->lN[i] / cs->weight[i] : 0;
+        yh[n] = cx_scene_hertz_pressure(sc, x[n]);
+        n++;
+    }
+    /* in order along the line (insertion sort: one line of a face) */
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && x[j - 1] > x[j]; j--) {
+            double t = x[j]; x[j] = x[j - 1]; x[j - 1] = t;
+            t = y[j]; y[j] = y[j - 1]; y[j - 1] = t;
+        }
+    const char *axes = "xyz";
+    char title[200], what[160];
+    if (dim == 3) {
+        snprintf(title, sizeof title, "%s level %d: contact pressure on the line %c = %.3g (%s, kkt %.1e)",
+                 sc->id, res->run.level, axes[bx], b0, res->run.method, res->run.kkt);
+        snprintf(what, sizeof what, "%c on the contact face (%d points within %.2g of %c = %.3g)", axes[ax], n,
+                 band, axes[bx], b0);
+    } else {
+        snprintf(title, sizeof title, "%s level %d: contact pressure (%s, kkt %.1e)", sc->id,
+                 res->run.level, res->run.method, res->run.kkt);
+        snprintf(what, sizeof what, "x, position along the contact boundary");
+    }
+    m = n;
     cx_plot pl;
-    char xlab[128], ylab[128];
-    cx_quantity_label(&res->run, "x, position along the contact boundary", 0, xlab, sizeof xlab);
+    char xlab[200], ylab[128];
+    cx_quantity_label(&res->run, what, 0, xlab, sizeof xlab);
     cx_field_axis_label(&res->run, CX_FIELD_PRESSURE, ylab, sizeof ylab);
     cx_plot_init(&pl, title, xlab, ylab);
     pl.font_scale = r->font_scale;
-    cx_plot_add_series(&pl, "computed (nodal force / lumped length)", m, x, y, CX_PLOT_MARKERS);
-    if (sc->has_hertz) {
+    cx_plot_add_series(&pl, dim == 3 ? "computed (nodal force / lumped area)" : "computed (nodal force / lumped length)",
+                       m, x, y, dim == 3 ? CX_PLOT_LINE | CX_PLOT_MARKERS : CX_PLOT_MARKERS);
+    if (sc->has_hertz && m > 0) {
         /* the analytical curve on a fine grid, so that it is smooth */
         double x1 = x[m - 1] > x[0] ? x[m - 1] : x[0];
         for (int i = 0; i < NH; i++) {
@@ -169,6 +254,11 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     }
     cx_plot_add_text(&pl, "scene", sc->id);
     cx_plot_add_text(&pl, "method", res->run.method);
+    if (dim == 3) {
+        char line[96];
+        snprintf(line, sizeof line, "along %c at %c = %.6g, band %.3g, %d points", axes[ax], axes[bx], b0, band, n);
+        cx_plot_add_text(&pl, "profile", line);
+    }
     int rc = cx_plot_write_png(&pl, r->png, r->w, r->h, d);
     cx_free(x);
     return rc;
@@ -205,18 +295,73 @@ static int render_conv_observe(void *ctx, const cx_session *s, const cx_iterate 
     return 0;
 }
 
-/* The kkt error per iteration of every method of the scene that supports
- * the problem, on one semilog plot (the session keeps the operators); or
- * (work) the kkt error against the time spent, log-log, with the baseline
- * time as a vertical line. */
-static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc, cx_session *s,
-                                   int level, int work, cx_diag *d)
+/* The legend entry of a run: the method and the parameters that differ
+ * from its defaults ("ssn-tresca rho=0.001"), so that two runs of one
+ * method are told apart. */
+static void render_run_label(const cx_method *m, const cx_param_values *pv, char *buf, size_t len)
 {
-    conv_rec rec[CX_SCENE_MAX_METHODS];
+    snprintf(buf, len, "%s", m->id);
+    if (!pv)
+        return;
+    cx_param_values def;
+    cx_param_default(&def, m->params);
+    for (int i = 0; i < pv->n; i++) {
+        int same = def.num[i] == pv->num[i] || (isnan(def.num[i]) && isnan(pv->num[i]));
+        if (same && strcmp(def.str[i], pv->str[i]) == 0)
+            continue;
+        char v[64];
+        cx_param_format(pv, i, v, sizeof v);
+        size_t n = strlen(buf);
+        snprintf(buf + n, len - n, " %s=%s", m->params[i].key, v);
+    }
+}
+
+/* The kkt error per iteration of the run asked for (--method and --set:
+ * the session's method and parameters) or, for --method auto, of every
+ * method of the scene that supports the problem and the law, on one
+ * semilog plot (the session keeps the operators); or (work) the kkt error
+ * against the time spent, log-log, with the baseline time as a vertical
+ * line. */
+static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc, cx_session *s,
+                                   const cx_result *res, int work, cx_diag *d)
+{
+    int level = res->run.level;
+    conv_rec rec[CX_SCENE_MAX_METHODS + 1];
     memset(rec, 0, sizeof rec);
+    /* the runs: the session's own (a named method with its --set), or the
+     * scene's list with the auto choice among them */
+    const cx_method *runs[CX_SCENE_MAX_METHODS + 1];
+    cx_param_values pvs[CX_SCENE_MAX_METHODS + 1];
+    int nruns = 0;
+    const cx_method *own = cx_session_method(s);
+    const cx_problem *p0 = cx_session_problem(s);
+    cx_friction law = cx_session_friction(s)->law;
+    int named = r->methods ? r->methods->n : 0;
+    if (own) {
+        runs[nruns] = own;
+        pvs[nruns++] = *cx_session_params(s);
+    }
+    /* the other --method, each with the --set keys it has */
+    for (int k = 1; k < named && nruns < CX_SCENE_MAX_METHODS + 1; k++) {
+        const cx_method *m = cx_method_find(r->methods->v[k]);
+        char owner[64];
+        snprintf(owner, sizeof owner, "method '%s'", m->id);
+        CX_TRY(cx_method_check(m, p0, law, d));
+        cx_param_default(&pvs[nruns], m->params);
+        for (int i = 0; r->sets && i < r->sets->n; i++)
+            CX_TRY(cli_param_set_for(&pvs[nruns], r->sets->v[i], named, owner, d));
+        runs[nruns++] = m;
+    }
+    if (res->run.method_auto)
+        for (int k = 0; k < sc->nmethods && nruns < CX_SCENE_MAX_METHODS + 1; k++) {
+            const cx_method *m = cx_method_find(sc->methods[k]);
+            if (!m || m == own || cx_method_check(m, p0, law, NULL) != CX_OK)
+                continue;
+            runs[nruns] = m;
+            cx_param_default(&pvs[nruns++], m->params);
+        }
     char title[200];
-    snprintf(title, sizeof title, "%s level %d, friction %s: %s", sc->id, level,
-             cx_friction_name(cx_session_friction(s)->law),
+    snprintf(title, sizeof title, "%s level %d, friction %s: %s", sc->id, level, cx_friction_name(law),
              work ? "work-precision" : "convergence");
     cx_plot pl;
     cx_plot_init(&pl, title, work ? "time [s] (setup included)" : "iteration", "kkt error");
@@ -226,11 +371,9 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
     pl.font_scale = r->font_scale;
     cx_options opt = *cx_session_options(s);
     int rc = CX_OK;
-    const cx_problem *p0 = cx_session_problem(s);
-    for (int k = 0; k < sc->nmethods && rc == CX_OK; k++) {
-        const cx_method *m = cx_method_find(sc->methods[k]);
-        if (!m || cx_method_check(m, p0, cx_session_friction(s)->law, NULL) != CX_OK)
-            continue;
+    char methods[256] = "";
+    for (int k = 0; k < nruns && rc == CX_OK; k++) {
+        const cx_method *m = runs[k];
         /* work-precision: a fresh session per method, so that each pays
          * for its own factorisations (the session's cache would hide them) */
         cx_session *run = s, *fresh = NULL;
@@ -246,11 +389,14 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
             }
             run = fresh;
         }
-        if (cx_session_set_method(run, m, NULL, &opt, d) == CX_OK) {
-            rc = cx_solver_solve(run, render_conv_observe, &rec[k], d);
-            if (rc == CX_OK)
-                cx_plot_add_series(&pl, m->id, rec[k].n, work ? rec[k].time : rec[k].it, rec[k].kkt,
-                                   CX_PLOT_LINE | CX_PLOT_MARKERS | (k % 2 ? CX_PLOT_DASHED : 0));
+        char label[CX_PLOT_LABELLEN];
+        render_run_label(m, &pvs[k], label, sizeof label);
+        if ((rc = cx_session_set_method(run, m, &pvs[k], &opt, d)) == CX_OK &&
+            (rc = cx_solver_solve(run, render_conv_observe, &rec[k], d)) == CX_OK) {
+            cx_plot_add_series(&pl, label, rec[k].n, work ? rec[k].time : rec[k].it, rec[k].kkt,
+                               CX_PLOT_LINE | CX_PLOT_MARKERS);
+            size_t n = strlen(methods);
+            snprintf(methods + n, sizeof methods - n, "%s%s", n ? "; " : "", label);
         }
         cx_session_destroy(&fresh);
     }
@@ -259,9 +405,11 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
     if (work && rc == CX_OK && (rc = cx_problem_baseline(cx_session_problem(s), &t_base, d)) == CX_OK)
         cx_plot_add_vline(&pl, t_base, "baseline: factorise + solve K");
     cx_plot_add_text(&pl, "scene", sc->id);
+    cx_plot_add_text(&pl, "friction", cx_friction_name(law));
+    cx_plot_add_text(&pl, "methods", methods);
     if (rc == CX_OK)
         rc = cx_plot_write_png(&pl, r->png, r->w, r->h, d);
-    for (int k = 0; k < CX_SCENE_MAX_METHODS; k++) {
+    for (int k = 0; k < CX_SCENE_MAX_METHODS + 1; k++) {
         cx_free(rec[k].it);
         cx_free(rec[k].kkt);
         cx_free(rec[k].time);
@@ -275,7 +423,7 @@ static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *
     if (r->plot == 0)
         return render_plot_pressure(r, sc, res, d);
     if (r->plot >= 1)
-        return render_plot_convergence(r, sc, s, res->run.level, r->plot == 2, d);
+        return render_plot_convergence(r, sc, s, res, r->plot == 2, d);
     cx_render_opts o;
     cx_render_opts_default(&o);
     o.width = r->w;

@@ -67,8 +67,21 @@ static int solve_parse(int argc, char **argv, const char **scene, solve_args *a,
     if (npos == 0)
         return cx_diag_set(d, CX_EINVAL, "missing SCENE");
     /* a method id is a word of the registry: known before anything is built */
-    if (a->s.method && strcmp(a->s.method, "auto") != 0 && !cx_method_find(a->s.method))
-        return cx_diag_set(d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", a->s.method);
+    for (int k = 0; k < a->s.methods.n; k++) {
+        const char *id = a->s.methods.v[k];
+        if (strcmp(id, "auto") != 0 && !cx_method_find(id))
+            return cx_diag_set(d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", id);
+        if (a->s.methods.n > 1 && strcmp(id, "auto") == 0)
+            return cx_diag_set(d, CX_EINVAL, "--method auto: not in a comparison of several methods");
+    }
+    if (a->s.methods.n > 1 && a->render.plot != 1 && a->render.plot != 2)
+        return cx_diag_set(d, CX_EINVAL, "--method given %d times: only --plot convergence|work compares "
+                           "methods", a->s.methods.n);
+    if (a->s.methods.n > 1)
+        CX_TRY(cli_sets_check(&a->s.methods, &a->s.sets, d));
+    a->s.method = a->s.methods.n ? a->s.methods.v[0] : NULL;
+    a->render.methods = &a->s.methods;
+    a->render.sets = &a->s.sets;
     /* the summary (or JSON) and a file on standard output cannot share it */
     if (cli_render_stdout_users(&a->render) + a->json > 1)
         return cx_diag_set(d, CX_EINVAL, "--json, --png - and --vtu -: only one can go to standard output");
@@ -207,7 +220,7 @@ static int solve_method_params(const cx_method *m, const char *auto_sets, const 
     for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok; tok = strtok_r(NULL, " ", &save))
         CX_TRY(cx_param_set_pair(pv, tok, owner, d));
     for (int k = 0; k < a->s.sets.n; k++)
-        CX_TRY(cx_param_set_pair(pv, a->s.sets.v[k], owner, d));
+        CX_TRY(cli_param_set_for(pv, a->s.sets.v[k], a->s.methods.n, owner, d));
     return CX_OK;
 }
 

@@ -18,7 +18,10 @@ static double axis_nice_step(double span, int target)
 
 static void axis_make_linear(cx_axis *a, double lo, double hi, int target, int expand)
 {
-    if (!(hi > lo)) {
+    /* a span of rounding noise (a uniform pressure 1 ± 1e-8) reads as a
+     * constant, not as ticks with nine digits */
+    if (!(hi - lo > 1e-6 * fmax(fabs(lo), fabs(hi)))) {
+        lo = hi = 0.5 * (lo + hi);
         double c = lo, w = fabs(lo) > 0 ? 0.1 * fabs(lo) : 1.0;
         lo = c - w;
         hi = c + w;
@@ -125,7 +128,15 @@ void cx_axis_label(const cx_axis *a, double v, char *buf, size_t len)
     if (a->log) {
         int e = (int)floor(log10(v) + 0.5);
         if (fabs(v / pow(10.0, e) - 1.0) > 1e-9) {   /* 2 or 5 x 10^k */
-            snprintf(buf, len, "%g", v);
+            /* in the decade's own notation, so that 0.002 does not sit
+             * between 10⁻³ and 10⁻²: "2×10⁻³" (plain beside 1 and 10) */
+            int k = (int)floor(log10(v) + 1e-9);
+            if (k >= -1 && k <= 1) {
+                snprintf(buf, len, "%g", v);
+                return;
+            }
+            snprintf(buf, len, "%.0f×10", v / pow(10.0, k));
+            axis_superscript(k, buf, len);
             return;
         }
         if (e == 0 || e == 1) {

@@ -108,8 +108,18 @@ static int plot_ok(double v, int log)
 
 typedef struct plot_frame {
     double x0, y0, x1, y1;   /* plot area in pixels (y0 top) */
+    double yd;               /* bottom of the data's y range (y1 without a zero band) */
+    int zband;               /* log y with exact zeros: a band below the decades */
+    double yz;               /* the band's centre, where y = 0 is drawn */
     cx_axis ax, ay;
 } plot_frame;
+
+/* A point is drawn if finite and positive on a log axis, or an exact 0
+ * on a log y axis with its band. */
+static int plot_drawable(const cx_plot *p, const plot_frame *f, double x, double y)
+{
+    return plot_ok(x, p->logx) && (plot_ok(y, p->logy) || (f->zband && y == 0.0));
+}
 
 static double plot_px(const plot_frame *f, double x)
 {
@@ -118,7 +128,9 @@ static double plot_px(const plot_frame *f, double x)
 
 static double plot_py(const plot_frame *f, double y)
 {
-    return f->y1 - cx_axis_frac(&f->ay, y) * (f->y1 - f->y0);
+    if (f->zband && y == 0.0)
+        return f->yz;
+    return f->yd - cx_axis_frac(&f->ay, y) * (f->yd - f->y0);
 }
 
 /* Data ranges over drawable points and reference lines; 0 if none. */
@@ -126,10 +138,17 @@ static int plot_ranges(const cx_plot *p, double *xr, double *yr)
 {
     xr[0] = yr[0] = INFINITY;
     xr[1] = yr[1] = -INFINITY;
-    int any = 0;
+    int any = 0, zeros = 0;
     for (int k = 0; k < p->nseries; k++) {
         const cx_plot_series *s = &p->series[k];
         for (int i = 0; i < s->n; i++) {
+            if (p->logy && s->y[i] == 0.0 && plot_ok(s->x[i], p->logx)) {
+                /* an exact 0: drawn in the zero band, at its x */
+                xr[0] = fmin(xr[0], s->x[i]);
+                xr[1] = fmax(xr[1], s->x[i]);
+                zeros = 1;
+                continue;
+            }
             if (!plot_ok(s->x[i], p->logx) || !plot_ok(s->y[i], p->logy))
                 continue;
             xr[0] = fmin(xr[0], s->x[i]);
@@ -147,7 +166,11 @@ static int plot_ranges(const cx_plot *p, double *xr, double *yr)
             rr[1] = fmax(rr[1], r->value);
         }
     }
-    if (!any)
+    if (!any && zeros && !(yr[1] >= yr[0])) {   /* zeros only: some decades above the band */
+        yr[0] = 1e-3;
+        yr[1] = 1;
+    }
+    if (!any && !zeros)
         return 0;
     if (p->fixed_x) {
         xr[0] = p->xmin;
@@ -160,9 +183,22 @@ static int plot_ranges(const cx_plot *p, double *xr, double *yr)
     return 1;
 }
 
+/* Seven marker shapes: with the ten colours (7 and 10 coprime), series k
+ * gets colour k % 10 and shape k % 7, so that the first 70 series differ
+ * by the pair and neighbours by both (told apart in grey print too). */
+#define PLOT_NSHAPES 7
+static const char *const plot_shape_names[PLOT_NSHAPES] = {"circle", "square", "triangle", "diamond",
+                                                           "triangle-down", "plus", "cross"};
+
+static int plot_color_of(const cx_plot_series *sr, int k)
+{
+    return (sr->color >= 0 ? sr->color : k) % 10;
+}
+
+/* Filled shapes are filled; the plus and the cross are stroked. */
 static void plot_marker(cairo_t *cr, int shape, double x, double y, double r)
 {
-    switch (shape % 4) {
+    switch (shape % PLOT_NSHAPES) {
     case 0:
         cairo_new_sub_path(cr);
         cairo_arc(cr, x, y, r, 0, 2 * CX_PI);
@@ -176,14 +212,48 @@ static void plot_marker(cairo_t *cr, int shape, double x, double y, double r)
         cairo_line_to(cr, x - r, y + 0.7 * r);
         cairo_close_path(cr);
         break;
-    default:
+    case 3:
         cairo_move_to(cr, x, y - 1.2 * r);
         cairo_line_to(cr, x + r, y);
         cairo_line_to(cr, x, y + 1.2 * r);
         cairo_line_to(cr, x - r, y);
         cairo_close_path(cr);
         break;
+    case 4:
+        cairo_move_to(cr, x, y + 1.15 * r);
+        cairo_line_to(cr, x + r, y - 0.7 * r);
+        cairo_line_to(cr, x - r, y - 0.7 * r);
+        cairo_close_path(cr);
+        break;
+    case 5:
+        cairo_move_to(cr, x - 1.2 * r, y);
+        cairo_line_to(cr, x + 1.2 * r, y);
+        cairo_move_to(cr, x, y - 1.2 * r);
+        cairo_line_to(cr, x, y + 1.2 * r);
+        break;
+    default:
+        cairo_move_to(cr, x - r, y - r);
+        cairo_line_to(cr, x + r, y + r);
+        cairo_move_to(cr, x - r, y + r);
+        cairo_line_to(cr, x + r, y - r);
+        break;
     }
+}
+
+static void plot_marker_ink(cairo_t *cr, int shape, double s)
+{
+    if (shape % PLOT_NSHAPES >= 5) {
+        cairo_set_line_width(cr, 2.0 * s);
+        cairo_stroke(cr);
+    } else {
+        cairo_fill(cr);
+    }
+}
+
+void cx_plot_series_style(const cx_plot *p, int k, int *color, const char **marker)
+{
+    *color = plot_color_of(&p->series[k], k);
+    *marker = plot_shape_names[k % PLOT_NSHAPES];
 }
 
 static void plot_grid(cairo_t *cr, const plot_frame *f, const double *xs, int nx, const double *ys,
@@ -235,9 +305,26 @@ static void plot_axes(cairo_t *cr, const cx_plot *p, const plot_frame *f, double
         maxw = fmax(maxw, w);
     }
     /* axis labels and title */
-    cx_text(cr, p->xlabel, 0.5 * (f->x0 + f->x1), f->y1 + 30 * s, 16 * s, 0, 0.5, 0.0);
+    /* labels and title shrink to fit the image's width rather than be
+     * cut, and are centred on the image when the frame's centre leaves
+     * them too little room on one side */
+    double W = cairo_image_surface_get_width(cairo_get_target(cr)), room = W - 8 * s;
+    double fx = 16 * s, ft = 18 * s, wx = cx_text_width(cr, p->xlabel, fx, 0);
+    double wt = cx_text_width(cr, p->title, ft, 1);
+    if (wx > room) {
+        fx *= room / wx;
+        wx = room;
+    }
+    if (wt > room) {
+        ft *= room / wt;
+        wt = room;
+    }
+    double mid = 0.5 * (f->x0 + f->x1);
+    double xc = 0.5 * wx + 4 * s > fmin(mid, W - mid) ? 0.5 * W : mid;
+    double tc = 0.5 * wt + 4 * s > fmin(mid, W - mid) ? 0.5 * W : mid;
+    cx_text(cr, p->xlabel, xc, f->y1 + 30 * s, fx, 0, 0.5, 0.0);
     cx_text_vertical(cr, p->ylabel, f->x0 - maxw - 24 * s, 0.5 * (f->y0 + f->y1), 16 * s, 0);
-    cx_text(cr, p->title, 0.5 * (f->x0 + f->x1), f->y0 - 14 * s, 18 * s, 1, 0.5, 1.0);
+    cx_text(cr, p->title, tc, f->y0 - 14 * s, ft, 1, 0.5, 1.0);
 }
 
 static void plot_refs(cairo_t *cr, const cx_plot *p, const plot_frame *f, double s)
@@ -270,23 +357,46 @@ static void plot_refs(cairo_t *cr, const cx_plot *p, const plot_frame *f, double
     cairo_set_dash(cr, NULL, 0, 0);
 }
 
+/* The band of exact zeros on a log y axis: shaded, below a dashed break,
+ * labelled where a tick label would be. */
+static void plot_zero_band(cairo_t *cr, const plot_frame *f, double s)
+{
+    if (!f->zband)
+        return;
+    cairo_set_source_rgb(cr, 0.95, 0.95, 0.95);
+    cairo_rectangle(cr, f->x0, f->yd + 3 * s, f->x1 - f->x0, f->y1 - f->yd - 3 * s);
+    cairo_fill(cr);
+    double dash[] = {5 * s, 4 * s};
+    cairo_set_dash(cr, dash, 2, 0);
+    cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
+    cairo_set_line_width(cr, 1.2 * s);
+    cairo_move_to(cr, f->x0, f->yd + 3 * s);
+    cairo_line_to(cr, f->x1, f->yd + 3 * s);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, NULL, 0, 0);
+    cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+    cx_text(cr, "0 (exact)", f->x0 - 7 * s, f->yz, 14 * s, 0, 1.0, 0.5);
+}
+
 static void plot_series(cairo_t *cr, const cx_plot *p, const plot_frame *f, double s)
 {
-    cairo_save(cr);
-    cairo_rectangle(cr, f->x0, f->y0, f->x1 - f->x0, f->y1 - f->y0);
-    cairo_clip(cr);
     cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    double r = 4.0 * s;
     for (int k = 0; k < p->nseries; k++) {
         const cx_plot_series *sr = &p->series[k];
-        const double *c = plot_palette[(sr->color >= 0 ? sr->color : k) % 10];
+        const double *c = plot_palette[plot_color_of(sr, k)];
         cairo_set_source_rgb(cr, c[0], c[1], c[2]);
         if (sr->style & CX_PLOT_LINE) {
+            /* lines stop at the frame */
+            cairo_save(cr);
+            cairo_rectangle(cr, f->x0, f->y0, f->x1 - f->x0, f->y1 - f->y0);
+            cairo_clip(cr);
             double dash[] = {8 * s, 5 * s};
             cairo_set_dash(cr, dash, (sr->style & CX_PLOT_DASHED) ? 2 : 0, 0);
             cairo_set_line_width(cr, 2.2 * s);
             int pen = 0;
             for (int i = 0; i < sr->n; i++) {
-                if (!plot_ok(sr->x[i], p->logx) || !plot_ok(sr->y[i], p->logy)) {
+                if (!plot_drawable(p, f, sr->x[i], sr->y[i])) {
                     pen = 0;
                     continue;
                 }
@@ -299,15 +409,21 @@ static void plot_series(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
             }
             cairo_stroke(cr);
             cairo_set_dash(cr, NULL, 0, 0);
+            cairo_restore(cr);
         }
         if (sr->style & CX_PLOT_MARKERS) {
+            /* a marker on the frame (the last iterate, the largest time) is
+             * drawn whole: markers are clipped only a marker beyond it */
+            cairo_save(cr);
+            cairo_rectangle(cr, f->x0 - 2 * r, f->y0 - 2 * r, f->x1 - f->x0 + 4 * r, f->y1 - f->y0 + 4 * r);
+            cairo_clip(cr);
             for (int i = 0; i < sr->n; i++)
-                if (plot_ok(sr->x[i], p->logx) && plot_ok(sr->y[i], p->logy))
-                    plot_marker(cr, k, plot_px(f, sr->x[i]), plot_py(f, sr->y[i]), 4.0 * s);
-            cairo_fill(cr);
+                if (plot_drawable(p, f, sr->x[i], sr->y[i]))
+                    plot_marker(cr, k, plot_px(f, sr->x[i]), plot_py(f, sr->y[i]), r);
+            plot_marker_ink(cr, k, s);
+            cairo_restore(cr);
         }
     }
-    cairo_restore(cr);
 }
 
 /* The legend box goes in the corner of the plot area that covers the
@@ -334,7 +450,7 @@ static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
         for (int k = 0; k < p->nseries; k++) {
             const cx_plot_series *sr = &p->series[k];
             for (int i = 0; i < sr->n; i++) {
-                if (!plot_ok(sr->x[i], p->logx) || !plot_ok(sr->y[i], p->logy))
+                if (!plot_drawable(p, f, sr->x[i], sr->y[i]))
                     continue;
                 double x = plot_px(f, sr->x[i]), y = plot_py(f, sr->y[i]);
                 hits += x >= bx && x <= bx + bw && y >= by && y <= by + bh;
@@ -367,7 +483,7 @@ static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
         const cx_plot_series *sr = &p->series[k];
         if (!sr->label[0])
             continue;
-        const double *c = plot_palette[(sr->color >= 0 ? sr->color : k) % 10];
+        const double *c = plot_palette[plot_color_of(sr, k)];
         double y = best_y + pad + row * (r + 0.5), x = best_x + pad;
         cairo_set_source_rgb(cr, c[0], c[1], c[2]);
         if (sr->style & CX_PLOT_LINE) {
@@ -381,7 +497,7 @@ static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
         }
         if (sr->style & CX_PLOT_MARKERS) {
             plot_marker(cr, k, x + 0.5 * sample, y, 4.0 * s);
-            cairo_fill(cr);
+            plot_marker_ink(cr, k, s);
         }
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
         cx_text(cr, sr->label, x + sample + pad, y, fs, 0, 0.0, 0.5);
@@ -405,6 +521,19 @@ static int plot_draw(const cx_plot *p, cairo_surface_t *surf, int w, int h, cx_d
     f.x1 = w - 22 * s;
     f.y0 = 46 * s;
     f.y1 = h - 60 * s;
+    f.yd = f.y1;
+    f.zband = 0;
+    if (p->logy)
+        for (int k = 0; k < p->nseries && !f.zband; k++)
+            for (int i = 0; i < p->series[k].n; i++)
+                if (p->series[k].y[i] == 0.0 && plot_ok(p->series[k].x[i], p->logx)) {
+                    f.zband = 1;
+                    break;
+                }
+    if (f.zband) {
+        f.yd = f.y1 - 34 * s;
+        f.yz = 0.5 * (f.yd + 3 * s + f.y1);
+    }
     int xt = (int)fmax(3, (f.x1 - f.x0) / (110 * s));
     if (p->integer_x && !p->logx)   /* a step of at least 1: no tick at 1.5 */
         xt = (int)fmax(1, fmin(xt, floor(xr[1] - xr[0])));
@@ -414,6 +543,7 @@ static int plot_draw(const cx_plot *p, cairo_surface_t *surf, int w, int h, cx_d
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
     plot_axes(cr, p, &f, s);
+    plot_zero_band(cr, &f, s);
     plot_refs(cr, p, &f, s);
     plot_series(cr, p, &f, s);
     plot_legend(cr, p, &f, s);
@@ -449,10 +579,24 @@ int cx_plot_write_png(const cx_plot *p, const char *path, int w, int h, cx_diag 
         return cx_diag_set(d, CX_ENOMEM, "plot %dx%d: out of memory", w, h);
     int rc = cx_plot_draw_rgb(p, buf, w, h, stride, d);
     if (rc == CX_OK) {
-        cx_png_text text[CX_PLOT_MAX_TEXT + 2];
+        /* "Series": one line per series, its legend entry, colour index
+         * and marker shape, so that a reader (or a test) can tell which
+         * mark is which without the pixels */
+        char series[CX_PLOT_MAX_SERIES * (CX_PLOT_LABELLEN + 40)];
+        size_t ns = 0;
+        series[0] = '\0';
+        for (int k = 0; k < p->nseries; k++) {
+            int c;
+            const char *m;
+            cx_plot_series_style(p, k, &c, &m);
+            ns += (size_t)snprintf(series + ns, sizeof series - ns, "%s%s\tcolor=%d\tmarker=%s",
+                                   k ? "\n" : "", p->series[k].label, c, m);
+        }
+        cx_png_text text[CX_PLOT_MAX_TEXT + 3];
         int nt = 0;
         text[nt++] = (cx_png_text){"Title", p->title};
         text[nt++] = (cx_png_text){"Software", "signorini " CX_VERSION};
+        text[nt++] = (cx_png_text){"Series", series};
         for (int i = 0; i < p->ntext; i++)
             text[nt++] = (cx_png_text){p->text[i].key, p->text[i].value};
         rc = cx_png_write_xrgb(path, buf, w, h, stride, text, nt, d);

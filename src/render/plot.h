@@ -15,8 +15,14 @@
  * stay valid until cx_plot_write_png() returns.
  *
  * Points that cannot be drawn are skipped and break the line there: NaN or
- * Inf, and values <= 0 on a logarithmic axis (a convergence history that
- * reaches an exact 0 simply ends). Axis ranges come from the drawable data
+ * Inf, and values < 0 on a logarithmic axis, or 0 on a logarithmic x axis.
+ * An exact 0 on a logarithmic y axis (an error that vanished) is drawn in
+ * a shaded band below the lowest decade, labelled "0 (exact)", not at an
+ * arbitrary floor.
+ *
+ * Series k is drawn in colour k % 10 (unless its color says) with marker
+ * shape k % 7: every pair differs for up to 70 series. The PNG's "Series"
+ * tEXt chunk lists them, one line each: "LABEL\tcolor=C\tmarker=SHAPE". Axis ranges come from the drawable data
  * and the reference lines, unless fixed with cx_plot_set_xrange/yrange.
  *
  * Example (convergence history of two methods, semilog):
@@ -101,6 +107,10 @@ int cx_plot_add_text(cx_plot *p, const char *key, const char *value);
 /* Fix an axis range instead of fitting the data (lo < hi; > 0 on a log axis). */
 void cx_plot_set_xrange(cx_plot *p, double lo, double hi);
 void cx_plot_set_yrange(cx_plot *p, double lo, double hi);
+
+/* The colour (palette index) and marker shape name ("circle", "square",
+ * "triangle", "diamond", "triangle-down", "plus", "cross") of series k. */
+void cx_plot_series_style(const cx_plot *p, int k, int *color, const char **marker);
 
 /* Draw and write the plot as a w x h PNG (64 <= w, h <= 16384). Errors:
  * CX_EINVAL (sizes; no drawable point at all), CX_EIO (cannot write path:

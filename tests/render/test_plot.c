@@ -2,6 +2,7 @@
 /* Plots (render/plot.h): axis ticks, a plot written, read back and checked
  * pixel by pixel, text chunks, determinism, bad paths and empty plots. */
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -91,6 +92,54 @@ int main(void)
     CX_CHECK_OK(cx_plot_add_series(&lg, "m", 5, tx, ty, CX_PLOT_LINE | CX_PLOT_MARKERS));
     CX_CHECK_OK(cx_plot_add_vline(&lg, 4e-3, "baseline"));
     CX_CHECK_OK(cx_plot_write_png(&lg, a, 400, 300, &d));
+    /* the exact 0 is drawn in the labelled band below the decades: its
+     * grey (0.95 -> 242) fill is there, the marker (Tableau blue) in it */
+    CX_CHECK_OK(test_png_read(&img, a));
+    CX_CHECK(test_png_count(&img, 242, 242, 242, 1) > 1000);
+    {
+        int in_band = 0;
+        for (int yy = img.h / 2; yy < img.h; yy++)
+            for (int xx = 0; xx < img.w; xx++) {
+                const unsigned char *q = test_png_px(&img, xx, yy);
+                const unsigned char *below = yy + 6 < img.h ? test_png_px(&img, xx, yy + 6) : q;
+                in_band += abs(q[0] - 31) + abs(q[1] - 119) + abs(q[2] - 180) < 30 && abs(below[0] - 242) <= 2 && below[0] == below[2];
+            }
+        CX_CHECK(in_band > 0);
+    }
+    t = test_png_text(&img, "Series");
+    CX_CHECK(t && strcmp(t, "m\tcolor=0\tmarker=circle") == 0);
+    test_png_free(&img);
+
+    /* 32 series: every (colour, marker) pair differs, and neighbours
+     * differ in both */
+    cx_plot many;
+    cx_plot_init(&many, "many", "x", "y");
+    for (int k = 0; k < CX_PLOT_MAX_SERIES; k++)
+        CX_CHECK_OK(cx_plot_add_series(&many, "s", 1, tx, ty, CX_PLOT_MARKERS));
+    for (int k = 0; k < CX_PLOT_MAX_SERIES; k++) {
+        int ck, cj;
+        const char *mk, *mj;
+        cx_plot_series_style(&many, k, &ck, &mk);
+        for (int j = 0; j < k; j++) {
+            cx_plot_series_style(&many, j, &cj, &mj);
+            CX_CHECK(ck != cj || strcmp(mk, mj) != 0);
+            if (j == k - 1)
+                CX_CHECK(ck != cj && strcmp(mk, mj) != 0);
+        }
+    }
+    /* 2 and 5 ticks of a log axis in the decades' notation */
+    {
+        cx_axis ax;
+        char lab[64];
+        cx_axis_make(&ax, 1e-4, 1e-2, 1, 6, 1);
+        cx_axis_label(&ax, 2e-4, lab, sizeof lab);
+        CX_CHECK(strcmp(lab, "2×10⁻⁴") == 0);
+        cx_axis_label(&ax, 5e-3, lab, sizeof lab);
+        CX_CHECK(strcmp(lab, "5×10⁻³") == 0);
+        cx_axis_make(&ax, 0.1, 10, 1, 6, 1);
+        cx_axis_label(&ax, 2, lab, sizeof lab);
+        CX_CHECK(strcmp(lab, "2") == 0);
+    }
 
     /* bad path: one line naming it, no file, no temporary */
     CX_CHECK(cx_plot_write_png(&pl, "no-such-dir/x.png", 300, 200, &d) == CX_EIO);
