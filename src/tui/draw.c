@@ -76,7 +76,7 @@ static void draw_header(const tui_state *st, int cols)
         char line[512];
         int n = snprintf(line, sizeof line, " %s", st->scene.title[0] ? st->scene.title : st->scene.id);
         if (me && me->source && me->source[0] && n < (int)sizeof line)
-            n += snprintf(line + n, sizeof line - (size_t)n, "   %s %s: %s", bar, me->id, me->source);
+            n += snprintf(line + n, sizeof line - (size_t)n, " %s paper %s", bar, me->source);
         if (st->running && n < (int)sizeof line)
             snprintf(line + n, sizeof line - (size_t)n, "   %s %.3g steps/s", bar, st->pace);
         tui_put(1, 0, TUI_C_LABEL, cols, "%s", line);
