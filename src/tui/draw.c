@@ -73,12 +73,14 @@ static void draw_header(const tui_state *st, int cols)
     if (st->present) {
         /* what the class is looking at, and where the method comes from */
         const cx_method *me = tui_state_sel_method(st);
+        /* the source and the pace first: a long title is what gets cut */
         char line[512];
-        int n = snprintf(line, sizeof line, " %s", st->scene.title[0] ? st->scene.title : st->scene.id);
-        if (me && me->source && me->source[0] && n < (int)sizeof line)
-            n += snprintf(line + n, sizeof line - (size_t)n, " %s paper %s", bar, me->source);
-        if (st->running && n < (int)sizeof line)
-            snprintf(line + n, sizeof line - (size_t)n, "   %s %.3g steps/s", bar, st->pace);
+        int n = 0;
+        if (me && me->source && me->source[0])
+            n += snprintf(line + n, sizeof line - (size_t)n, " paper %s %s", me->source, bar);
+        if (st->running)
+            n += snprintf(line + n, sizeof line - (size_t)n, " %.3g steps/s %s", st->pace, bar);
+        snprintf(line + n, sizeof line - (size_t)n, " %s", st->scene.title[0] ? st->scene.title : st->scene.id);
         tui_put(1, 0, TUI_C_LABEL, cols, "%s", line);
     }
 }
