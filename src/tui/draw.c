@@ -290,21 +290,21 @@ static const struct {
     int role;
     const char *help;
 } draw_legend[] = {
-    {"kkt", NULL, TUI_C_LABEL, "error of the contact conditions"},
-    {"own", NULL, TUI_C_LABEL, "the method's own stop criterion"},
-    {"fr ct", NULL, TUI_C_LABEL, "points free, in contact (no friction)"},
+    {"kkt", NULL, TUI_C_LABEL, "contact conditions' error"},
+    {"own", NULL, TUI_C_LABEL, "the method's own criterion"},
+    {"fr ct", NULL, TUI_C_LABEL, "points free, in contact"},
     {"st sl", NULL, TUI_C_LABEL, "points sticking, slipping"},
-    {"ch", NULL, TUI_C_LABEL, "points whose status changed this step"},
-    {"inn nK", NULL, TUI_C_LABEL, "inner iterations, solves with K"},
+    {"ch", NULL, TUI_C_LABEL, "points changed this step"},
+    {"inn nK", NULL, TUI_C_LABEL, "inner iterations, K solves"},
     {"free", NULL, TUI_C_FREE, "strip: no contact (grey)"},
-    {"contact", NULL, TUI_C_CONTACT, "strip: in contact, frictionless"},
-    {"stick", NULL, TUI_C_STICK, "strip: in contact, sticking"},
-    {"slip", NULL, TUI_C_SLIP, "strip: slipping (arrow: direction)"},
-    {"changed", NULL, TUI_C_CHANGED, "strip: status changed this step"},
-    {"Hertz", NULL, TUI_C_REF, "analytical pressure (bars: computed)"},
-    {"run", "━━ run", TUI_C_SERIES0, "each run its colour: plot, runs, legend"},
+    {"contact", NULL, TUI_C_CONTACT, "strip: contact, no friction"},
+    {"stick", NULL, TUI_C_STICK, "strip: sticking"},
+    {"slip", NULL, TUI_C_SLIP, "strip: slipping, arrow: way"},
+    {"changed", NULL, TUI_C_CHANGED, "strip: changed this step"},
+    {"Hertz", NULL, TUI_C_REF, "exact pressure; bars: solved"},
+    {"run", "━━ run", TUI_C_SERIES0, "a run's colour: plot, table"},
     {"tol", NULL, TUI_C_LABEL, "dotted line: the tolerance"},
-    {"grey", NULL, TUI_C_GREY, "cannot run here (the reason beside)"},
+    {"grey", NULL, TUI_C_GREY, "cannot run (reason beside)"},
 };
 #define DRAW_NLEGEND ((int)(sizeof draw_legend / sizeof draw_legend[0]))
 

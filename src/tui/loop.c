@@ -179,6 +179,12 @@ int tui_main(int argc, char **argv)
             int run_ms = wait > 0 ? (int)(1e3 * wait) + 1 : 0;
             key = tui_term_key(stepping ? 1 : tui_state_running(st) && !busy ? run_ms : busy ? 50 : 200);
         }
+        if (key == 26) {
+            /* Ctrl-Z (a key in raw mode): suspend; fg redraws */
+            tui_term_suspend();
+            dirty = 1;
+            continue;
+        }
         if (key != TUI_KEY_NONE) {
             int react = tui_key(st, key);
             if (react & TUI_QUIT) {

@@ -7,6 +7,8 @@
 #include <curses.h>
 #include <langinfo.h>
 #include <locale.h>
+#include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -122,6 +124,23 @@ int tui_term_open(int mono, int ascii)
     term_cur_scheme = -1;
     tui_term_scheme(0);
     return 0;
+}
+
+void tui_term_suspend(void)
+{
+    if (!term_on)
+        return;
+    /* raw mode: Ctrl-Z arrives as a key, not as SIGTSTP; leave the screen,
+     * stop as the tty's suspend would, and on SIGCONT (fg) take the screen
+     * back whole */
+    endwin();
+    fflush(stdout);
+    void (*old)(int) = signal(SIGTSTP, SIG_DFL);
+    raise(SIGTSTP);
+    signal(SIGTSTP, old);
+    reset_prog_mode();
+    clearok(curscr, TRUE);
+    refresh();
 }
 
 void tui_term_close(void)

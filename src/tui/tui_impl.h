@@ -278,6 +278,8 @@ int tui_bucket_status(const unsigned char *status, const unsigned char *changed,
 /* Start curses (locale, colours, keypad); mono forces no colours, ascii
  * forces the ASCII fallback. 0 on success. */
 int tui_term_open(int mono, int ascii);
+/* Ctrl-Z: restore the terminal, stop the process; on fg redraw whole. */
+void tui_term_suspend(void);
 /* Restore the terminal; safe to call twice and from atexit. */
 void tui_term_close(void);
 int tui_term_utf8(void);

@@ -370,6 +370,24 @@ try:
     keys("q")
     exited_cleanly("q in presentation mode")
 
+    # ---- Ctrl-Z suspends to the shell, fg restores the screen ---------------------
+    start("bash --norc --noprofile -i", extra="PS1='sh$ '")
+    wait_for(has("sh$"), "an interactive shell")
+    keys(f"{exe} tui hertz", "Enter")
+    wait_for(has("built in"), "the explorer under a shell")
+    keys("s")
+    wait_for(lambda t: steps(t) and steps(t)[-1][0] == 1, "one step before Ctrl-Z")
+    keys("C-z")
+    wait_for(lambda t: "Stopped" in t and "factorised" not in t, "Ctrl-Z to stop the explorer")
+    keys("fg", "Enter")
+    wait_for(lambda t: "factorised" in t and steps(t) and steps(t)[-1][0] == 1, "fg to restore the screen")
+    keys("s")
+    check(wait_for(lambda t: steps(t) and steps(t)[-1][0] == 2, "a step after fg"), "keys work after fg")
+    keys("q")
+    wait_for(has("sh$"), "the shell after q")
+    keys("exit", "Enter")
+    exited_cleanly("exit from the shell")
+
     # ---- quitting mid-build still prints --stats ----------------------------------
     statsfile = os.path.join(workdir, "stats")
     start(f"{exe} tui hertz --level 1024 --stats 2>{statsfile}")
