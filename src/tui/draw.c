@@ -150,9 +150,14 @@ static void draw_status(const tui_state *st, int rows, int cols)
                                                        : "starting";
         const char *spin = draw_utf8 ? spinner_utf8[(int)(t * 10) % 10]
                                      : (char[]){spinner_ascii[(int)(t * 10) % 4], 0};
-        tui_put(y, 0, TUI_C_WARN, cols, "%s %s level %d: %s... %.1f s (keys still work)", spin,
+        /* typed-ahead steps are shown as queued; a step says Esc stops it */
+        char q[64] = "";
+        if (st->queued_steps)
+            snprintf(q, sizeof q, " %d step%s queued", st->queued_steps, st->queued_steps > 1 ? "s" : "");
+        tui_put(y, 0, TUI_C_WARN, cols, "%s %s level %d: %s... %.1f s (keys still work)%s%s", spin,
             st->job.kind == TUI_JOB_BUILD ? st->scene.id : st->job.kind == TUI_JOB_STEP ? "stepping" : "switching",
-            st->job.kind == TUI_JOB_STEP ? st->level : st->job.level, what, t);
+            st->job.kind == TUI_JOB_STEP ? st->level : st->job.level, what, t, q,
+            st->job.kind == TUI_JOB_STEP ? ", Esc cancels" : "");
         return;
     }
     if (st->editing) {
