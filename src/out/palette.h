@@ -23,6 +23,18 @@ static const unsigned char cx_palette_status[CX_PALETTE_NSTATUS][3] = {
 static const char *const cx_palette_status_name[CX_PALETTE_NSTATUS] = {
     "free", "contact", "stick", "slip", "slip"};
 
+/* The colours of compared series (the explorer's runs, one each, in the
+ * plot, the runs table and the legend), from the same Okabe & Ito set:
+ * blue, orange, bluish green, vermillion, sky blue, reddish purple. Their
+ * yellow and black are left out: yellow text washes out on white, black
+ * vanishes on a dark terminal. A series k takes entry k mod the count. */
+enum { CX_PALETTE_NSERIES = 6 };
+static const unsigned char cx_palette_series[CX_PALETTE_NSERIES][3] = {
+    {0, 114, 178}, {230, 159, 0}, {0, 158, 115}, {213, 94, 0}, {86, 180, 233}, {204, 121, 167},
+};
+static const char *const cx_palette_series_name[CX_PALETTE_NSERIES] = {
+    "blue", "orange", "green", "vermillion", "sky blue", "purple"};
+
 /* The "not converged" banner: a dark vermillion that white bold text
  * reads on (contrast above 4.5:1), as cairo's doubles. */
 #define CX_PALETTE_WARNING_RGB 0.66, 0.22, 0.0

@@ -592,6 +592,25 @@ static int act_run(tui_state *st)
     return TUI_REDRAW;
 }
 
+/* Esc: stop what is going on. A step in progress is cancelled through the
+ * session's cancel flag (the method stops at its next check; the UI does
+ * not wait); a paced or running run pauses; queued steps are dropped. A
+ * build cannot be stopped inside the assembly: said so, q still quits. */
+static int act_cancel(tui_state *st)
+{
+    int had = st->running || st->queued_steps;
+    st->running = 0;
+    st->queued_steps = 0;
+    if (tui_state_busy(st) && st->job.kind == TUI_JOB_STEP && st->session) {
+        cx_session_cancel(st->session);
+        tui_msg(st, 0, "cancelling the step in progress");
+    } else if (tui_state_busy(st))
+        tui_msg(st, 2, "a build cannot be cancelled before it ends; q quits");
+    else if (had)
+        tui_msg(st, 0, "paused (r runs on)");
+    return TUI_REDRAW;
+}
+
 static int act_reset(tui_state *st)
 {
     tui_state_reset(st);
@@ -735,6 +754,35 @@ static int act_render(tui_state *st)
     return TUI_REDRAW;
 }
 
+static int act_present(tui_state *st)
+{
+    st->present = !st->present;
+    if (st->present)
+        tui_msg(st, 0, "presentation mode: %.3g steps per second ({ slower, } faster); P leaves", st->pace);
+    else
+        tui_msg(st, 0, "presentation mode off: runs at full speed");
+    return TUI_REDRAW;
+}
+
+/* The pace doubles or halves within [TUI_PACE_MIN, TUI_PACE_MAX]. */
+static int pace_by(tui_state *st, double f)
+{
+    double p = st->pace * f;
+    st->pace = p < TUI_PACE_MIN ? TUI_PACE_MIN : p > TUI_PACE_MAX ? TUI_PACE_MAX : p;
+    tui_msg(st, 0, "%.3g steps per second%s", st->pace, st->present ? "" : " (in presentation mode, P)");
+    return TUI_REDRAW;
+}
+
+static int act_pace_up(tui_state *st)
+{
+    return pace_by(st, 2);
+}
+
+static int act_pace_down(tui_state *st)
+{
+    return pace_by(st, 0.5);
+}
+
 static int act_help(tui_state *st)
 {
     st->help = !st->help;
@@ -758,6 +806,7 @@ static const tui_binding tui_keys[] = {
     {' ', NULL, act_step, NULL},
     {'r', "r", act_run, "run to convergence / pause"},
     {'x', "x", act_reset, "start the method again"},
+    {TUI_KEY_ESC, "Esc", act_cancel, "cancel a step, pause a run"},
     {TUI_KEY_UP, "up k", act_up, "previous setup row"},
     {'k', NULL, act_up, NULL},
     {TUI_KEY_DOWN, "down j", act_down, "next setup row"},
@@ -781,6 +830,9 @@ static const tui_binding tui_keys[] = {
     {'c', "c", act_clear_runs, "forget the earlier runs"},
     {'e', "e", act_export, "export runs as CSV and JSON"},
     {'p', "p", act_render, "render the state to PNG"},
+    {'P', "P", act_present, "presentation mode on/off"},
+    {'}', "} {", act_pace_up, "presentation pace x2, /2"},
+    {'{', NULL, act_pace_down, NULL},
     {'?', "?", act_help, "this help"},
     {'q', "q ^C", act_quit, "quit"},
     {TUI_KEY_CTRL_C, NULL, act_quit, NULL},

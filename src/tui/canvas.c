@@ -99,3 +99,53 @@ int tui_bucket_status(const unsigned char *status, const unsigned char *changed,
     return best;
 }
 
+
+/* ---- palette mapping ---------------------------------------------------- */
+
+static long rgb_dist2(const unsigned char a[3], int r, int g, int b)
+{
+    long dr = a[0] - r, dg = a[1] - g, db = a[2] - b;
+    return dr * dr + dg * dg + db * db;
+}
+
+int tui_palette_xterm256(const unsigned char rgb[3])
+{
+    /* the cube's six levels per channel, then the 24 greys 8, 18, ..., 238 */
+    static const int level[6] = {0, 95, 135, 175, 215, 255};
+    int best = 16;
+    long bd = -1;
+    for (int i = 0; i < 216; i++) {
+        long dd = rgb_dist2(rgb, level[i / 36], level[(i / 6) % 6], level[i % 6]);
+        if (bd < 0 || dd < bd) {
+            bd = dd;
+            best = 16 + i;
+        }
+    }
+    for (int i = 0; i < 24; i++) {
+        int v = 8 + 10 * i;
+        long dd = rgb_dist2(rgb, v, v, v);
+        if (dd < bd) {
+            bd = dd;
+            best = 232 + i;
+        }
+    }
+    return best;
+}
+
+int tui_palette_basic8(const unsigned char rgb[3])
+{
+    /* the basic colours by hue: the channels above half their largest
+     * (black and white only for colours without a hue, so that a series
+     * colour never becomes invisible on one of the two backgrounds) */
+    int mx = rgb[0] > rgb[1] ? rgb[0] : rgb[1];
+    mx = mx > rgb[2] ? mx : rgb[2];
+    int mn = rgb[0] < rgb[1] ? rgb[0] : rgb[1];
+    mn = mn < rgb[2] ? mn : rgb[2];
+    if (mx - mn < 40)
+        return mx >= 128 ? 7 : 0;
+    int bits = 0;
+    for (int c = 0; c < 3; c++)
+        if (2 * rgb[c] > mx + mn)
+            bits |= 1 << c;   /* red 1, green 2, blue 4: curses' order */
+    return bits == 7 ? 7 : bits;
+}

@@ -70,6 +70,19 @@ static void draw_header(const tui_state *st, int cols)
     snprintf(pad, sizeof pad, "%-*s", cols, left);
     tui_term_put(0, 0, TUI_C_TITLE, pad, cols);
     tui_term_put(0, cols - rw + (draw_utf8 ? 2 : 0), TUI_C_TITLE, right, cols);
+    if (st->present) {
+        /* what the class is looking at, and where the method comes from */
+        const cx_method *me = tui_state_sel_method(st);
+        /* the source and the pace first: a long title is what gets cut */
+        char line[512];
+        int n = 0;
+        if (me && me->source && me->source[0])
+            n += snprintf(line + n, sizeof line - (size_t)n, " paper %s %s", me->source, bar);
+        if (st->running)
+            n += snprintf(line + n, sizeof line - (size_t)n, " %.3g steps/s %s", st->pace, bar);
+        snprintf(line + n, sizeof line - (size_t)n, " %s", st->scene.title[0] ? st->scene.title : st->scene.id);
+        tui_put(1, 0, TUI_C_LABEL, cols, "%s", line);
+    }
 }
 
 static const char spinner_ascii[] = "|/-\\";
@@ -104,10 +117,14 @@ static int draw_wrap(const char *text, int w, const char **at, int *len, int max
 
 /* The key bar, always on the bottom row: the keys a class needs first
  * (m f n v e p among them), as many as fit, whole. */
-static void draw_keybar(int y, int cols)
+static void draw_keybar(const tui_state *st, int y, int cols)
 {
-    static const char *const items[] = {"s step", "r run", "m method", "f friction", "n scene", "v view",
+    static const char *const usual[] = {"s step", "r run", "m method", "f friction", "n scene", "v view",
                                         "e export", "p png", "? help", "q quit", "x reset", NULL};
+    /* presentation: the pace keys in the bar, the file keys go */
+    static const char *const present[] = {"s step", "r run", "m method", "f friction", "n scene", "{ } pace",
+                                          "x reset", "? help", "P leave", "q quit", "v view", NULL};
+    const char *const *items = st->present ? present : usual;
     char bar[256] = "";
     size_t at = 0;
     for (int k = 0; items[k]; k++) {
@@ -121,7 +138,7 @@ static void draw_keybar(int y, int cols)
 
 static void draw_status(const tui_state *st, int rows, int cols)
 {
-    draw_keybar(rows - 1, cols);
+    draw_keybar(st, rows - 1, cols);
     int y = rows - 2;
     double t = cx_clock_now() - st->job.t0;
     /* a step shows progress only when it is slow */
@@ -133,9 +150,14 @@ static void draw_status(const tui_state *st, int rows, int cols)
                                                        : "starting";
         const char *spin = draw_utf8 ? spinner_utf8[(int)(t * 10) % 10]
                                      : (char[]){spinner_ascii[(int)(t * 10) % 4], 0};
-        tui_put(y, 0, TUI_C_WARN, cols, "%s %s level %d: %s... %.1f s (keys still work)", spin,
+        /* typed-ahead steps are shown as queued; a step says Esc stops it */
+        char q[64] = "";
+        if (st->queued_steps)
+            snprintf(q, sizeof q, " %d step%s queued", st->queued_steps, st->queued_steps > 1 ? "s" : "");
+        tui_put(y, 0, TUI_C_WARN, cols, "%s %s level %d: %s... %.1f s (keys still work)%s%s", spin,
             st->job.kind == TUI_JOB_BUILD ? st->scene.id : st->job.kind == TUI_JOB_STEP ? "stepping" : "switching",
-            st->job.kind == TUI_JOB_STEP ? st->level : st->job.level, what, t);
+            st->job.kind == TUI_JOB_STEP ? st->level : st->job.level, what, t, q,
+            st->job.kind == TUI_JOB_STEP ? ", Esc cancels" : "");
         return;
     }
     if (st->editing) {
@@ -265,14 +287,43 @@ static void draw_pickers(const tui_state *st, tui_box b)
 
 /* ---- help overlay -------------------------------------------------------------------- */
 
+/* What the help explains besides the keys: the step table's columns, the
+ * contact strip's symbols and the colours (name, UTF-8 symbol or NULL,
+ * the role it is drawn in, the words). */
+static const struct {
+    const char *name, *utf8;
+    int role;
+    const char *help;
+} draw_legend[] = {
+    {"kkt", NULL, TUI_C_LABEL, "contact conditions' error"},
+    {"own", NULL, TUI_C_LABEL, "the method's own criterion"},
+    {"fr ct", NULL, TUI_C_LABEL, "points free, in contact"},
+    {"st sl", NULL, TUI_C_LABEL, "points sticking, slipping"},
+    {"ch", NULL, TUI_C_LABEL, "points changed this step"},
+    {"inn nK", NULL, TUI_C_LABEL, "inner iterations, K solves"},
+    {"free", NULL, TUI_C_FREE, "strip: no contact (grey)"},
+    {"contact", NULL, TUI_C_CONTACT, "strip: contact, no friction"},
+    {"stick", NULL, TUI_C_STICK, "strip: sticking"},
+    {"slip", NULL, TUI_C_SLIP, "strip: slipping, arrow: way"},
+    {"changed", NULL, TUI_C_CHANGED, "strip: changed this step"},
+    {"Hertz", NULL, TUI_C_REF, "exact pressure; bars: solved"},
+    {"run", "━━ run", TUI_C_SERIES0, "a run's colour: plot, table"},
+    {"tol", NULL, TUI_C_LABEL, "dotted line: the tolerance"},
+    {"grey", NULL, TUI_C_GREY, "cannot run (reason beside)"},
+};
+#define DRAW_NLEGEND ((int)(sizeof draw_legend / sizeof draw_legend[0]))
+
 static void draw_help(int rows, int cols)
 {
     const tui_binding *bd = tui_bindings();
     int n = 0;
     while (bd[n].key)
         n++;
-    int ncol = n + 4 > rows - 2 ? 2 : 1;
-    int per = (n + ncol - 1) / ncol;
+    int nkeys = 0;
+    for (int k = 0; k < n; k++)
+        nkeys += bd[k].help != NULL;
+    int ncol = (nkeys + 4 + DRAW_NLEGEND > rows - 2) ? 2 : 1;
+    int per = (nkeys + DRAW_NLEGEND + ncol - 1) / ncol;
     int cw = (cols - 2) / ncol < 44 ? (cols - 2) / ncol : 44;
     int w = ncol * cw + 2, h = per + 4;
     if (w > cols)
@@ -284,11 +335,22 @@ static void draw_help(int rows, int cols)
     snprintf(blank, sizeof blank, "%*s", w, "");
     for (int y = 0; y < h; y++)
         tui_term_put(y0 + y, x0, TUI_C_NORMAL, blank, w);
-    tui_put(y0, x0, TUI_C_TITLE, w, " help: keys of the explorer%*s", w - 27, "");
+    tui_put(y0, x0, TUI_C_TITLE, w, " help: keys of the explorer, columns, colours%*s", w - 45, "");
+    int at = 0;
     for (int k = 0; k < n; k++) {
-        int col = k / per, row = k % per;
+        if (!bd[k].help)
+            continue;   /* an alias: named with its key */
+        int col = at / per, row = at % per;
+        at++;
         tui_put(y0 + 2 + row, x0 + 1 + col * cw, TUI_C_LABEL, 9, "%s", bd[k].keyname);
         tui_put(y0 + 2 + row, x0 + 10 + col * cw, TUI_C_NORMAL, cw - 10, "%s", bd[k].help);
+    }
+    for (int k = 0; k < DRAW_NLEGEND; k++, at++) {
+        int col = at / per, row = at % per;
+        int role = draw_legend[k].role;
+        const char *name = draw_legend[k].utf8 ? tui_sym(draw_legend[k].utf8, draw_legend[k].name) : draw_legend[k].name;
+        tui_put(y0 + 2 + row, x0 + 1 + col * cw, role, 9, "%s", name);
+        tui_put(y0 + 2 + row, x0 + 10 + col * cw, TUI_C_NORMAL, cw - 10, "%s", draw_legend[k].help);
     }
     tui_put(y0 + h - 1, x0, TUI_C_FAINT, w, " any key closes this help");
 }
@@ -298,6 +360,7 @@ static void draw_help(int rows, int cols)
 void tui_draw(const tui_state *st, int rows, int cols, int utf8)
 {
     draw_utf8 = utf8;
+    tui_term_scheme(st->present);
     tui_term_clear();
     if (cols < DRAW_MIN_COLS || rows < DRAW_MIN_ROWS) {
         /* whole words at any size, centred (30x10 shows it all) */
@@ -316,10 +379,16 @@ void tui_draw(const tui_state *st, int rows, int cols, int utf8)
     }
     draw_header(st, cols);
     int lw = cols >= 120 ? 30 : 23;
-    draw_pickers(st, (tui_box){1, 0, rows - 3, lw});
+    int top = st->present ? 2 : 1;
+    draw_pickers(st, (tui_box){top, 0, rows - 2 - top, lw});
 
     /* the header, then the panels, the status line and the key bar */
     int x = lw + 1, w = cols - x, y = 1, h = rows - 3;
+    if (st->present) {
+        /* the header's second line: the scene and the method's source */
+        y = 2;
+        h--;
+    }
     /* a second column for the mesh on wide terminals */
     int mesh_w = cols >= 140 ? (w * 2) / 5 : 0;
     w -= mesh_w ? mesh_w + 1 : 0;
@@ -327,6 +396,12 @@ void tui_draw(const tui_state *st, int rows, int cols, int utf8)
     int steps_h = big ? 12 : 6;
     int contact_h = st->info->dim == 3 ? (big ? 10 : 5) : (big ? 6 : 4);
     int runs_h = mesh_w ? 0 : big ? 8 : 4;
+    if (st->present) {
+        /* the plot and the contact strip enlarged, the tables shorter */
+        steps_h = big ? 7 : 4;
+        contact_h = st->info->dim == 3 ? (big ? 14 : 6) : (big ? 10 : 5);
+        runs_h = mesh_w ? 0 : big ? 6 : 0;
+    }
     int plot_h = h - steps_h - contact_h - runs_h;
     if (plot_h < 5) {
         runs_h = 0;
@@ -345,8 +420,8 @@ void tui_draw(const tui_state *st, int rows, int cols, int utf8)
         tui_panel_runs(st, (tui_box){y, x, runs_h, w});
     if (mesh_w) {
         int mx = x + w + 1, rh = big ? 10 : 5;
-        tui_panel_mesh(st, (tui_box){1, mx, h - rh, mesh_w});
-        tui_panel_runs(st, (tui_box){1 + h - rh, mx, rh, mesh_w});
+        tui_panel_mesh(st, (tui_box){top, mx, h - rh, mesh_w});
+        tui_panel_runs(st, (tui_box){top + h - rh, mx, rh, mesh_w});
     }
     /* last: a long message wraps upwards over the panels */
     draw_status(st, rows, cols);

@@ -3,6 +3,7 @@
  * current scene and level, each with its steps. No curses here. */
 #include "tui/tui_impl.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,6 +25,7 @@ void tui_history_clear(tui_history *h)
     for (int i = 0; i < h->nruns; i++)
         run_free(&h->runs[i]);
     h->nruns = 0;
+    h->next_serial = 0;
 }
 
 void tui_history_destroy(tui_history **h)
@@ -48,8 +50,11 @@ void tui_history_keep_current(tui_history *h)
 
 tui_run *tui_history_new_run(tui_history *h)
 {
-    if (h->nruns && h->runs[h->nruns - 1].nsteps == 0)
+    /* an empty current run gives its number (and colour) to its successor */
+    if (h->nruns && h->runs[h->nruns - 1].nsteps == 0) {
         run_free(&h->runs[--h->nruns]);
+        h->next_serial--;
+    }
     if (h->nruns == TUI_MAX_RUNS) {
         run_free(&h->runs[0]);
         memmove(h->runs, h->runs + 1, sizeof h->runs[0] * (TUI_MAX_RUNS - 1));
@@ -58,6 +63,7 @@ tui_run *tui_history_new_run(tui_history *h)
     }
     tui_run *r = &h->runs[h->nruns++];
     memset(r, 0, sizeof *r);
+    r->serial = h->next_serial++;
     return r;
 }
 
@@ -112,4 +118,14 @@ double tui_state_step_time(const tui_state *st, int i, int k)
 {
     const tui_run *r = tui_state_run_at(st, i);
     return r && k >= 0 && k < r->nsteps ? r->steps[k].step_time : 0;
+}
+
+int tui_run_colour(const tui_run *r)
+{
+    return r->serial % CX_PALETTE_NSERIES;
+}
+
+void tui_run_legend(const tui_run *r, char *buf, size_t len)
+{
+    snprintf(buf, len, "%s%s%s", r->method, r->changed[0] ? " " : "", r->changed);
 }

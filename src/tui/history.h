@@ -18,6 +18,7 @@ typedef struct tui_step {
 } tui_step;
 
 struct tui_run {
+    int serial;            /* the run's number in the session (its colour) */
     char method[32];
     char params[160];      /* "rho=0.001 ..." */
     char changed[160];     /* the parameters that differ from their defaults */
@@ -44,6 +45,7 @@ struct tui_run {
 typedef struct tui_history {
     tui_run runs[TUI_MAX_RUNS];   /* the last one is the current run */
     int nruns;
+    int next_serial;              /* numbers the runs: their colours */
 } tui_history;
 
 tui_history *tui_history_create(void);

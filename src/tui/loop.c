@@ -38,7 +38,7 @@ static void loop_fatal(const char *msg)
 
 typedef struct {
     const char *scene, *method, *keys, *export_dir;
-    int friction, level, frames, mono, ascii, stats;
+    int friction, level, frames, mono, ascii, stats, present;
 } loop_args;
 
 static const cx_opt loop_opts[] = {
@@ -52,6 +52,8 @@ static const cx_opt loop_opts[] = {
      offsetof(loop_args, ascii), NULL},
     {"export-dir", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR", "where 'e' writes the runs (default: .)",
      offsetof(loop_args, export_dir), NULL},
+    {"present", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL,
+     "presentation mode: paced runs (about 2 steps/s), high contrast, big plot", offsetof(loop_args, present), NULL},
     {"keys", 0, CX_OPT_STRING, 0, 0, 0, NULL, "KEYS", "type these keys first, one whenever idle (tests)",
      offsetof(loop_args, keys), NULL},
     {"frames", 0, CX_OPT_INT, 1, 1 << 30, 0, NULL, "N", "draw N frames (one per tick) and quit (tests)",
@@ -125,6 +127,8 @@ int tui_main(int argc, char **argv)
     }
     if (a.export_dir)
         tui_state_set_export_dir(st, a.export_dir);
+    if (a.present)
+        tui_state_set_present(st, 1);
 
     if (tui_term_open(a.mono, a.ascii) != 0) {
         tui_state_destroy(&st);
@@ -140,7 +144,7 @@ int tui_main(int argc, char **argv)
     int ndraw = 0, nstep = 0, frames = 0;
     const char *keys = a.keys;
     int dirty = 1;
-    double last_draw = 0;
+    double last_draw = 0, last_step = 0;
     while (!loop_quit) {
         if (tui_state_poll(st))
             dirty = 1;
@@ -170,7 +174,16 @@ int tui_main(int argc, char **argv)
             /* while a step runs, look often: most take well under a millisecond */
             double age = tui_state_step_age(st, now);
             int stepping = busy && age >= 0 && age < 0.05;
-            key = tui_term_key(stepping ? 1 : tui_state_running(st) && !busy ? 0 : busy ? 50 : 200);
+            /* a paced run (presentation) waits for its next step in getch */
+            double wait = tui_state_step_interval(st) - (now - last_step);
+            int run_ms = wait > 0 ? (int)(1e3 * wait) + 1 : 0;
+            key = tui_term_key(stepping ? 1 : tui_state_running(st) && !busy ? run_ms : busy ? 50 : 200);
+        }
+        if (key == 26) {
+            /* Ctrl-Z (a key in raw mode): suspend; fg redraws */
+            tui_term_suspend();
+            dirty = 1;
+            continue;
         }
         if (key != TUI_KEY_NONE) {
             int react = tui_key(st, key);
@@ -184,25 +197,30 @@ int tui_main(int argc, char **argv)
             tui_state_apply(st, react);
             dirty = 1;
         }
-        if (tui_state_running(st) && !tui_state_busy(st)) {
+        if (tui_state_running(st) && !tui_state_busy(st) &&
+            cx_clock_now() - last_step >= tui_state_step_interval(st)) {
+            last_step = cx_clock_now();
             tui_state_step(st);
             dirty = 1;
         }
     }
     tui_term_close();
     int status = loop_quit ? 128 + (int)loop_quit : 0;
-    if (tui_state_busy(st)) {
-        /* a build cannot be interrupted: leave it to the exit */
-        fflush(stdout);
-        _exit(status);
-    }
-    /* the steps' own times (the method's step and the bookkeeping) */
+    /* the steps' own times (the method's step and the bookkeeping); a
+     * job in progress is not read: its step is not in the history yet */
     for (int r = 0; r < tui_state_nruns(st); r++)
         for (int k = 0; k < tui_state_nsteps(st, r) && nstep < LOOP_SAMPLES; k++)
             step_t[nstep++] = tui_state_step_time(st, r, k);
     if (a.stats)
         fprintf(stderr, "explorer: %d redraws, median %.3f ms; %d steps, median %.3f ms\n", ndraw,
                1e3 * median(draw_t, ndraw), nstep, 1e3 * median(step_t, nstep));
+    if (tui_state_busy(st)) {
+        /* a build cannot be interrupted: leave it to the exit (after
+         * --stats, which quitting mid-build still prints) */
+        fflush(stdout);
+        fflush(stderr);
+        _exit(status);
+    }
     tui_state_destroy(&st);
     return status;
 }

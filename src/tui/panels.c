@@ -257,19 +257,24 @@ void tui_panel_plot(const tui_state *st, tui_box b)
             }
         }
     lo = fmax(lo, -18);
-    tui_canvas c;
+    tui_canvas c, cur;
     tui_canvas_init(&c, w, h);
+    tui_canvas_init(&cur, w, h);
     double sx = (2.0 * w - 1) / itmax, sy = (4.0 * h - 1) / (hi - lo);
 #define PX(it) ((it) * sx)
 #define PY(v) ((hi - (v)) * sy)
-    /* the tolerance, dotted */
+    /* the tolerance, dotted (labelled below) */
     double lt = log10(st->cur_opt.tol);
     if (lt >= lo && lt <= hi)
         for (int xd = 0; xd < 2 * w; xd += 3)
             tui_canvas_dot(&c, xd, (int)lround(PY(lt)), TUI_C_FAINT);
-    for (int r = 0; r < tui_state_nruns(st); r++) {
+    /* each run in its own colour; the current one on its own canvas, laid
+     * over the others so that it wins every shared cell */
+    int nr = tui_state_nruns(st);
+    for (int r = 0; r < nr; r++) {
         const tui_run *run = tui_state_run_at(st, r);
-        int role = r == tui_state_nruns(st) - 1 ? TUI_C_CURRENT : TUI_C_FAINT;
+        tui_canvas *on = r == nr - 1 ? &cur : &c;
+        int role = TUI_C_SERIES0 + tui_run_colour(run);
         double px = NAN, py = NAN;
         for (int k = 0; k < run->nsteps; k++) {
             double v = run->steps[k].kkt > 0 ? log10(run->steps[k].kkt) : lo;
@@ -278,26 +283,65 @@ void tui_panel_plot(const tui_state *st, tui_box b)
             v = fmax(lo, fmin(hi, v));
             double qx = PX(run->steps[k].iter), qy = PY(v);
             if (isfinite(px))
-                tui_canvas_line(&c, px, py, qx, qy, role);
+                tui_canvas_line(on, px, py, qx, qy, role);
             else
-                tui_canvas_dot(&c, (int)lround(qx), (int)lround(qy), role);
+                tui_canvas_dot(on, (int)lround(qx), (int)lround(qy), role);
             px = qx;
             py = qy;
         }
     }
-#undef PX
-#undef PY
+    for (int k = 0; k < w * h; k++)
+        if (cur.bits[k]) {
+            c.bits[k] |= cur.bits[k];
+            c.role[k] = cur.role[k];
+        }
+    tui_canvas_free(&cur);
     tui_put_canvas(&c, b.y + 1, b.x + lw);
     tui_canvas_free(&c);
-    for (int j = 0; j < h; j += h > 4 ? (h - 1) / 2 : h - 1) {
-        double v = hi - (hi - lo) * j / (h - 1);
-        tui_put(b.y + 1 + j, b.x, TUI_C_LABEL, lw, "%4.0f %s", v, tui_sym("┤", "|"));
-        if (h <= 1)
-            break;
+    /* ticks at whole decades, on the row each decade's line is drawn on,
+     * every decade that the rows leave room for */
+    int every = 1;
+    while ((hi - lo) / every + 1 > h)
+        every++;
+    int last_row = -2;
+    for (int v = (int)hi; v >= (int)lo; v--) {
+        if (((int)hi - v) % every)
+            continue;
+        int row = (int)lround(PY(v)) / 4;
+        if (row <= last_row || row >= h)
+            continue;
+        last_row = row;
+        tui_put(b.y + 1 + row, b.x, TUI_C_LABEL, lw, "%4d %s", v, tui_sym("┤", "|"));
     }
+    if (lt >= lo && lt <= hi) {
+        char tl[32];
+        int n = snprintf(tl, sizeof tl, " tol %.0e ", st->cur_opt.tol);
+        int row = (int)lround(PY(lt)) / 4;
+        if (n < w)
+            tui_put(b.y + 1 + row, b.x + lw + w - n, TUI_C_LABEL, n, "%s", tl);
+    }
+#undef PX
+#undef PY
     tui_put(b.y + b.h - 1, b.x + lw, TUI_C_LABEL, w, "0%*d", w - 1, itmax);
-    if (tui_state_nruns(st) > 1)
-        tui_put(b.y + b.h - 1, b.x + lw + 3, TUI_C_FAINT, w - 8, "earlier runs faint");
+    tui_put(b.y + b.h - 1, b.x + lw + 3, TUI_C_FAINT, w - 8, "iteration");
+    /* the legend, top right (where converging curves do not go): the
+     * newest runs, each in its colour, method and changed parameters */
+    int nleg = nr < h - 1 ? nr : h - 1;
+    int lgw = 0;
+    char leg[TUI_MAX_RUNS][64];
+    for (int k = 0; k < nleg; k++) {
+        const tui_run *run = tui_state_run_at(st, nr - nleg + k);
+        tui_run_legend(run, leg[k], sizeof leg[k]);
+        int l = (int)strlen(leg[k]) + 3;
+        lgw = l > lgw ? l : lgw;
+    }
+    lgw = lgw > w / 2 ? w / 2 : lgw;
+    for (int k = 0; nr > 1 && k < nleg && lgw > 4; k++) {
+        const tui_run *run = tui_state_run_at(st, nr - nleg + k);
+        int x = b.x + b.w - lgw;
+        tui_put(b.y + 1 + k, x, TUI_C_SERIES0 + tui_run_colour(run), 3, "%s ", tui_sym("━━", "--"));
+        tui_put(b.y + 1 + k, x + 3, TUI_C_SERIES0 + tui_run_colour(run), lgw - 3, "%-*s", lgw - 3, leg[k]);
+    }
 }
 
 /* ---- mesh view -------------------------------------------------------------------- */
@@ -387,7 +431,10 @@ void tui_panel_runs(const tui_state *st, tui_box b)
 {
     tui_rule(b.y, b.x, b.w, "runs");
     /* narrow: the time and K-solve columns go, the outcome stays */
-    int wide = b.w >= 84;
+    int wide = b.w >= 86;
+    /* each row opens with its run's colour, as in the plot and its legend */
+    b.x += 2;
+    b.w -= 2;
     if (wide)
         tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-11s %-7s %-7s %4s %7s %7s %4s  %s", "method", "law", "F/slip",
             "iter", "kkt", "ms", "nK", "outcome; changed parameters");
@@ -418,6 +465,7 @@ void tui_panel_runs(const tui_state *st, tui_box b)
         int role = run->reason > 0 ? TUI_C_OK : run->reason < 0 ? TUI_C_ERROR : TUI_C_NORMAL;
         if (r == tui_state_nruns(st) - 1 && run->reason == 0)
             role = TUI_C_CURRENT;
+        tui_put(y, b.x - 2, TUI_C_SERIES0 + tui_run_colour(run), 2, "%s", tui_sym("■", "#"));
         if (wide)
             tui_put(y, b.x, role, b.w, "%-11.11s %-7s %-7.7s %4d %s %7.1f %4ld  %s%s%s", run->method,
                 cx_friction_name(run->law), coef, s ? s->iter : 0, kkt, s ? 1e3 * s->time : 0, s ? s->solves : 0,

@@ -521,6 +521,7 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
     st->refused = tui_xalloc(NULL, sizeof st->refused[0] * (size_t)(cx_method_count() + 1));
     memset(st->refused, 0, sizeof st->refused[0] * (size_t)(cx_method_count() + 1));
     st->m = -1;
+    st->pace = TUI_PACE_DEFAULT;
     snprintf(st->export_dir, sizeof st->export_dir, ".");
     cx_options_default(&st->sel_opt);
     st->cur_opt = st->sel_opt;
@@ -616,6 +617,16 @@ void tui_state_destroy(tui_state **st)
 void tui_state_set_export_dir(tui_state *st, const char *dir)
 {
     snprintf(st->export_dir, sizeof st->export_dir, "%s", dir);
+}
+
+void tui_state_set_present(tui_state *st, int on)
+{
+    st->present = on;
+}
+
+double tui_state_step_interval(const tui_state *st)
+{
+    return st->present ? 1.0 / st->pace : 0;
 }
 
 int tui_state_running(const tui_state *st)

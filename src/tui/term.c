@@ -7,6 +7,8 @@
 #include <curses.h>
 #include <langinfo.h>
 #include <locale.h>
+#include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,7 +27,7 @@ static const struct {
     [TUI_C_LABEL] = {COLOR_CYAN, -1, 0, 0},
     [TUI_C_TITLE] = {COLOR_WHITE, COLOR_BLUE, A_BOLD, A_REVERSE},
     [TUI_C_SELECT] = {COLOR_BLACK, COLOR_CYAN, 0, A_REVERSE},
-    [TUI_C_GREY] = {COLOR_BLACK, -1, A_BOLD, A_DIM},
+    [TUI_C_GREY] = {-1, -1, A_DIM, A_DIM},   /* not bold black: invisible on dark themes */
     [TUI_C_REF] = {COLOR_MAGENTA, -1, 0, 0},
     [TUI_C_BAR] = {COLOR_YELLOW, -1, 0, A_BOLD},
     [TUI_C_CURRENT] = {COLOR_GREEN, -1, A_BOLD, A_BOLD},
@@ -38,6 +40,64 @@ static const struct {
     [TUI_C_WARN] = {COLOR_YELLOW, -1, A_BOLD, A_BOLD},
     [TUI_C_ERROR] = {COLOR_WHITE, COLOR_RED, A_BOLD, A_REVERSE | A_BOLD},
 };
+
+/* Presentation: high contrast on white and on black alike; no dark blue,
+ * no bold black, no yellow text; labels in the default colour, emphasis
+ * by reverse video and bold. */
+static const struct {
+    short fg, bg;
+    attr_t color_attr;
+} term_present[TUI_C_COUNT] = {
+    [TUI_C_NORMAL] = {-1, -1, 0},
+    [TUI_C_FAINT] = {-1, -1, 0},
+    [TUI_C_LABEL] = {-1, -1, A_BOLD},
+    [TUI_C_TITLE] = {-1, -1, A_REVERSE | A_BOLD},
+    [TUI_C_SELECT] = {-1, -1, A_REVERSE},
+    [TUI_C_GREY] = {-1, -1, A_DIM},
+    [TUI_C_REF] = {COLOR_MAGENTA, -1, A_BOLD},
+    [TUI_C_BAR] = {-1, -1, A_BOLD},
+    [TUI_C_CURRENT] = {-1, -1, A_BOLD},   /* the current run: its series colour below */
+    [TUI_C_FREE] = {-1, -1, 0},
+    [TUI_C_CONTACT] = {COLOR_BLUE, -1, A_BOLD},
+    [TUI_C_STICK] = {COLOR_GREEN, -1, A_BOLD},
+    [TUI_C_SLIP] = {COLOR_RED, -1, A_BOLD},
+    [TUI_C_CHANGED] = {-1, -1, A_REVERSE | A_BOLD},
+    [TUI_C_OK] = {COLOR_GREEN, -1, A_BOLD},
+    [TUI_C_WARN] = {COLOR_RED, -1, A_BOLD},
+    [TUI_C_ERROR] = {COLOR_WHITE, COLOR_RED, A_BOLD},
+};
+
+static int term_color, term_cur_scheme = -1;
+
+void tui_term_scheme(int present)
+{
+    if (!term_on || present == term_cur_scheme)
+        return;
+    term_cur_scheme = present;
+    for (int r = 1; r < TUI_C_COUNT; r++) {
+        short fg, bg;
+        attr_t extra;
+        if (r >= TUI_C_SERIES0) {
+            /* the runs: the shared palette, nearest colour the terminal has */
+            const unsigned char *rgb = cx_palette_series[r - TUI_C_SERIES0];
+            fg = (short)(COLORS >= 256 ? tui_palette_xterm256(rgb) : tui_palette_basic8(rgb));
+            bg = -1;
+            extra = COLORS >= 256 ? 0 : A_BOLD;
+        } else if (present) {
+            fg = term_present[r].fg;
+            bg = term_present[r].bg;
+            extra = term_present[r].color_attr;
+        } else {
+            fg = term_scheme[r].fg;
+            bg = term_scheme[r].bg;
+            extra = term_scheme[r].color_attr;
+        }
+        if (term_color && init_pair((short)r, fg, bg) == OK)
+            term_attr[r] = COLOR_PAIR(r) | extra;
+        else
+            term_attr[r] = r >= TUI_C_SERIES0 ? (r == TUI_C_SERIES0 ? A_BOLD : 0) : term_scheme[r].mono_attr;
+    }
+}
 
 int tui_term_open(int mono, int ascii)
 {
@@ -58,16 +118,29 @@ int tui_term_open(int mono, int ascii)
     set_escdelay(25);
     if (getenv("NO_COLOR") && getenv("NO_COLOR")[0])
         mono = 1;
-    int color = !mono && has_colors() && start_color() == OK;
-    if (color)
+    term_color = !mono && has_colors() && start_color() == OK;
+    if (term_color)
         use_default_colors();
-    for (int r = 0; r < TUI_C_COUNT; r++) {
-        if (color && r > 0 && init_pair((short)r, term_scheme[r].fg, term_scheme[r].bg) == OK)
-            term_attr[r] = COLOR_PAIR(r) | term_scheme[r].color_attr;
-        else
-            term_attr[r] = term_scheme[r].mono_attr;
-    }
+    term_cur_scheme = -1;
+    tui_term_scheme(0);
     return 0;
+}
+
+void tui_term_suspend(void)
+{
+    if (!term_on)
+        return;
+    /* raw mode: Ctrl-Z arrives as a key, not as SIGTSTP; leave the screen,
+     * stop as the tty's suspend would, and on SIGCONT (fg) take the screen
+     * back whole */
+    endwin();
+    fflush(stdout);
+    void (*old)(int) = signal(SIGTSTP, SIG_DFL);
+    raise(SIGTSTP);
+    signal(SIGTSTP, old);
+    reset_prog_mode();
+    clearok(curscr, TRUE);
+    refresh();
 }
 
 void tui_term_close(void)

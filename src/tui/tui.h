@@ -74,6 +74,9 @@ void tui_on_oom(void (*hook)(const char *msg));
 
 /* Where 'e' and 'p' write ("." by default). */
 void tui_state_set_export_dir(tui_state *st, const char *dir);
+/* Presentation mode (--present, 'P'): runs paced at a few steps a second,
+ * high-contrast colours, the plot and the contact strip enlarged. */
+void tui_state_set_present(tui_state *st, int on);
 
 /* ---- the loop ------------------------------------------------------------ */
 

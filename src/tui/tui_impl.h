@@ -10,6 +10,8 @@
 #include "tui/job.h"
 #include "tui/meshview.h"
 
+#include "out/palette.h"
+
 #include <stddef.h>
 
 /* ---- the picker rows (actions.c) ------------------------------------------ */
@@ -127,6 +129,8 @@ struct tui_state {
     int view;                 /* 0 convergence plot, 1 mesh (small terminals) */
     double disp_scale;        /* mesh view displacement scale, 0 = auto */
     int help;                 /* help overlay shown */
+    int present;              /* presentation mode: paced runs, high contrast, big plot */
+    double pace;              /* presentation: steps per second */
     int editing;              /* text entry for the field under the cursor */
     char edit[64];
     int edit_len;
@@ -209,8 +213,31 @@ enum {
     TUI_C_OK,
     TUI_C_WARN,
     TUI_C_ERROR,
-    TUI_C_COUNT
+    TUI_C_SERIES0,    /* the runs' colours: cx_palette_series, one role each */
+    TUI_C_COUNT = TUI_C_SERIES0 + CX_PALETTE_NSERIES
 };
+
+/* ---- the runs' colours and presentation pace (canvas.c, state.c) --------- */
+
+/* The xterm 256-colour index nearest an rgb colour (the 6x6x6 cube and
+ * the grey ramp), and the nearest of the 8 basic curses colours (0 black,
+ * 1 red, 2 green, 3 yellow, 4 blue, 5 magenta, 6 cyan, 7 white). */
+int tui_palette_xterm256(const unsigned char rgb[3]);
+int tui_palette_basic8(const unsigned char rgb[3]);
+/* Run r's entry in cx_palette_series (its number in the session modulo
+ * the palette: a run keeps its colour when older runs are dropped). */
+int tui_run_colour(const tui_run *r);
+/* The legend of a run: the method and the parameters that differ from
+ * their defaults ("pdas rho=0.01"). */
+void tui_run_legend(const tui_run *r, char *buf, size_t len);
+/* Seconds the loop waits between the steps of a run: 0 (as fast as the
+ * steps go) outside presentation mode, 1 / pace in it. */
+double tui_state_step_interval(const tui_state *st);
+/* Presentation pace: steps per second, between these, doubled or halved
+ * by '}' and '{'. */
+#define TUI_PACE_DEFAULT 2.0
+#define TUI_PACE_MIN 0.25
+#define TUI_PACE_MAX 32.0
 
 /* ---- program helpers ------------------------------------------------------ */
 
@@ -251,6 +278,8 @@ int tui_bucket_status(const unsigned char *status, const unsigned char *changed,
 /* Start curses (locale, colours, keypad); mono forces no colours, ascii
  * forces the ASCII fallback. 0 on success. */
 int tui_term_open(int mono, int ascii);
+/* Ctrl-Z: restore the terminal, stop the process; on fg redraw whole. */
+void tui_term_suspend(void);
 /* Restore the terminal; safe to call twice and from atexit. */
 void tui_term_close(void);
 int tui_term_utf8(void);
@@ -261,6 +290,10 @@ void tui_term_clear(void);
 /* Text at (y, x) in a role, at most maxw columns (< 0: to the edge). */
 void tui_term_put(int y, int x, int role, const char *s, int maxw);
 void tui_term_show(void);
+/* The colours: 0 the usual scheme, 1 presentation's high contrast (no
+ * dark blue, no bold black, no yellow text: reads on white and on black).
+ * Cheap when unchanged. */
+void tui_term_scheme(int present);
 
 /* ---- drawing (draw.c) --------------------------------------------------------- */
 

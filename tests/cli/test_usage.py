@@ -22,7 +22,7 @@ COMMANDS = [
     (["render"], SOLVE, ["hertz", "--png", "x.png", "--max-iter", "0"], "[1, 100000000]"),
     (["list"], {"json"}, None, None),
     (["version"], set(), None, None),
-    (["tui"], {"level", "method", "friction", "mono", "ascii", "export-dir", "keys", "frames", "stats"},
+    (["tui"], {"level", "method", "friction", "mono", "ascii", "export-dir", "keys", "frames", "stats", "present"},
      ["--frames", "0"], "--frames '0'"),
     (["bench", "wp"], BENCH | {"level", "tols", "sweep"}, ["hertz", "--repeat", "0"], "[1, 1000]"),
     (["bench", "scaling"], BENCH | {"levels", "tol", "no-reference"}, ["hertz", "--levels", "4", "--tol", "0"],

@@ -11,6 +11,7 @@
 
 #include <sys/stat.h>
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -494,10 +495,83 @@ static void test_scenes_open_converging(void)
     cx_free(ids);
 }
 
+/* Issue 21: each run its colour (the shared series palette, kept when the
+ * table drops older runs), the legend, the palette's terminal mapping and
+ * the presentation pace the loop waits by. */
+static void test_colours_and_pace(void)
+{
+    /* the nearest terminal colours of the palette's entries */
+    const unsigned char blue[3] = {0, 114, 178}, orange[3] = {230, 159, 0}, grey[3] = {153, 153, 153};
+    CX_CHECK(tui_palette_xterm256(blue) == 16 + 0 * 36 + 1 * 6 + 3);    /* (0, 95, 175) */
+    CX_CHECK(tui_palette_xterm256(orange) == 16 + 4 * 36 + 3 * 6 + 0);  /* (215, 175, 0) */
+    CX_CHECK(tui_palette_xterm256(grey) == 246);                          /* grey 148 */
+    CX_CHECK(tui_palette_basic8(blue) == 4 || tui_palette_basic8(blue) == 6);
+    CX_CHECK(tui_palette_basic8(orange) == 3 || tui_palette_basic8(orange) == 1);
+    CX_CHECK(tui_palette_basic8(cx_palette_series[2]) == 2 || tui_palette_basic8(cx_palette_series[2]) == 6);
+    CX_CHECK(tui_palette_basic8(cx_palette_series[3]) == 1);
+    for (int k = 0; k < CX_PALETTE_NSERIES; k++) {
+        /* never black or white: a run stays visible on both backgrounds */
+        int b = tui_palette_basic8(cx_palette_series[k]);
+        CX_CHECK(b != 0 && b != 7);
+        for (int j = 0; j < k; j++)
+            CX_CHECK(tui_palette_xterm256(cx_palette_series[j]) != tui_palette_xterm256(cx_palette_series[k]));
+    }
+
+    static tui_state st;
+    cx_diag d;
+    cx_diag_clear(&d);
+    CX_CHECK_OK(tui_state_init(&st, "hertz", 8, NULL, -1, 1, &d));
+    tui_state_apply(&st, tui_key(&st, 's'));
+    CX_CHECK(tui_state_nruns(&st) == 1 && tui_run_colour(tui_state_run(&st)) == 0);
+    /* a changed parameter opens a second run: the next colour, and the
+     * legend names the method and the changed parameter */
+    st.field = TUI_F_PARAM0;
+    tui_state_apply(&st, tui_key(&st, TUI_KEY_RIGHT));
+    tui_state_apply(&st, tui_key(&st, 's'));
+    CX_CHECK(tui_state_nruns(&st) == 2);
+    const tui_run *r1 = tui_state_run_at(&st, 1);
+    CX_CHECK(tui_run_colour(r1) == 1);
+    char leg[64];
+    tui_run_legend(r1, leg, sizeof leg);
+    CX_CHECK(strncmp(leg, "ssn-tresca rho=", 15) == 0);
+    tui_run_legend(tui_state_run_at(&st, 0), leg, sizeof leg);
+    CX_CHECK(strcmp(leg, "ssn-tresca") == 0);
+    /* 'c' keeps the current run, and its colour */
+    tui_state_apply(&st, tui_key(&st, 'c'));
+    CX_CHECK(tui_state_nruns(&st) == 1 && tui_run_colour(tui_state_run(&st)) == 1);
+
+    /* the pace: no wait outside presentation mode; 'P' gives 2 steps a
+     * second; '}' doubles, '{' halves, within the bounds */
+    CX_CHECK(tui_state_step_interval(&st) == 0);
+    CX_CHECK(tui_key(&st, 'P') == TUI_REDRAW && st.present);
+    CX_CHECK(fabs(tui_state_step_interval(&st) - 0.5) < 1e-12);
+    tui_key(&st, '}');
+    CX_CHECK(fabs(tui_state_step_interval(&st) - 0.25) < 1e-12);
+    tui_key(&st, '{');
+    tui_key(&st, '{');
+    CX_CHECK(fabs(tui_state_step_interval(&st) - 1.0) < 1e-12);
+    for (int k = 0; k < 10; k++)
+        tui_key(&st, '{');
+    CX_CHECK(fabs(tui_state_step_interval(&st) - 1 / TUI_PACE_MIN) < 1e-12);
+    for (int k = 0; k < 20; k++)
+        tui_key(&st, '}');
+    CX_CHECK(fabs(tui_state_step_interval(&st) - 1 / TUI_PACE_MAX) < 1e-12);
+    /* the pace keys change nothing of the run */
+    CX_CHECK(tui_state_nruns(&st) == 1 && tui_state_run(&st)->nsteps == 1);
+    CX_CHECK(tui_key(&st, 'P') == TUI_REDRAW && !st.present && tui_state_step_interval(&st) == 0);
+    /* Esc pauses a run and changes nothing of it */
+    tui_state_apply(&st, tui_key(&st, 'r'));
+    CX_CHECK(st.running);
+    CX_CHECK(tui_key(&st, TUI_KEY_ESC) == TUI_REDRAW && !st.running && strstr(st.msg, "paused"));
+    CX_CHECK(tui_state_nruns(&st) == 1 && tui_state_run(&st)->nsteps == 1 && tui_state_run(&st)->reason == 0);
+    tui_state_clear(&st);
+}
+
 int main(void)
 {
     test_pieces();
     test_hertz();
+    test_colours_and_pace();
     test_slider();
     test_cycle();
     test_failed_build();

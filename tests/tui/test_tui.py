@@ -350,6 +350,54 @@ try:
     keys("C-c")
     exited_cleanly("Ctrl-C", "130")   # as the other subcommands: 128 + SIGINT
 
+    # ---- presentation mode: paced, the source in the header, Esc pauses ----------
+    start(f"{exe} tui hertz --present")
+    wait_for(has("built in"), "hertz --present")
+    check("000 §4.2" in screen() and "elastic cylinder" in screen(),
+          "presentation: the scene's description and the method's source in the header")
+    check("{ } pace" in keybar(), f"presentation: the pace keys in the key bar: {keybar()!r}")
+    keys("r")
+    # at 2 steps a second the class sees the iterations one by one: the
+    # newest row of the table takes several values before convergence
+    seen = set()
+    wait_for(lambda t: (seen.add(max((i for i, _ in steps(t)), default=0)) or "run ended" in t
+                        or "converged" in t), "the paced run to converge")
+    check(len(seen - {0}) >= 3, f"presentation: the run paced, newest iterations seen {sorted(seen)}")
+    keys("x", "r")
+    wait_for(lambda t: steps(t) and steps(t)[-1][0] >= 1, "a second paced run to start")
+    keys("Escape")
+    wait_for(has("paused"), "Esc to pause the paced run")
+    keys("q")
+    exited_cleanly("q in presentation mode")
+
+    # ---- Ctrl-Z suspends to the shell, fg restores the screen ---------------------
+    start("bash --norc --noprofile -i", extra="PS1='sh$ '")
+    wait_for(has("sh$"), "an interactive shell")
+    keys(f"{exe} tui hertz", "Enter")
+    wait_for(has("built in"), "the explorer under a shell")
+    keys("s")
+    wait_for(lambda t: steps(t) and steps(t)[-1][0] == 1, "one step before Ctrl-Z")
+    keys("C-z")
+    wait_for(lambda t: "Stopped" in t and "factorised" not in t, "Ctrl-Z to stop the explorer")
+    keys("fg", "Enter")
+    wait_for(lambda t: "factorised" in t and steps(t) and steps(t)[-1][0] == 1, "fg to restore the screen")
+    keys("s")
+    check(wait_for(lambda t: steps(t) and steps(t)[-1][0] == 2, "a step after fg"), "keys work after fg")
+    keys("q")
+    wait_for(has("sh$"), "the shell after q")
+    keys("exit", "Enter")
+    exited_cleanly("exit from the shell")
+
+    # ---- quitting mid-build still prints --stats ----------------------------------
+    statsfile = os.path.join(workdir, "stats")
+    start(f"{exe} tui hertz --level 1024 --stats 2>{statsfile}")
+    wait_for(has("building"), "a large build to start")
+    keys("q")
+    exited_cleanly("q during a build")
+    with open(statsfile) as f:
+        st = f.read()
+    check("explorer:" in st and "redraws" in st, f"--stats printed when quitting mid-build: {st!r}")
+
     # ---- scripted sessions end by themselves ------------------------------------
     start(f"{exe} tui slider --keys rq")
     exited_cleanly("the scripted keys 'rq'")
