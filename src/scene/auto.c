@@ -40,7 +40,7 @@ static const auto_choice auto_table[] = {
     {"halfball", CX_FRICTION_COULOMB, "cf-fp", AUTO_CFFP_TIGHT},
     {"hertz", CX_FRICTION_NONE, "ssn-tresca", ""},   /* a tie with graves */
     {"hertz", CX_FRICTION_TRESCA, "ssn-tresca", ""},
-    {"hertz", CX_FRICTION_COULOMB, "cf-fp", AUTO_CFFP_TIGHT},
+    {"hertz", CX_FRICTION_COULOMB, "ssn-coulomb", ""},   /* since its condensation */
     {"laminae", CX_FRICTION_NONE, "graves", ""},
     {"laminae", CX_FRICTION_TRESCA, "ssn-tresca", ""},
     {"laminae", CX_FRICTION_COULOMB, "ssn-coulomb", ""},
@@ -50,7 +50,7 @@ static const auto_choice auto_table[] = {
     {"runningbond", CX_FRICTION_NONE, "graves", ""},
     {"slider", CX_FRICTION_NONE, "ssn-tresca", ""},
     {"slider", CX_FRICTION_TRESCA, "ssn-tresca", ""},
-    {"slider", CX_FRICTION_COULOMB, "cf-fp", AUTO_CFFP_TIGHT},
+    {"slider", CX_FRICTION_COULOMB, "ssn-coulomb", ""},  /* since its condensation */
     {"stackbond", CX_FRICTION_NONE, "graves", ""},
     {"twoblocks", CX_FRICTION_NONE, "ssn-tresca", ""},
     {"twoblocks", CX_FRICTION_TRESCA, "ssn-tresca", ""},

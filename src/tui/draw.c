@@ -55,18 +55,37 @@ void tui_put_canvas(const tui_canvas *c, int y, int x)
 
 /* ---- header and status line ------------------------------------------------- */
 
+/* Columns of UTF-8 text (one per code point: the header's symbols are
+ * single-width). */
+static int draw_columns(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += ((unsigned char)*s & 0xC0) != 0x80;
+    return n;
+}
+
 static void draw_header(const tui_state *st, int cols)
 {
     char left[512], right[64], pad[1024];
     const tui_run *run = tui_state_run(st);
     const char *bar = tui_sym("│", "|");
-    if (!st->have_info)
-        snprintf(left, sizeof left, " signorini %s %s %s building level %d", bar, st->scene.id, bar, st->sel_level);
-    else
-        snprintf(left, sizeof left, " signorini %s %s L%d %dD %d dofs %d pts %s %s %s", bar, st->scene.id, st->level,
-             st->info->dim, st->info->n, st->info->m, bar, run ? run->method : "-", cx_friction_name(st->cur_law));
     /* the counter that shows nothing was refactorised stays visible */
     int rw = snprintf(right, sizeof right, " %s factorised: %ld ", bar, st->cache.factorizations);
+    /* the program's name gives way first when the method and law would
+     * meet the counter (ssn-coulomb coulomb at 80 columns) */
+    for (int named = 1; named >= 0; named--) {
+        const char *me = named ? " signorini " : "";
+        const char *sep = named ? bar : "";
+        if (!st->have_info)
+            snprintf(left, sizeof left, "%s%s %s %s building level %d", me, sep, st->scene.id, bar, st->sel_level);
+        else
+            snprintf(left, sizeof left, "%s%s %s L%d %dD %d dofs %d pts %s %s %s", me, sep, st->scene.id, st->level,
+                     st->info->dim, st->info->n, st->info->m, bar, run ? run->method : "-",
+                     cx_friction_name(st->cur_law));
+        if (draw_columns(left) + draw_columns(right) <= cols)
+            break;
+    }
     snprintf(pad, sizeof pad, "%-*s", cols, left);
     tui_term_put(0, 0, TUI_C_TITLE, pad, cols);
     tui_term_put(0, cols - rw + (draw_utf8 ? 2 : 0), TUI_C_TITLE, right, cols);
