@@ -4,13 +4,19 @@
 # and build it in ./build. Safe to run again: it only does what is missing.
 # clang and libclang-rt-14-dev (libclang_rt.fuzzer, and the sanitizer
 # runtimes) are for CI's fuzzing (tests/fuzz/run.sh), not for the build.
+# Gmsh (user geometry), PETSc with OpenMPI (the parallel backend; with
+# --no-install-recommends petsc-dev does not bring mpirun: openmpi-bin),
+# FCLIB (problem exchange), giflib (animations), EGL (headless GL where
+# OSMesa is gone); cffi and pytest for the Python package and its tests.
 set -eu
 cd "$(dirname "$0")/.."
 
 packages="build-essential meson ninja-build pkg-config python3 \
 libsuitesparse-dev libopenblas0 liblapack-dev libinih-dev \
 libncurses-dev libosmesa6-dev libpng-dev libcairo2-dev fonts-dejavu-core tmux \
-python3-vtk9 clang libclang-rt-14-dev locales"
+python3-vtk9 clang libclang-rt-14-dev locales \
+libgmsh-dev petsc-dev openmpi-bin libfclib-dev libgif-dev \
+libegl-dev libopengl-dev python3-cffi python3-pytest"
 
 missing=""
 for p in $packages; do
