@@ -28,6 +28,9 @@ typedef struct cli_render_args {
     int cmap, no_title;  /* --cmap index (0 auto, then cx_cmap + 1), --no-title */
     const char *range, *title;   /* --range MIN:MAX, --title TEXT */
     int w, h, view, edges, vtu_ascii, timing;
+    /* 3D camera and framing: --camera AZ,EL, --crop contact, --mirror */
+    const char *camera;
+    int crop, mirror;
     /* the solve's --method and --set (borrowed): a convergence or work
      * plot runs each method named */
     const cx_opt_list *methods, *sets;

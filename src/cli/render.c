@@ -63,6 +63,27 @@ static int render_check_range(const char *text, cx_diag *d)
     return CX_OK;
 }
 
+/* --camera AZ,EL: degrees, |EL| <= 90 */
+static int render_parse_camera(const char *text, double *az, double *el)
+{
+    char *end;
+    *az = strtod(text, &end);
+    if (end == text || *end != ',')
+        return 0;
+    const char *b = end + 1;
+    *el = strtod(b, &end);
+    return end != b && *end == '\0' && isfinite(*az) && isfinite(*el) && fabs(*el) <= 90;
+}
+
+static int render_check_camera(const char *text, cx_diag *d)
+{
+    double az, el;
+    if (!render_parse_camera(text, &az, &el))
+        return cx_diag_set(d, CX_EINVAL, "--camera '%s': expected AZ,EL in degrees (e.g. 35,-35), |EL| <= 90",
+                           text);
+    return CX_OK;
+}
+
 const cx_opt cli_render_opts[] = {
     {"png", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
      "also draw the solution (written to a temporary file,\n"
@@ -89,8 +110,21 @@ const cx_opt cli_render_opts[] = {
      offsetof(cli_render_args, no_title), NULL},
     {"size", 0, CX_OPT_STRING, 0, 0, 0, NULL, "WxH", "image size in pixels (default 1200x900)",
      offsetof(cli_render_args, size), render_check_size},
-    {"view", 0, CX_OPT_CHOICE, 0, 0, 0, "body|contact", "body|contact",
-     "3D: the whole body, or the contact faces alone", offsetof(cli_render_args, view), NULL},
+    {"view", 0, CX_OPT_CHOICE, 0, 0, 0, "body|contact|below|above", "body|contact|below|above",
+     "3D: the whole body (default: from below when the contact\n"
+     "faces look down, as on halfball, else from above), the\n"
+     "contact faces alone seen from the obstacle (with axes), or\n"
+     "the body from below or above", offsetof(cli_render_args, view), NULL},
+    {"camera", 0, CX_OPT_STRING, 0, 0, 0, NULL, "AZ,EL",
+     "3D: look from azimuth AZ (degrees from -y towards +x) and\n"
+     "elevation EL (above the xy plane; negative: below); the\n"
+     "default is 35,30 or 35,-35", offsetof(cli_render_args, camera), render_check_camera},
+    {"crop", 0, CX_OPT_CHOICE, 0, 0, 0, "contact", "contact",
+     "zoom to the contact zone (the points in contact, with a\n"
+     "margin of half their extent)", offsetof(cli_render_args, crop), NULL},
+    {"mirror", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL,
+     "draw the whole body of a half or quarter model across the\n"
+     "scene's symmetry planes (key 'symmetry' of [scene])", offsetof(cli_render_args, mirror), NULL},
     {"edges", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "draw the mesh edges", offsetof(cli_render_args, edges),
      NULL},
     {"vtu", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
@@ -101,8 +135,8 @@ const cx_opt cli_render_opts[] = {
      offsetof(cli_render_args, vtu_ascii), NULL},
     {"plot", 0, CX_OPT_CHOICE, 0, 0, 0, "pressure|convergence|work", "pressure|convergence|work",
      "a line plot instead of the image: the contact pressure along\n"
-     "the boundary (with Hertz's where the scene has it; 3D: along\n"
-     "one line of the contact face, through the peak); the kkt\n"
+     "the boundary (with Hertz's where the scene has it; 3D: a\n"
+     "colour map of the contact face seen from the obstacle); the kkt\n"
      "error per iteration of the method run, with its --set (each\n"
      "--method given; with --method auto every method of the\n"
      "scene for the law) (semilog); or work-precision: the kkt\n"
@@ -117,6 +151,7 @@ void cli_render_args_init(cli_render_args *r)
 {
     memset(r, 0, sizeof *r);
     r->plot = -1;
+    r->crop = -1;
     r->font_scale = 1;
     r->w = 1200;
     r->h = 900;
@@ -420,7 +455,10 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
 static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
                       cx_diag *d)
 {
-    if (r->plot == 0)
+    /* 3D --plot pressure: the map of the contact face (the image of the
+     * pressure seen from the obstacle, with axes) */
+    int map3d = r->plot == 0 && res->dim == 3;
+    if (r->plot == 0 && !map3d)
         return render_plot_pressure(r, sc, res, d);
     if (r->plot >= 1)
         return render_plot_convergence(r, sc, s, res, r->plot == 2, d);
@@ -437,7 +475,16 @@ static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *
         o.has_range = 1;
     o.edges = r->edges;
     o.view = r->view;
-    if (r->field_name && (o.field = cx_field_from_name(r->field_name)) < 0)
+    /* 3D camera and framing */
+    o.has_camera = r->camera && render_parse_camera(r->camera, &o.cam_az, &o.cam_el);
+    o.crop_contact = r->crop == 0;
+    o.mirror = r->mirror;
+    o.scene = sc;
+    if (map3d) {
+        o.field = CX_FIELD_PRESSURE;
+        o.view = CX_VIEW_CONTACT;
+    }
+    if (!map3d && r->field_name && (o.field = cx_field_from_name(r->field_name)) < 0)
         return cx_diag_set(d, CX_EINVAL, "--field '%s': unknown field (see 'signorini render --help')",
                            r->field_name);
     cx_render_timing t;
@@ -458,8 +505,11 @@ int cli_render_check(const cli_render_args *r, int dim, cx_diag *d)
                                r->field_name);
         CX_TRY(cx_field_check(f, dim, d));
     }
-    if (r->view == CX_VIEW_CONTACT && dim != 3)
-        return cx_diag_set(d, CX_EINVAL, "--view contact: only in 3D");
+    if (r->view != CX_VIEW_BODY && dim != 3)
+        return cx_diag_set(d, CX_EINVAL, "--view %s: only in 3D",
+                           r->view == CX_VIEW_CONTACT ? "contact" : r->view == CX_VIEW_BELOW ? "below" : "above");
+    if (r->camera && dim != 3)
+        return cx_diag_set(d, CX_EINVAL, "--camera: only in 3D");
     return CX_OK;
 }
 

@@ -134,39 +134,146 @@ static void cam_add_array(cam_box *b, const double *R, const cx_render_array *a)
     }
 }
 
-void cx_render_camera(cx_render_scene *sc)
+void cx_render_mirror(const cx_render_scene *sc, int c, const double x[3], double y[3])
 {
-    cx_render_layout l;
-    cx_render_layout_image(sc->r, sc->o, &l);
+    double t[3] = {x[0], x[1], x[2]};
+    for (int j = 0; j < sc->nsym; j++)
+        if (c >> j & 1)
+            t[sc->sym_axis[j]] = 2 * sc->sym_at[j] - t[sc->sym_axis[j]];
+    y[0] = t[0];
+    y[1] = t[1];
+    y[2] = t[2];
+}
+
+/* Do the contact faces look down? The mean outward normal of the contact
+ * points (towards the obstacle) points below the xy plane. */
+static int cam_contact_down(const cx_render_scene *sc)
+{
+    const cx_contact_set *cs = &sc->r->contact;
+    double nz = 0;
+    for (int i = 0; i < cs->m; i++)
+        nz += cs->normal[3 * i + 2];
+    return cs->m > 0 && nz < -0.5 * cs->m;
+}
+
+void cx_render_camera_orient(cx_render_scene *sc)
+{
     const cx_obstacle *ob = sc->obstacle;
+    const cx_render_opts *o = sc->o;
     if (sc->dim == 2) {
         const double e[3] = {0, 0, 1}, up[3] = {0, 1, 0};
         cam_rotation(sc->R, e, up);
-    } else if (sc->o->view == CX_VIEW_CONTACT) {
-        /* from inside the obstacle, looking at the contact faces */
+    } else if (o->view == CX_VIEW_CONTACT) {
+        /* from inside the obstacle, looking at the contact faces; the
+         * first in-plane world axis to the right */
         double e[3] = {0, 0, -1}, up[3] = {0, 1, 0};
         if (ob && ob->kind == CX_OBST_PLANE)
             for (int k = 0; k < 3; k++)
                 e[k] = -ob->normal[k];
-        else if (sc->r->contact.m > 0)
-            for (int k = 0; k < 3; k++)
-                e[k] = -sc->r->contact.normal[k];
-        if (fabs(e[1]) > 0.9) {
+        else if (sc->r->contact.m > 0) {
+            /* the eye on the obstacle's side: along the mean of the
+             * contact normals, which point from the body to the obstacle */
+            const cx_contact_set *cs = &sc->r->contact;
+            double mn[3] = {0, 0, 0};
+            for (int i = 0; i < cs->m; i++)
+                for (int k = 0; k < 3; k++)
+                    mn[k] += cs->normal[3 * i + k];
+            if (mn[0] * mn[0] + mn[1] * mn[1] + mn[2] * mn[2] > 0)
+                for (int k = 0; k < 3; k++)
+                    e[k] = mn[k];
+        }
+        if (fabs(e[2]) > 0.9) {   /* x to the right: up = e x x */
+            const double xa[3] = {1, 0, 0};
+            cam_cross(e, xa, up);
+        } else if (fabs(e[1]) > 0.9) {
             up[1] = 0;
             up[2] = 1;
         }
         cam_rotation(sc->R, e, up);
     } else {
-        const double e[3] = {0.95, -1.35, 0.95}, up[3] = {0, 0, 1};
+        /* default: from the side the contact faces look to (halfball's
+         * indentation is on its underside), 35 degrees round from -y */
+        double az = 35, el = 30;
+        if (o->view == CX_VIEW_BELOW || (o->view == CX_VIEW_BODY && cam_contact_down(sc)))
+            el = -35;
+        if (o->has_camera) {
+            az = o->cam_az;
+            el = o->cam_el;
+        }
+        sc->az = az;
+        sc->el = el;
+        sc->from_below = el < 0;
+        double a = az * CX_PI / 180, b = el * CX_PI / 180;
+        double e[3] = {cos(b) * sin(a), -cos(b) * cos(a), sin(b)}, up[3] = {0, 0, 1};
+        if (fabs(e[2]) > 0.999) {   /* straight above or below: the limit of z up */
+            double sg = e[2] > 0 ? 1 : -1;
+            up[0] = -sg * sin(a);
+            up[1] = sg * cos(a);
+            up[2] = 0;
+        }
         cam_rotation(sc->R, e, up);
+        /* the eye on the obstacle's side of the contact faces: the
+         * obstacle would hide them */
+        const cx_contact_set *cs = &sc->r->contact;
+        double towards = 0;
+        for (int i = 0; i < cs->m; i++)
+            for (int k = 0; k < 3; k++)
+                towards += cs->normal[3 * i + k] * sc->R[6 + k];
+        sc->obstacle_ghost = ob && towards > 0;
     }
+}
+
+/* --crop contact: the points in contact (all contact points if none is),
+ * with a margin of half their extent (at least 5 % of the body). */
+static int cam_crop(const cx_render_scene *sc, cam_box *b, double body)
+{
+    const cx_contact_set *cs = &sc->r->contact;
+    int any = 0;
+    for (int i = 0; i < cs->m; i++)
+        any |= sc->r->status[i] != CX_PT_FREE;
+    cam_box c = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    int n = 0;
+    for (int cp = 0; cp < sc->ncopies; cp++)
+        for (int i = 0; i < cs->m; i++) {
+            if (any && sc->r->status[i] == CX_PT_FREE)
+                continue;
+            double x[3];
+            cx_render_mirror(sc, cp, sc->xd + 3 * cs->node[i], x);
+            cam_add(&c, sc->R, x);
+            n++;
+        }
+    if (n == 0)
+        return 0;
+    for (int k = 0; k < 2; k++) {
+        double pad = fmax(0.5 * (c.hi[k] - c.lo[k]), 0.05 * body);
+        b->lo[k] = c.lo[k] - pad;
+        b->hi[k] = c.hi[k] + pad;
+    }
+    return 1;
+}
+
+void cx_render_camera(cx_render_scene *sc)
+{
+    cx_render_layout l;
+    cx_render_layout_image(sc->r, sc->o, &l);
+    if (sc->dim == 3 && sc->o->view == CX_VIEW_CONTACT) {
+        /* room for the axes' ticks and titles (overlay.c) */
+        l.area[0] += 4.6 * l.font;
+        l.area[2] -= 4.6 * l.font;
+        l.area[3] -= 2.8 * l.font;
+    }
+    const cx_obstacle *ob = sc->obstacle;
     cam_box b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
     if (sc->dim == 2) {
         const cx_mesh *m = sc->r->mesh;
-        for (int i = 0; i < m->nnodes; i++) {
-            cam_add(&b, sc->R, sc->xd + 3 * i);
-            cam_add(&b, sc->R, sc->x0 + 3 * i);
-        }
+        for (int c = 0; c < sc->ncopies; c++)
+            for (int i = 0; i < m->nnodes; i++) {
+                double x[3];
+                cx_render_mirror(sc, c, sc->xd + 3 * i, x);
+                cam_add(&b, sc->R, x);
+                cx_render_mirror(sc, c, sc->x0 + 3 * i, x);
+                cam_add(&b, sc->R, x);
+            }
         /* a disc obstacle is shown whole when it is not much larger than
          * the body; a plane is seen as the strip below the body */
         double size = fmax(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
@@ -189,8 +296,12 @@ void cx_render_camera(cx_render_scene *sc)
         }
     } else {
         cam_add_array(&b, sc->R, &sc->tris);
-        cam_add_array(&b, sc->R, &sc->obst);
+        /* a plane seen from its side is not drawn (overlay.c): not framed */
+        if (!(sc->obstacle_ghost && sc->obstacle->kind == CX_OBST_PLANE))
+            cam_add_array(&b, sc->R, &sc->obst);
     }
+    if (sc->o->crop_contact)
+        cam_crop(sc, &b, fmax(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]));
     double bw = fmax(b.hi[0] - b.lo[0], 1e-300), bh = fmax(b.hi[1] - b.lo[1], 1e-300);
     sc->k = fmin(l.area[2] / (1.06 * bw), l.area[3] / (1.06 * bh));
     sc->cx = l.area[0] + 0.5 * l.area[2] - sc->k * 0.5 * (b.lo[0] + b.hi[0]);
@@ -202,8 +313,9 @@ void cx_render_camera(cx_render_scene *sc)
 
 void cx_render_scene_project(const cx_render_scene *sc, const double x[3], double px[2])
 {
-    double v[3];
-    cam_view(sc->R, x, v);
+    double v[3], y[3];
+    cx_render_mirror(sc, sc->copy, x, y);
+    cam_view(sc->R, y, v);
     px[0] = sc->cx + sc->k * v[0];
     px[1] = sc->cy - sc->k * v[1];
 }

@@ -5,6 +5,7 @@
 #include "render/render_impl.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 int cx_render_array_push(cx_render_array *a, const double x[3], const double nrm[3], double value)
@@ -156,6 +157,93 @@ static int geom_contact_faces(cx_render_scene *sc, cx_render_array *a, int edges
     return rc;
 }
 
+/* Feature edges of the surface facets f at coordinates X (3 per node):
+ * the edges where two facets meet at more than 30 degrees, and those of
+ * one facet or of more than two. Node pairs into *pairs (cx_free). */
+typedef struct geom_edge {
+    int a, b;
+    float n[3];
+} geom_edge;
+
+static int geom_edge_cmp(const void *p, const void *q)
+{
+    const geom_edge *x = p, *y = q;
+    if (x->a != y->a)
+        return x->a < y->a ? -1 : 1;
+    return x->b < y->b ? -1 : x->b > y->b;
+}
+
+static int geom_features(const cx_facets *f, const double *X, int **pairs, int *count)
+{
+    *pairs = NULL;
+    *count = 0;
+    size_t ne = (size_t)f->n * (size_t)f->npf;
+    geom_edge *e = cx_malloc(sizeof *e * (ne ? ne : 1));
+    if (!e)
+        return CX_ENOMEM;
+    size_t k = 0;
+    for (int i = 0; i < f->n; i++) {
+        const int *q = f->nodes + (size_t)f->npf * i;
+        double n[3];
+        geom_normal(X + 3 * q[0], X + 3 * q[1], X + 3 * q[2], n);
+        for (int j = 0; j < f->npf; j++) {
+            int a = q[j], b = q[(j + 1) % f->npf];
+            e[k].a = a < b ? a : b;
+            e[k].b = a < b ? b : a;
+            for (int c = 0; c < 3; c++)
+                e[k].n[c] = (float)n[c];
+            k++;
+        }
+    }
+    qsort(e, ne, sizeof *e, geom_edge_cmp);
+    int *out = cx_malloc(sizeof(int) * 2 * (ne ? ne : 1));
+    if (!out) {
+        cx_free(e);
+        return CX_ENOMEM;
+    }
+    int n = 0;
+    for (size_t i = 0; i < ne;) {
+        size_t j = i + 1;
+        while (j < ne && e[j].a == e[i].a && e[j].b == e[i].b)
+            j++;
+        double dot = e[i].n[0] * e[j - 1].n[0] + e[i].n[1] * e[j - 1].n[1] + e[i].n[2] * e[j - 1].n[2];
+        if (j - i != 2 || dot < cos(30 * CX_PI / 180)) {
+            out[2 * n] = e[i].a;
+            out[2 * n + 1] = e[i].b;
+            n++;
+        }
+        i = j;
+    }
+    cx_free(e);
+    *pairs = out;
+    *count = n;
+    return CX_OK;
+}
+
+int cx_render_on_plane(const cx_render_scene *sc, int a, int b)
+{
+    for (int j = 0; j < sc->nsym; j++) {
+        int ax = sc->sym_axis[j];
+        double tol = 1e-9 * (1 + fabs(sc->sym_at[j])) + 1e-6 * sc->size;
+        if (fabs(sc->x0[3 * a + ax] - sc->sym_at[j]) <= tol && fabs(sc->x0[3 * b + ax] - sc->sym_at[j]) <= tol)
+            return 1;
+    }
+    return 0;
+}
+
+/* The feature edges not on a symmetry plane of --mirror (inside the whole). */
+static void geom_drop_plane_edges(const cx_render_scene *sc, int *pairs, int *n)
+{
+    int k = 0;
+    for (int i = 0; i < *n; i++)
+        if (!cx_render_on_plane(sc, pairs[2 * i], pairs[2 * i + 1])) {
+            pairs[2 * k] = pairs[2 * i];
+            pairs[2 * k + 1] = pairs[2 * i + 1];
+            k++;
+        }
+    *n = k;
+}
+
 static int geom_3d(cx_render_scene *sc)
 {
     const cx_mesh *m = sc->r->mesh;
@@ -167,10 +255,47 @@ static int geom_3d(cx_render_scene *sc)
     int rc = CX_OK;
     for (int i = 0; i < f.n && rc == CX_OK; i++)
         rc = geom_face(sc, &sc->tris, f.nodes + (size_t)f.npf * i, f.npf, sc->o->edges);
+    /* the edges of the shape: the undeformed one as a wireframe
+     * (overlay.c), the deformed one as dark lines, a cue to the shape
+     * that the soft lighting no longer gives */
+    int *pairs = NULL, np = 0;
+    if (rc == CX_OK)
+        rc = geom_features(&f, sc->x0, &sc->feat0, &sc->nfeat0);
+    if (rc == CX_OK)
+        rc = geom_features(&f, sc->xd, &pairs, &np);
+    if (rc == CX_OK) {
+        geom_drop_plane_edges(sc, sc->feat0, &sc->nfeat0);
+        geom_drop_plane_edges(sc, pairs, &np);
+    }
+    static const double nz[3] = {0, 0, 1};
+    for (int i = 0; i < np && rc == CX_OK; i++) {
+        rc = cx_render_array_push(&sc->feature, sc->xd + 3 * pairs[2 * i], nz, 0);
+        if (rc == CX_OK)
+            rc = cx_render_array_push(&sc->feature, sc->xd + 3 * pairs[2 * i + 1], nz, 0);
+    }
+    cx_free(pairs);
     cx_facets_clear(&f);
     if (rc == CX_OK && sc->o->field == CX_FIELD_PRESSURE)
         rc = geom_contact_faces(sc, &sc->overlay, 0);
     return rc;
+}
+
+/* --mirror: the copies 1..ncopies-1 of an array, reflected (positions and
+ * normals) across the symmetry planes. */
+static int geom_mirror(const cx_render_scene *sc, cx_render_array *a)
+{
+    long n = a->n;
+    for (int c = 1; c < sc->ncopies; c++)
+        for (long i = 0; i < n; i++) {
+            const float *q = a->v + CX_RENDER_VFLOATS * i;
+            double x[3] = {q[0], q[1], q[2]}, nr[3] = {q[3], q[4], q[5]}, val = q[6];
+            cx_render_mirror(sc, c, x, x);
+            for (int j = 0; j < sc->nsym; j++)
+                if (c >> j & 1)
+                    nr[sc->sym_axis[j]] = -nr[sc->sym_axis[j]];
+            CX_TRY(cx_render_array_push(a, x, nr, val));
+        }
+    return CX_OK;
 }
 
 /* ---- the 3D obstacle ------------------------------------------------------- */
@@ -199,10 +324,14 @@ static int geom_obstacle3d(cx_render_scene *sc)
         return CX_OK;
     const cx_mesh *m = sc->r->mesh;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int i = 0; i < m->nnodes; i++)
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fmin(lo[k], sc->xd[3 * i + k]);
-            hi[k] = fmax(hi[k], sc->xd[3 * i + k]);
+    for (int c = 0; c < sc->ncopies; c++)   /* the whole body with --mirror */
+        for (int i = 0; i < m->nnodes; i++) {
+            double x[3];
+            cx_render_mirror(sc, c, sc->xd + 3 * i, x);
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], x[k]);
+                hi[k] = fmax(hi[k], x[k]);
+            }
         }
     double c[3], diag = 0;
     for (int k = 0; k < 3; k++) {
@@ -269,10 +398,15 @@ static int geom_obstacle3d(cx_render_scene *sc)
 
 int cx_render_geometry(cx_render_scene *sc)
 {
-    if (sc->dim == 2)
-        return geom_2d(sc);
-    CX_TRY(geom_3d(sc));
-    if (sc->o->view == CX_VIEW_BODY)
-        CX_TRY(geom_obstacle3d(sc));
-    return CX_OK;
+    if (sc->dim == 2) {
+        CX_TRY(geom_2d(sc));
+    } else {
+        CX_TRY(geom_3d(sc));
+        if (sc->o->view != CX_VIEW_CONTACT)
+            CX_TRY(geom_obstacle3d(sc));
+    }
+    CX_TRY(geom_mirror(sc, &sc->tris));
+    CX_TRY(geom_mirror(sc, &sc->overlay));
+    CX_TRY(geom_mirror(sc, &sc->lines));
+    return geom_mirror(sc, &sc->feature);
 }

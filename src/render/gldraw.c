@@ -8,6 +8,7 @@
 #include "render/glctx.h"
 
 #include <GL/osmesa.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -168,7 +169,7 @@ static void gl_draw_scene(const cx_render_scene *sc, GLuint prog, int *calls)
     /* the colormap as a 256 x 1 texture, sampled at texel centres */
     unsigned char tex[256 * 4];
     for (int i = 0; i < 256; i++) {
-        cx_colormap_named(sc->o->cmap, cx_field_is_signed(sc->o->field), i / 255.0, tex + 4 * i);
+        cx_colormap_named(sc->o->cmap, sc->diverging, i / 255.0, tex + 4 * i);
         tex[4 * i + 3] = 255;
     }
     GLuint t;
@@ -181,23 +182,40 @@ static void gl_draw_scene(const cx_render_scene *sc, GLuint prog, int *calls)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 
-    gl_mesh body, over, lines, obst;
+    gl_mesh body, over, lines, obst, feat;
     gl_upload(&body, &sc->tris);
     gl_upload(&over, &sc->overlay);
     gl_upload(&lines, &sc->lines);
     gl_upload(&obst, &sc->obst);
+    gl_upload(&feat, &sc->feature);
 
+    /* 3D lighting: the body's colours within 12 % of the colour bar's
+     * (lit 1: the faces towards the viewer exactly, the others a little
+     * darker), the shape told by its dark edges; the obstacle, which
+     * carries no value, fully shaded (lit 2) */
     int lit = sc->dim == 3;
     static const float grey2d[4] = {0.80f, 0.80f, 0.80f, 1}, grey3d[4] = {0.72f, 0.73f, 0.76f, 1};
     static const float obst_col[4] = {0.62f, 0.58f, 0.52f, 1};
     static const float edge2d[4] = {0.10f, 0.10f, 0.10f, 0.45f}, edge3d[4] = {0.05f, 0.05f, 0.05f, 0.6f};
+    static const float feat_col[4] = {0.08f, 0.08f, 0.08f, 0.85f};
+    /* seen from the obstacle's side (halfball from below), the obstacle
+     * would hide the contact zone: not drawn here */
+    int see_through = sc->obstacle_ghost;   /* drawn by overlay.c as its outline */
+    if (sc->o->crop_contact) {   /* the zoomed drawing stays in its area */
+        cx_render_layout l;
+        cx_render_layout_image(sc->r, sc->o, &l);
+        glEnable(GL_SCISSOR_TEST);
+        glScissor((GLint)floor(l.area[0]), (GLint)floor(sc->h - l.area[1] - l.area[3]),
+                  (GLsizei)ceil(l.area[2]), (GLsizei)ceil(l.area[3]));
+    }
     if (lit) {
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LEQUAL);
     }
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
-    gl_draw(&obst, GL_TRIANGLES, &u, 0, obst_col, 1, calls);
+    if (!see_through)
+        gl_draw(&obst, GL_TRIANGLES, &u, 0, obst_col, 2, calls);
     gl_draw(&body, GL_TRIANGLES, &u, sc->colored, lit ? grey3d : grey2d, lit, calls);
     glPolygonOffset(-1.0f, -1.0f);
     gl_draw(&over, GL_TRIANGLES, &u, 1, NULL, lit, calls);
@@ -205,12 +223,15 @@ static void gl_draw_scene(const cx_render_scene *sc, GLuint prog, int *calls)
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     gl_draw(&lines, GL_LINES, &u, 0, lit ? edge3d : edge2d, 0, calls);
+    gl_draw(&feat, GL_LINES, &u, 0, feat_col, 0, calls);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
+    glDisable(GL_SCISSOR_TEST);
     gl_free(&body);
     gl_free(&over);
     gl_free(&lines);
     gl_free(&obst);
+    gl_free(&feat);
     glDeleteTextures(1, &t);
 }
 

@@ -118,6 +118,8 @@ static void img_clear(cx_render_scene *sc)
     cx_free(sc->xd);
     cx_free(sc->val);
     cx_free(sc->bedges);
+    cx_free(sc->feat0);
+    cx_render_array_clear(&sc->feature);
     cx_render_array_clear(&sc->tris);
     cx_render_array_clear(&sc->overlay);
     cx_render_array_clear(&sc->lines);
@@ -140,10 +142,15 @@ static void img_range(cx_render_scene *sc)
     }
     if (!(lo <= hi))
         lo = hi = 0;
-    if (cx_field_is_signed(sc->o->field)) {
+    if (cx_field_is_signed(sc->o->field) && lo < 0 && hi > 0) {
         double M = fmax(fabs(lo), fabs(hi));
         sc->lo = -M;
         sc->hi = M;
+    } else if (cx_field_is_signed(sc->o->field) && hi <= 0 && lo < 0) {
+        /* one-signed (e.g. uz of a body pushed down): [min, 0] on a
+         * sequential map, not half of a diverging one */
+        sc->lo = lo;
+        sc->hi = 0;
     } else {
         sc->lo = fmin(lo, 0.0);
         sc->hi = hi;
@@ -151,12 +158,16 @@ static void img_range(cx_render_scene *sc)
     if (sc->o->has_range) {   /* the user's: shared by several figures */
         sc->lo = sc->o->range_lo;
         sc->hi = sc->o->range_hi;
-        return;
     }
+    /* diverging only about a zero inside the range */
+    sc->diverging = cx_field_is_signed(sc->o->field) && sc->lo < 0 && sc->hi > 0;
+    if (sc->o->has_range)
+        return;
     if (!(sc->hi > sc->lo)) {   /* a constant field: a unit range around it */
         double c = sc->lo;
         sc->lo = cx_field_is_signed(sc->o->field) || c != 0 ? c - 1 : 0;
         sc->hi = sc->lo + (c != 0 || cx_field_is_signed(sc->o->field) ? 2 : 1);
+        sc->diverging = cx_field_is_signed(sc->o->field) && sc->lo < 0 && sc->hi > 0;
     }
 }
 
@@ -185,6 +196,16 @@ static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *
             return cx_diag_set(d, CX_ENUMERIC, "render: the field %s is not finite at node %d",
                                cx_field_name(f), i);
     sc->umax = img_umax(m, sc->uall);
+    sc->size = img_body_size(m);
+    sc->ncopies = 1;
+    if (o->mirror && o->scene) {   /* checked by img_check */
+        sc->nsym = o->scene->nsymmetry;
+        for (int j = 0; j < sc->nsym; j++) {
+            sc->sym_axis[j] = o->scene->symmetry_axis[j];
+            sc->sym_at[j] = o->scene->symmetry_at[j];
+        }
+        sc->ncopies = 1 << sc->nsym;
+    }
     sc->scale = sc->o->scale > 0 ? sc->o->scale : cx_render_auto_scale(r);
     for (int i = 0; i < nn; i++)
         for (int k = 0; k < dim; k++) {
@@ -202,6 +223,7 @@ static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *
      * on the whole body */
     sc->colored = f != CX_FIELD_STATUS &&
                   (f != CX_FIELD_PRESSURE || (dim == 3 && sc->o->view == CX_VIEW_CONTACT));
+    cx_render_camera_orient(sc);
     if (cx_render_geometry(sc) != CX_OK)
         return cx_diag_set(d, CX_ENOMEM, "render: out of memory");
     cx_render_camera(sc);
@@ -217,6 +239,14 @@ static int img_check(const cx_result *r, const cx_render_opts *o, cx_diag *d)
     CX_TRY(cx_field_check(o->field, r->dim, d));
     if (o->view == CX_VIEW_CONTACT && r->dim != 3)
         return cx_diag_set(d, CX_EINVAL, "--view contact: only in 3D");
+    if (o->mirror && (!o->scene || o->scene->nsymmetry == 0))
+        return cx_diag_set(d, CX_EINVAL, "--mirror: the scene%s%s names no symmetry plane (key "
+                           "'symmetry' of [scene])", o->scene ? " " : "", o->scene ? o->scene->id : "");
+    if (o->crop_contact && r->m == 0)
+        return cx_diag_set(d, CX_EINVAL, "--crop contact: the problem has no contact points");
+    if (o->has_camera && !(isfinite(o->cam_az) && isfinite(o->cam_el) && fabs(o->cam_el) <= 90))
+        return cx_diag_set(d, CX_EINVAL, "--camera %g,%g: expected AZ,EL in degrees, |EL| <= 90",
+                           o->cam_az, o->cam_el);
     if (o->cmap < CX_CMAP_AUTO || o->cmap >= CX_CMAP_COUNT)
         return cx_diag_set(d, CX_EINVAL, "--cmap %d: unknown colormap", o->cmap);
     if (o->has_range && !(isfinite(o->range_lo) && isfinite(o->range_hi) && o->range_lo < o->range_hi))
@@ -297,7 +327,15 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
         snprintf(scale, sizeof scale, "%.6g", sc.scale);
         char tol[32], iters[32], args[1024];
         snprintf(tol, sizeof tol, "%.6g", run->tol);
-        char range[80];
+        char range[80], camera[96];
+        if (sc.dim == 2)
+            snprintf(camera, sizeof camera, "2d%s%s", o->crop_contact ? " crop contact" : "",
+                     sc.ncopies > 1 ? " mirror" : "");
+        else if (o->view == CX_VIEW_CONTACT)
+            snprintf(camera, sizeof camera, "contact view%s", o->crop_contact ? " crop contact" : "");
+        else
+            snprintf(camera, sizeof camera, "az %g el %g%s%s", sc.az, sc.el, o->crop_contact ? " crop contact" : "",
+                     sc.ncopies > 1 ? " mirror" : "");
         snprintf(range, sizeof range, "%.9g:%.9g%s", sc.lo, sc.hi, o->has_range ? " (set)" : "");
         snprintf(iters, sizeof iters, "%d", run->iterations);
         cx_run_record_solve_args(run, args, sizeof args);
@@ -321,6 +359,7 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
             {"displacement scale", scale},
             {"colour range", range},
             {"colormap", cx_cmap_name(o->cmap)},
+            {"camera", camera},
             {"Software", "signorini " CX_VERSION},
         };
         rc = cx_png_write_xrgb(path, out, sc.w, sc.h, stride, text,

@@ -97,7 +97,7 @@ static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
     cx_render_layout l;
     cx_render_layout_image(sc->r, sc->o, &l);
     double x = l.bar[0], y = l.bar[1], bw = l.bar[2], bh = l.bar[3];
-    int div = cx_field_is_signed(sc->o->field);
+    int div = sc->diverging;
     int nb = (int)ceil(bh);
     for (int i = 0; i < nb; i++) {
         unsigned char c[3];
@@ -205,6 +205,8 @@ static void ov_outline(const cx_render_scene *sc, cairo_t *cr, const double *X, 
     for (int i = 0; i < sc->nbedges; i++) {
         const int *e = sc->bedges + 3 * i;
         double p[2];
+        if (sc->nsym > 0 && cx_render_on_plane(sc, e[0], e[2]))
+            continue;   /* inside the whole body (--mirror) */
         cx_render_scene_project(sc, X + 3 * e[0], p);
         cairo_move_to(cr, p[0], p[1]);
         if (e[1] >= 0) {
@@ -215,6 +217,20 @@ static void ov_outline(const cx_render_scene *sc, cairo_t *cr, const double *X, 
         cairo_line_to(cr, p[0], p[1]);
     }
     cairo_stroke(cr);
+}
+
+/* Is the boundary edge a-b (contact points ia, ib) on the contact
+ * boundary, across the contact normals, and not a side edge between two
+ * contact boundaries (a laminae strip's end)? */
+static int ov_along_contact(const cx_render_scene *sc, int a, int b, int ia, int ib)
+{
+    const double *n = sc->r->contact.normal;
+    double t[2] = {sc->x0[3 * b] - sc->x0[3 * a], sc->x0[3 * b + 1] - sc->x0[3 * a + 1]};
+    double l = hypot(t[0], t[1]);
+    if (!(l > 0))
+        return 0;
+    return fabs(t[0] * n[2 * ia] + t[1] * n[2 * ia + 1]) < 0.5 * l &&
+           fabs(t[0] * n[2 * ib] + t[1] * n[2 * ib + 1]) < 0.5 * l;
 }
 
 /* The pressure (or the status) along the 2D contact boundary: a thick
@@ -235,7 +251,7 @@ static void ov_band2d(const cx_render_scene *sc, cairo_t *cr, double s)
     cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
     for (int i = 0; i < sc->nbedges; i++) {
         const int *e = sc->bedges + 3 * i;
-        if (!ci[e[0]] || !ci[e[2]])
+        if (!ci[e[0]] || !ci[e[2]] || !ov_along_contact(sc, e[0], e[2], ci[e[0]] - 1, ci[e[2]] - 1))
             continue;
         double pa[2], pb[2];
         cx_render_scene_project(sc, sc->xd + 3 * e[0], pa);
@@ -279,9 +295,13 @@ static void ov_band2d(const cx_render_scene *sc, cairo_t *cr, double s)
  * (towards the obstacle) faces the viewer (row 2 of R points to the eye). */
 static int ov_visible(const cx_render_scene *sc, int i)
 {
-    if (sc->dim != 3 || sc->o->view != CX_VIEW_BODY)
+    if (sc->dim != 3 || sc->o->view == CX_VIEW_CONTACT)
         return 1;
-    const double *n = sc->r->contact.normal + 3 * i;
+    double n[3] = {sc->r->contact.normal[3 * i], sc->r->contact.normal[3 * i + 1],
+                   sc->r->contact.normal[3 * i + 2]};
+    for (int j = 0; j < sc->nsym; j++)   /* the copy's normal (--mirror) */
+        if (sc->copy >> j & 1)
+            n[sc->sym_axis[j]] = -n[sc->sym_axis[j]];
     return n[0] * sc->R[6] + n[1] * sc->R[7] + n[2] * sc->R[8] > 0;
 }
 
@@ -480,24 +500,320 @@ void cx_render_underlay(const cx_render_scene *sc, cairo_t *cr)
         ov_obstacle2d(sc, cr, ov_scale(sc));
 }
 
+/* 3D: the undeformed shape as a thin wireframe of its feature edges
+ * (hidden ones too: it is a reference, not a surface). */
+static void ov_wire0(const cx_render_scene *sc, cairo_t *cr, double s)
+{
+    cairo_set_source_rgba(cr, 0.2, 0.2, 0.2, 0.55);
+    cairo_set_line_width(cr, 0.9 * s);
+    double dash[2] = {5 * s, 3 * s};
+    cairo_set_dash(cr, dash, 2, 0);
+    for (int i = 0; i < sc->nfeat0; i++) {
+        double a[2], b[2];
+        cx_render_scene_project(sc, sc->x0 + 3 * sc->feat0[2 * i], a);
+        cx_render_scene_project(sc, sc->x0 + 3 * sc->feat0[2 * i + 1], b);
+        cairo_move_to(cr, a[0], a[1]);
+        cairo_line_to(cr, b[0], b[1]);
+    }
+    cairo_stroke(cr);
+    cairo_set_dash(cr, NULL, 0, 0);
+}
+
+/* 3D, seen from the obstacle's side: a sphere or cylinder as its outline
+ * (dashed), so that it does not hide the contact zone behind it; a plane
+ * not at all (it would only frame the picture). */
+static void ov_obstacle_ghost(const cx_render_scene *sc, cairo_t *cr, double s)
+{
+    const cx_obstacle *ob = sc->obstacle;
+    if (!sc->obstacle_ghost || !ob || sc->obst.n == 0)
+        return;
+    cairo_save(cr);
+    cairo_set_source_rgba(cr, 0.35, 0.32, 0.28, 0.9);
+    cairo_set_line_width(cr, 1.4 * s);
+    double dash[2] = {7 * s, 4 * s};
+    cairo_set_dash(cr, dash, 2, 0);
+    const float *v = sc->obst.v;
+    if (ob->kind == CX_OBST_SPHERE) {
+        double p[2];
+        cx_render_scene_project(sc, ob->point, p);
+        cairo_arc(cr, p[0], p[1], ob->radius * sc->k, 0, 2 * CX_PI);
+    } else if (ob->kind == CX_OBST_CYLINDER) {
+        /* the two silhouette lines: the axis moved by +-R across the view */
+        const double *ax = ob->normal, *e = sc->R + 6;
+        double w[3] = {ax[1] * e[2] - ax[2] * e[1], ax[2] * e[0] - ax[0] * e[2], ax[0] * e[1] - ax[1] * e[0]};
+        double wl = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]), t0 = INFINITY, t1 = -INFINITY;
+        for (long i = 0; i < sc->obst.n; i++) {
+            double t = 0;
+            for (int k = 0; k < 3; k++)
+                t += (v[CX_RENDER_VFLOATS * i + k] - ob->point[k]) * ax[k];
+            t0 = fmin(t0, t);
+            t1 = fmax(t1, t);
+        }
+        for (int side = -1; side <= 1 && wl > 1e-9; side += 2)
+            for (int end = 0; end < 2; end++) {
+                double x[3], p[2];
+                for (int k = 0; k < 3; k++)
+                    x[k] = ob->point[k] + (end ? t1 : t0) * ax[k] + side * ob->radius * w[k] / wl;
+                cx_render_scene_project(sc, x, p);
+                if (end == 0)
+                    cairo_move_to(cr, p[0], p[1]);
+                else
+                    cairo_line_to(cr, p[0], p[1]);
+            }
+    }
+    cairo_stroke(cr);
+    cairo_restore(cr);
+}
+
+/* 3D: the axis triad in the lower left corner of the drawing area, the
+ * axes further from the viewer first. */
+static void ov_triad(const cx_render_scene *sc, cairo_t *cr, double s)
+{
+    cx_render_layout l;
+    cx_render_layout_image(sc->r, sc->o, &l);
+    double F = l.font, L = 2.0 * F;
+    double o[2] = {l.area[0] + 0.6 * F + L, l.area[1] + l.area[3] - 0.6 * F - L};
+    int order[3] = {0, 1, 2};
+    for (int i = 0; i < 3; i++)
+        for (int j = i + 1; j < 3; j++)
+            if (sc->R[6 + order[j]] < sc->R[6 + order[i]]) {
+                int t = order[i];
+                order[i] = order[j];
+                order[j] = t;
+            }
+    static const char *const names[3] = {"x", "y", "z"};
+    for (int q = 0; q < 3; q++) {
+        int k = order[q];
+        double d[2] = {sc->R[k], -sc->R[3 + k]}, len = hypot(d[0], d[1]);
+        double tip[2] = {o[0] + L * d[0], o[1] + L * d[1]};
+        cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+        cairo_set_line_width(cr, 1.6 * s);
+        cairo_move_to(cr, o[0], o[1]);
+        cairo_line_to(cr, tip[0], tip[1]);
+        cairo_stroke(cr);
+        if (len > 0.15) {   /* an arrow head, unless the axis points at the viewer */
+            double u[2] = {d[0] / len, d[1] / len}, h = 0.3 * F;
+            cairo_move_to(cr, tip[0], tip[1]);
+            cairo_line_to(cr, tip[0] - 1.6 * h * u[0] + 0.6 * h * u[1], tip[1] - 1.6 * h * u[1] - 0.6 * h * u[0]);
+            cairo_line_to(cr, tip[0] - 1.6 * h * u[0] - 0.6 * h * u[1], tip[1] - 1.6 * h * u[1] + 0.6 * h * u[0]);
+            cairo_close_path(cr);
+            cairo_fill(cr);
+        }
+        double lx = o[0] + (L + 0.55 * F) * d[0], ly = o[1] + (L + 0.55 * F) * d[1];
+        if (len < 0.15)   /* towards or away from the viewer: beside the origin */
+            lx += 0.6 * F;
+        cx_text(cr, names[k], lx, ly, 0.8 * F, 1, 0.5, 0.5);
+    }
+    /* how the body is seen, beside the triad */
+    char line[160];
+    snprintf(line, sizeof line, "from %s: az %g°, el %g°%s%s", sc->from_below ? "below" : "above", sc->az,
+             sc->el, sc->nfeat0 > 0 ? " · dashed: undeformed" : "",
+             sc->obstacle_ghost && sc->obstacle->kind != CX_OBST_PLANE ? ", obstacle outline" : "");
+    cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+    cx_text(cr, line, o[0] + L + 1.3 * F, o[1] + 0.5 * L, 0.75 * F, 0, 0, 0.5);
+}
+
+/* The world axis along view row `row` (0: right, 1: up) when it is one
+ * (an axis-aligned view), with its sign; -1 otherwise. */
+static int ov_view_axis(const cx_render_scene *sc, int row, double *sign)
+{
+    for (int k = 0; k < 3; k++)
+        if (fabs(sc->R[3 * row + k]) > 0.999) {
+            *sign = sc->R[3 * row + k] > 0 ? 1 : -1;
+            return k;
+        }
+    return -1;
+}
+
+/* The contact view: a frame around the contact faces with ticks in world
+ * coordinates along the two in-plane axes (when the view is along an axis). */
+static void ov_contact_axes(const cx_render_scene *sc, cairo_t *cr, double s)
+{
+    double sa, sb;
+    int a = ov_view_axis(sc, 0, &sa), b = ov_view_axis(sc, 1, &sb);
+    if (a < 0 || b < 0 || sc->tris.n == 0)
+        return;
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (long i = 0; i < sc->tris.n; i++) {
+        const float *q = sc->tris.v + CX_RENDER_VFLOATS * i;
+        double x[3] = {q[0], q[1], q[2]}, p[2];
+        cx_render_scene_project(sc, x, p);
+        for (int k = 0; k < 2; k++) {
+            lo[k] = fmin(lo[k], p[k]);
+            hi[k] = fmax(hi[k], p[k]);
+        }
+    }
+    double F = ov_font(sc), pad = 0.4 * F;
+    double X0 = lo[0] - pad, X1 = hi[0] + pad, Y0 = lo[1] - pad, Y1 = hi[1] + pad;
+    cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
+    cairo_set_line_width(cr, 1.0 * s);
+    cairo_rectangle(cr, X0, Y0, X1 - X0, Y1 - Y0);
+    cairo_stroke(cr);
+    static const char *const names = "xyz";
+    for (int dir = 0; dir < 2; dir++) {
+        /* world coordinate w at pixel p: horizontal p = cx + k sa w,
+         * vertical p = cy - k sb w */
+        double sg = dir == 0 ? sa : sb, c0 = dir == 0 ? sc->cx : sc->cy, kk = dir == 0 ? sc->k : -sc->k;
+        double p0 = dir == 0 ? X0 : Y1, p1 = dir == 0 ? X1 : Y0;
+        double w0 = (p0 - c0) / (kk * sg), w1 = (p1 - c0) / (kk * sg);
+        cx_axis ax;
+        double span = fabs(p1 - p0);
+        cx_axis_make(&ax, fmin(w0, w1), fmax(w0, w1), 0, (int)fmax(2, fmin(8, span / (4.5 * F))), 0);
+        char lab[64];
+        for (int i = 0; i < ax.nticks; i++) {
+            double p = c0 + kk * sg * ax.ticks[i];
+            if (dir == 0) {
+                cairo_move_to(cr, p, Y1);
+                cairo_line_to(cr, p, Y1 + 0.3 * F);
+                cairo_stroke(cr);
+                cx_axis_label(&ax, ax.ticks[i], lab, sizeof lab);
+                cx_text(cr, lab, p, Y1 + 0.4 * F, 0.85 * F, 0, 0.5, 0);
+            } else {
+                cairo_move_to(cr, X0, p);
+                cairo_line_to(cr, X0 - 0.3 * F, p);
+                cairo_stroke(cr);
+                cx_axis_label(&ax, ax.ticks[i], lab, sizeof lab);
+                cx_text(cr, lab, X0 - 0.4 * F, p, 0.85 * F, 0, 1, 0.5);
+            }
+        }
+        char what[8], title[96];
+        snprintf(what, sizeof what, "%c", names[dir == 0 ? a : b]);
+        cx_quantity_label(&sc->r->run, what, 0, title, sizeof title);
+        if (dir == 0) {
+            size_t n = strlen(title);
+            snprintf(title + n, sizeof title - n, " · seen from the obstacle");
+            cx_text(cr, title, 0.5 * (X0 + X1), Y1 + 1.5 * F, 0.85 * F, 0, 0.5, 0);
+        }
+        else
+            cx_text_vertical(cr, title, X0 - 3.6 * F, 0.5 * (Y0 + Y1), 0.85 * F, 0);
+    }
+}
+
+/* 2D supports of the scene: a roller (one component held: circles between
+ * the boundary and a hatched base line) or a clamp (the hatched line alone)
+ * on the outer side of each held boundary. */
+static void ov_supports(const cx_render_scene *sc, cairo_t *cr, double s)
+{
+    const cx_scene *scn = sc->o->scene;
+    const cx_mesh *m = sc->r->mesh;
+    if (!scn || sc->dim != 2)
+        return;
+    double F = ov_font(sc), rr = fmax(0.22 * F, 2 * s), ctr[2] = {0, 0};
+    for (int i = 0; i < m->nnodes; i++)
+        for (int k = 0; k < 2; k++)
+            ctr[k] += sc->x0[3 * i + k] / m->nnodes;
+    for (int q = 0; q < scn->nsupports; q++) {
+        const cx_scene_support *sp = &scn->supports[q];
+        const cx_boundary *bd = NULL;
+        for (int b = 0; b < m->nbounds; b++)
+            if (strcmp(m->bounds[b].name, sp->boundary) == 0)
+                bd = &m->bounds[b];
+        unsigned comps = sp->comps & 3u;
+        if (!bd || bd->nfacets == 0 || !comps)
+            continue;
+        int roller = comps != 3u, c = comps == 2u ? 1 : 0;
+        /* the held direction (a roller's) or the boundary's normal (a
+         * clamp's), pointing away from the body */
+        double mean[2] = {0, 0}, dir[2] = {0, 0};
+        for (int f = 0; f < bd->nfacets; f++)
+            for (int k = 0; k < 2; k++)
+                mean[k] += 0.5 * (sc->x0[3 * bd->facets[bd->npf * f] + k] +
+                                  sc->x0[3 * bd->facets[bd->npf * f + 1] + k]) / bd->nfacets;
+        if (roller) {
+            dir[c] = mean[c] >= ctr[c] ? 1 : -1;
+        } else {
+            const int *e = bd->facets;
+            double t[2] = {sc->x0[3 * e[1]] - sc->x0[3 * e[0]], sc->x0[3 * e[1] + 1] - sc->x0[3 * e[0] + 1]};
+            double l = hypot(t[0], t[1]);
+            dir[0] = l > 0 ? -t[1] / l : 0;
+            dir[1] = l > 0 ? t[0] / l : 0;
+            if (dir[0] * (mean[0] - ctr[0]) + dir[1] * (mean[1] - ctr[1]) < 0) {
+                dir[0] = -dir[0];
+                dir[1] = -dir[1];
+            }
+        }
+        double o[2] = {dir[0], -dir[1]};   /* in pixels (y down) */
+        double base = roller ? 2 * rr + 0.8 * s : 0.6 * s, run = 0;
+        for (int f = 0; f < bd->nfacets; f++) {
+            /* 2D facets: the two ends first (then a TRI6 mid node) */
+            int na = bd->facets[bd->npf * f], nb = bd->facets[bd->npf * f + 1];
+            if (sc->nsym > 0 && cx_render_on_plane(sc, na, nb))
+                continue;   /* inside the whole body (--mirror) */
+            double pa[2], pb[2];
+            cx_render_scene_project(sc, sc->xd + 3 * na, pa);
+            cx_render_scene_project(sc, sc->xd + 3 * nb, pb);
+            double len = hypot(pb[0] - pa[0], pb[1] - pa[1]);
+            if (!(len > 0))
+                continue;
+            double t[2] = {(pb[0] - pa[0]) / len, (pb[1] - pa[1]) / len};
+            cairo_set_source_rgb(cr, 0.3, 0.28, 0.25);
+            cairo_set_line_width(cr, 1.0 * s);
+            if (roller)   /* circles every 3.2 radii along the boundary */
+                for (double at = fmod(run, 3.2 * rr); at < len; at += 3.2 * rr) {
+                    double cxy[2] = {pa[0] + at * t[0] + rr * o[0], pa[1] + at * t[1] + rr * o[1]};
+                    cairo_new_sub_path(cr);
+                    cairo_arc(cr, cxy[0], cxy[1], 0.85 * rr, 0, 2 * CX_PI);
+                    cairo_stroke(cr);
+                }
+            run = fmod(run + len, 3.2 * rr);
+            cairo_set_line_width(cr, 1.6 * s);
+            cairo_move_to(cr, pa[0] + base * o[0], pa[1] + base * o[1]);
+            cairo_line_to(cr, pb[0] + base * o[0], pb[1] + base * o[1]);
+            cairo_stroke(cr);
+            cairo_set_line_width(cr, 0.9 * s);
+            double hl = 0.55 * F;
+            for (double at = 0.3 * hl; at < len; at += 0.6 * hl) {
+                double p[2] = {pa[0] + at * t[0] + base * o[0], pa[1] + at * t[1] + base * o[1]};
+                cairo_move_to(cr, p[0], p[1]);
+                cairo_line_to(cr, p[0] + hl * (0.7 * o[0] - 0.7 * t[0]), p[1] + hl * (0.7 * o[1] - 0.7 * t[1]));
+            }
+            cairo_stroke(cr);
+        }
+    }
+}
+
 void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr)
 {
     double s = ov_scale(sc);
     int f = sc->o->field;
     int markers = sc->dim == 2 || f == CX_FIELD_STATUS;
-    if (sc->dim == 2) {
-        ov_outline(sc, cr, sc->x0, 1.2 * s, 0.3, 0.3, 0.3, 0.35);
-        ov_outline(sc, cr, sc->xd, 1.2 * s, 0.1, 0.1, 0.1, 0.9);
-        if (f == CX_FIELD_PRESSURE || f == CX_FIELD_STATUS)
-            ov_band2d(sc, cr, s);
+    cx_render_layout l;
+    cx_render_layout_image(sc->r, sc->o, &l);
+    cairo_save(cr);
+    if (sc->o->crop_contact) {   /* the zoomed drawing stays in its area */
+        cairo_rectangle(cr, l.area[0], l.area[1], l.area[2], l.area[3]);
+        cairo_clip(cr);
     }
     int shown = 0;
-    if (markers) {
-        double r = ov_marker_radius(sc, s);
-        shown = ov_status(sc, cr, s, f == CX_FIELD_STATUS ? fmin(1.4 * r, 4 * s) : r);
+    double r = ov_marker_radius(sc, s);
+    /* once per copy of --mirror (cx_render_scene_project reflects) */
+    for (int c = 0; c < sc->ncopies; c++) {
+        cx_render_scene cp = *sc;
+        cp.copy = c;
+        if (sc->dim == 2) {
+            ov_outline(&cp, cr, sc->x0, 1.2 * s, 0.3, 0.3, 0.3, 0.35);
+            ov_outline(&cp, cr, sc->xd, 1.2 * s, 0.1, 0.1, 0.1, 0.9);
+            ov_supports(&cp, cr, s);
+            if (f == CX_FIELD_PRESSURE || f == CX_FIELD_STATUS)
+                ov_band2d(&cp, cr, s);
+        } else if (sc->o->view != CX_VIEW_CONTACT) {
+            if (c == 0)
+                ov_obstacle_ghost(sc, cr, s);
+            ov_wire0(&cp, cr, s);
+        }
+        if (markers)
+            shown += ov_status(&cp, cr, s, f == CX_FIELD_STATUS ? fmin(1.4 * r, 4 * s) : r);
     }
-    int hidden = sc->dim == 3 && sc->o->view == CX_VIEW_BODY && sc->r->m > 0 &&
+    cairo_restore(cr);
+    int seen = 0;
+    for (int i = 0; i < sc->r->m && !seen; i++)
+        seen = ov_visible(sc, i);
+    int hidden = sc->dim == 3 && sc->o->view != CX_VIEW_CONTACT && sc->r->m > 0 && !seen &&
                  (f == CX_FIELD_PRESSURE || (f == CX_FIELD_STATUS && shown == 0));
+    if (sc->dim == 3 && sc->o->view == CX_VIEW_CONTACT)
+        ov_contact_axes(sc, cr, s);
+    else if (sc->dim == 3)
+        ov_triad(sc, cr, s);
     ov_title(sc, cr);
     ov_banner(sc, cr);
     if (f != CX_FIELD_STATUS)

@@ -93,7 +93,11 @@ void cx_status_color(int status, unsigned char rgb[3]);
 
 /* ---- images ------------------------------------------------------------- */
 
-typedef enum cx_view { CX_VIEW_BODY, CX_VIEW_CONTACT } cx_view;
+/* 3D: CX_VIEW_BODY is the body seen from the side of its contact faces
+ * (from below, az 35 el -35, when they face down, as on halfball, block3d
+ * and prism; else from above, az 35 el 30); BELOW and ABOVE force the side;
+ * CONTACT shows the contact faces alone, seen from the obstacle, with axes. */
+typedef enum cx_view { CX_VIEW_BODY, CX_VIEW_CONTACT, CX_VIEW_BELOW, CX_VIEW_ABOVE } cx_view;
 
 typedef struct cx_render_opts {
     int width, height;            /* pixels (default 1200 x 900) */
@@ -108,6 +112,12 @@ typedef struct cx_render_opts {
     double range_lo, range_hi;    /* (so that several figures share one scale) */
     int no_title;                 /* no title lines (a caption says it) */
     const char *title;            /* the title instead of the scene's (NULL: the scene's) */
+    /* camera and framing (3D views, crop, mirror) */
+    int has_camera;               /* 3D: look from azimuth cam_az, elevation cam_el */
+    double cam_az, cam_el;        /* degrees: az from -y towards +x, el above the xy plane */
+    int crop_contact;             /* frame the contact zone (points in contact) only */
+    int mirror;                   /* draw the full body across the scene's symmetry planes */
+    const cx_scene *scene;        /* its supports (2D rollers) and symmetry planes; NULL: none */
 } cx_render_opts;
 
 void cx_render_opts_default(cx_render_opts *o);

@@ -42,6 +42,21 @@ typedef struct cx_render_scene {
     cx_render_array obst;       /* 3D obstacle triangles */
     int *bedges;         /* 2D boundary edges: 3 node ids (a, mid or -1, b) */
     int nbedges;
+    int *feat0;          /* 3D: feature edges of the undeformed surface (node pairs) */
+    int nfeat0;
+    cx_render_array feature;    /* 3D: feature edges of the deformed surface */
+    int diverging;       /* the colormap is diverging (a signed field of both signs) */
+    int from_below;      /* 3D body view: the eye is below the xy plane */
+    int obstacle_ghost;  /* 3D: seen from the obstacle's side, it is drawn as its
+                            outline (overlay.c), not as a surface hiding the contact */
+    double az, el;       /* 3D body view: the camera (degrees) */
+    /* --mirror: the copies across the symmetry planes (1, 2, 4 or 8); copy
+     * c reflects across plane j when bit j of c is set; the overlays are
+     * drawn once per copy, with copy set (cx_render_scene_project reflects) */
+    int nsym, sym_axis[3];
+    double sym_at[3];
+    int ncopies, copy;
+    double size;         /* the undeformed body's bounding-box diagonal */
     /* camera: world -> view rotation R (rows: right, up, towards the eye),
      * then view -> pixel: px = cx + k (R x)_0, py = cy - k (R x)_1 */
     double R[9];
@@ -51,8 +66,16 @@ typedef struct cx_render_scene {
 
 /* geom.c: vertex arrays of the body, its edges and the obstacle. */
 int cx_render_geometry(cx_render_scene *sc);
-/* camera.c: frame the body (and obstacle) in the layout's drawing area. */
+/* Do undeformed nodes a and b both lie on one symmetry plane of --mirror? */
+int cx_render_on_plane(const cx_render_scene *sc, int a, int b);
+/* camera.c: the view rotation (before the geometry, which needs it for
+ * nothing but is framed by it), then the fit of the body (and obstacle;
+ * with crop_contact the contact zone) into the layout's drawing area. */
+void cx_render_camera_orient(cx_render_scene *sc);
 void cx_render_camera(cx_render_scene *sc);
+/* x reflected as copy c (--mirror) into y (may be x). */
+void cx_render_mirror(const cx_render_scene *sc, int c, const double x[3], double y[3]);
+/* The pixel of world point x (reflected as copy sc->copy first). */
 void cx_render_scene_project(const cx_render_scene *sc, const double x[3], double px[2]);
 /* The GL matrices of the camera: column-major mvp, row-major 3x3 rotation. */
 void cx_render_camera_gl(const cx_render_scene *sc, float mvp[16], float rot[9]);

@@ -34,6 +34,7 @@
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -385,6 +386,35 @@ static int ld_check_boundaries(ld_state *L)
 
 /* ---- the sections ------------------------------------------------------------ */
 
+/* symmetry = x=0 y=0: the planes across which the model is half or a
+ * quarter of the body (render --mirror draws the whole); distinct axes of
+ * the dimension. */
+static int ld_symmetry(ld_state *L)
+{
+    cx_scene *s = L->s;
+    const char *v = ld_value(L, "symmetry");
+    static const char expect[] = "expected planes AXIS=VALUE of distinct axes, e.g. 'x=0 y=0'";
+    for (const char *p = v; p;) {
+        p += strspn(p, " \t,");
+        if (!*p)
+            break;
+        const char *ax = strchr("xyz", *p);
+        if (!ax || !*ax || ax - "xyz" >= s->dim || p[1] != '=' || s->nsymmetry == 3)
+            return ld_bad(L, "symmetry", expect);
+        char *end;
+        double at = strtod(p + 2, &end);
+        if (end == p + 2 || !isfinite(at) || fabs(at) > 1e30 || (*end && !strchr(" \t,", *end)))
+            return ld_bad(L, "symmetry", expect);
+        for (int k = 0; k < s->nsymmetry; k++)
+            if (s->symmetry_axis[k] == ax - "xyz")
+                return ld_bad(L, "symmetry", "%s ('%c' twice)", expect, *ax);
+        s->symmetry_axis[s->nsymmetry] = (int)(ax - "xyz");
+        s->symmetry_at[s->nsymmetry++] = at;
+        p = end;
+    }
+    return CX_OK;
+}
+
 static int ld_finish_scene(ld_state *L)
 {
     cx_scene *s = L->s;
@@ -398,7 +428,8 @@ static int ld_finish_scene(ld_state *L)
             return ld_bad(L, "title", "expected at most %d characters", (int)sizeof s->title - 1);
         strcpy(s->title, title);
     }
-    return ld_int(L, "dim", 2, 3, "2 or 3", &s->dim);
+    CX_TRY(ld_int(L, "dim", 2, 3, "2 or 3", &s->dim));
+    return ld_symmetry(L);
 }
 
 /* twoblocks: the interface y strictly inside (lo, hi) and the lower
@@ -716,7 +747,7 @@ static int ld_finish_methods(ld_state *L)
     return CX_OK;
 }
 
-static const ld_key ld_scene_keys[] = {{"id", 1}, {"title", 0}, {"dim", 1}, {NULL, 0}};
+static const ld_key ld_scene_keys[] = {{"id", 1}, {"title", 0}, {"dim", 1}, {"symmetry", 0}, {NULL, 0}};
 static const ld_key ld_mesh_keys[] = {
     {"generator", 1}, {"element", 0}, {"lo", 0}, {"hi", 0}, {"radius", 0},
     {"cells", 0}, {"level", 0}, {"level_max", 0}, {"interface", 0}, {"cells_lower", 0},

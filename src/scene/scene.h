@@ -57,6 +57,11 @@ typedef struct cx_scene {
     char id[CX_SCENE_NAMELEN];
     char title[128];
     int dim;
+    /* [scene] symmetry = x=0 y=0: planes axis = at across which the model
+     * is a half or a quarter of the body (render --mirror) */
+    int nsymmetry;
+    int symmetry_axis[3];
+    double symmetry_at[3];
 
     /* [mesh] */
     cx_scene_generator generator;

@@ -459,6 +459,359 @@ static void test_control(void)
     solved_free(&o);
 }
 
+/* ---- camera and framing (3D views, triad, wireframe, pressure map,
+ * --crop contact, --mirror, supports) ---------------------------------- */
+
+static int near_colour(const unsigned char *q, const unsigned char *w, int tol)
+{
+    return abs(q[0] - w[0]) + abs(q[1] - w[1]) + abs(q[2] - w[2]) <= tol;
+}
+
+/* Pixels of the drawing area near colormap(t) for some t in [t0, 1]. */
+static long count_cmap(const test_png *img, const cx_render_layout *l, double t0, int tol)
+{
+    unsigned char want[16][3];
+    for (int k = 0; k < 16; k++)
+        cx_colormap(0, t0 + (1 - t0) * k / 15.0, want[k]);
+    long n = 0;
+    for (int y = (int)l->area[1]; y < (int)(l->area[1] + l->area[3]); y++)
+        for (int x = (int)l->area[0]; x < (int)(l->area[0] + l->area[2]); x++) {
+            const unsigned char *q = test_png_px(img, x, y);
+            for (int k = 0; k < 16; k++)
+                if (near_colour(q, want[k], tol)) {
+                    n++;
+                    break;
+                }
+        }
+    return n;
+}
+
+/* halfball: its stress peak is on the underside, where the block meets
+ * the ball. The default view (from below: the contact faces look down)
+ * shows it, in the colour bar's top colours; from above they are hidden.
+ * --camera sets the view; the PNG names it. The axis triad is drawn in the
+ * area's lower left corner; the undeformed shape as a dashed wireframe
+ * (the top moved down by 0.2: its edges lie off the body). */
+static void test_camera(void)
+{
+    solved o;
+    solve_scene(&o, "halfball", 4, 0);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.width = 600;
+    opt.height = 450;
+    test_png img;
+    cx_render_layout l;
+    cx_render_layout_image(o.r, &opt, &l);
+    long peak_below = -1, peak_above = -1;
+    if (render_read(o.r, &opt, &img) == 0) {
+        const char *t = test_png_text(&img, "camera");
+        CX_CHECK(t && strcmp(t, "az 35 el -35") == 0);
+        peak_below = count_cmap(&img, &l, 0.8, 30);
+        /* the triad: dark strokes in the corner box */
+        double F = l.font, ox = l.area[0] + 2.6 * F, oy = l.area[1] + l.area[3] - 2.6 * F;
+        long dark = 0;
+        for (int y = (int)(oy - 3 * F); y < (int)(oy + 2.5 * F); y++)
+            for (int x = (int)(ox - 2.5 * F); x < (int)(ox + 3 * F); x++)
+                dark += test_png_px(&img, x, y)[0] < 90;
+        CX_CHECK(dark > 40);
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    opt.view = CX_VIEW_ABOVE;
+    if (render_read(o.r, &opt, &img) == 0) {
+        const char *t = test_png_text(&img, "camera");
+        CX_CHECK(t && strcmp(t, "az 35 el 30") == 0);
+        peak_above = count_cmap(&img, &l, 0.8, 30);
+        /* the undeformed top's far edge (y = 1, z = 0.5) lies above the
+         * drawn body (its top at z = 0.3): dashes, not white */
+        int ink = 0, n = 0;
+        for (int k = 1; k < 40; k++) {
+            double x[3] = {-0.5 + k / 40.0, 1.0, 0.5}, px[2];
+            CX_CHECK_OK(cx_render_project(o.r, &opt, x, px, NULL));
+            const unsigned char *q = test_png_px(&img, (int)lround(px[0]), (int)lround(px[1]));
+            ink += q[0] < 235;
+            n++;
+        }
+        CX_CHECK(ink > n / 3 && ink < n);   /* dashed: some gaps */
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    printf("halfball: %ld peak-coloured pixels from below, %ld from above\n", peak_below, peak_above);
+    CX_CHECK(peak_below > 150);
+    CX_CHECK(peak_above * 10 < peak_below);
+    /* --camera: straight from below sees the whole bottom face; the
+     * projection follows (x to the right when az = 0) */
+    opt.view = CX_VIEW_BODY;
+    opt.has_camera = 1;
+    opt.cam_az = 0;
+    opt.cam_el = -90;
+    double a[3] = {-0.5, 0, -0.5}, b[3] = {0.5, 0, -0.5}, pa[2], pb[2];
+    CX_CHECK_OK(cx_render_project(o.r, &opt, a, pa, NULL));
+    CX_CHECK_OK(cx_render_project(o.r, &opt, b, pb, NULL));
+    CX_CHECK(pb[0] > pa[0] + 50 && fabs(pb[1] - pa[1]) < 1);
+    if (render_read(o.r, &opt, &img) == 0) {
+        const char *t = test_png_text(&img, "camera");
+        CX_CHECK(t && strcmp(t, "az 0 el -90") == 0);
+        CX_CHECK(count_cmap(&img, &l, 0.8, 30) > peak_below / 2);
+        test_png_free(&img);
+    }
+    cx_diag d;
+    opt.cam_el = 91;
+    CX_CHECK(cx_render_png(o.r, &opt, OUT, NULL, &d) == CX_EINVAL && strstr(d.msg, "--camera"));
+    opt.has_camera = 0;
+
+    /* uz < 0 everywhere: a sequential map over [min, 0], not half of a
+     * diverging one; 0 at the bar's top in viridis' yellow */
+    opt.field = CX_FIELD_UZ;
+    if (render_read(o.r, &opt, &img) == 0) {
+        double lo = 0, hi = 1;
+        const char *t = test_png_text(&img, "colour range");
+        CX_CHECK(t && sscanf(t, "%lf:%lf", &lo, &hi) == 2 && lo < -0.1 && hi == 0);
+        unsigned char want[3];
+        cx_colormap(0, 0.98, want);
+        CX_CHECK(near_colour(test_png_px(&img, (int)(l.bar[0] + 0.5 * l.bar[2]), (int)(l.bar[1] + 0.02 * l.bar[3])),
+                             want, 20));
+        test_png_free(&img);
+    }
+
+    /* 3D pressure map: the contact view (what --plot pressure draws in 3D),
+     * axes, colour bar; the peak (under the ball's top, x = -0.3) in the
+     * bar's top colour */
+    opt.field = CX_FIELD_PRESSURE;
+    opt.view = CX_VIEW_CONTACT;
+    if (render_read(o.r, &opt, &img) == 0) {
+        CX_CHECK(test_png_colours(&img) > 20);
+        int bad = 0;
+        for (int k = 0; k <= 8; k++) {
+            double t = 0.05 + 0.9 * k / 8.0;
+            unsigned char want[3];
+            cx_colormap(0, t, want);
+            bad += !near_colour(test_png_px(&img, (int)(l.bar[0] + 0.5 * l.bar[2]), (int)(l.bar[1] + (1 - t) * l.bar[3])),
+                                want, 24);
+        }
+        CX_CHECK(bad == 0);
+        const cx_contact_set *cs = &o.r->contact;
+        int pk = 0;
+        for (int i = 1; i < cs->m; i++)
+            if (o.r->lN[i] / cs->weight[i] > o.r->lN[pk] / cs->weight[pk])
+                pk = i;
+        double x[3], px[2];
+        for (int k = 0; k < 3; k++)
+            x[k] = o.r->mesh->x[3 * cs->node[pk] + k] + o.r->u[3 * cs->node[pk] + k];
+        CX_CHECK(fabs(x[0] + 0.3) < 0.15 && fabs(x[1]) < 0.15);
+        CX_CHECK_OK(cx_render_project(o.r, &opt, x, px, NULL));
+        unsigned char want[3];
+        cx_colormap(0, 1.0, want);
+        CX_CHECK(near_colour(test_png_px(&img, (int)px[0], (int)px[1]), want, 60));
+        /* the x axis' ticks and labels below the faces: dark ink */
+        double lo[3] = {-0.5, -1, -0.5}, pl[2];
+        CX_CHECK_OK(cx_render_project(o.r, &opt, lo, pl, NULL));
+        long ink = 0;
+        for (int y = 0; y < img.h; y++)
+            for (int xx = (int)l.area[0]; xx < (int)(l.area[0] + l.area[2]); xx++)
+                ink += y > pl[1] + 2 && y < l.area[1] + l.area[3] && test_png_px(&img, xx, y)[0] < 90;
+        CX_CHECK(ink > 100);
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    solved_free(&o);
+}
+
+/* --mirror: hertz's quarter drawn across x = 0 (the scene's key): the body
+ * spans twice the width, and the copy is the mirror image; --crop
+ * contact: the contact zone fills the area, nothing is drawn over the
+ * colour bar's margin. */
+static void test_mirror_crop(void)
+{
+    solved o;
+    solve_scene(&o, "hertz", 16, 0);
+    CX_CHECK(o.sc.nsymmetry == 1 && o.sc.symmetry_axis[0] == 0 && o.sc.symmetry_at[0] == 0);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.width = 600;
+    opt.height = 450;
+    opt.scene = &o.sc;
+    double width[2] = {0, 0};
+    for (int mirror = 0; mirror < 2; mirror++) {
+        opt.mirror = mirror;
+        test_png img;
+        if (render_read(o.r, &opt, &img) != 0) {
+            CX_CHECK(0);
+            continue;
+        }
+        /* the coloured run of the row through y = 4 (the body's middle),
+         * in world units */
+        double a[2] = {0, 4}, b[2] = {1, 4}, pa[2], pb[2];
+        CX_CHECK_OK(cx_render_project(o.r, &opt, a, pa, NULL));
+        CX_CHECK_OK(cx_render_project(o.r, &opt, b, pb, NULL));
+        int y = (int)pa[1], x0 = -1, x1 = -1;
+        cx_render_layout l;
+        cx_render_layout_image(o.r, &opt, &l);
+        for (int x = (int)l.area[0]; x < (int)(l.area[0] + l.area[2]); x++) {
+            const unsigned char *q = test_png_px(&img, x, y);
+            if (abs(q[0] - q[1]) + abs(q[1] - q[2]) > 40) {   /* viridis, not grey */
+                x1 = x;
+                if (x0 < 0)
+                    x0 = x;
+            }
+        }
+        width[mirror] = (x1 - x0) / (pb[0] - pa[0]);
+        if (mirror) {   /* the copy's colours mirror the quarter's */
+            double p[2] = {3, 2}, q2[2] = {-3, 2}, pp[2], pq[2];
+            CX_CHECK_OK(cx_render_project(o.r, &opt, p, pp, NULL));
+            CX_CHECK_OK(cx_render_project(o.r, &opt, q2, pq, NULL));
+            CX_CHECK(near_colour(test_png_px(&img, (int)lround(pp[0]), (int)lround(pp[1])),
+                                 test_png_px(&img, (int)lround(pq[0]), (int)lround(pq[1])), 30));
+            const char *t = test_png_text(&img, "camera");
+            CX_CHECK(t && strstr(t, "mirror"));
+        }
+        test_png_free(&img);
+    }
+    printf("hertz: body %.3g wide, %.3g mirrored\n", width[0], width[1]);
+    CX_CHECK(width[0] > 6 && fabs(width[1] / width[0] - 2) < 0.05);
+    /* no symmetry plane: refused */
+    cx_scene none = o.sc;
+    none.nsymmetry = 0;
+    opt.scene = &none;
+    cx_diag d;
+    CX_CHECK(cx_render_png(o.r, &opt, OUT, NULL, &d) == CX_EINVAL && strstr(d.msg, "--mirror"));
+    opt.scene = &o.sc;
+    opt.mirror = 0;
+
+    /* crop: the drawing scale grows (the contact zone, half-width ~2.7, is
+     * a third of the body's 8), the points in contact are inside the area */
+    double k[2];
+    for (int crop = 0; crop < 2; crop++) {
+        opt.crop_contact = crop;
+        double a[2] = {0, 0}, b[2] = {1, 0}, pa[2], pb[2];
+        CX_CHECK_OK(cx_render_project(o.r, &opt, a, pa, NULL));
+        CX_CHECK_OK(cx_render_project(o.r, &opt, b, pb, NULL));
+        k[crop] = pb[0] - pa[0];
+    }
+    printf("hertz: %.3g px per unit, %.3g cropped\n", k[0], k[1]);
+    CX_CHECK(k[1] > 1.8 * k[0]);
+    opt.field = CX_FIELD_PRESSURE;
+    test_png img;
+    if (render_read(o.r, &opt, &img) == 0) {
+        cx_render_layout l;
+        cx_render_layout_image(o.r, &opt, &l);
+        const cx_contact_set *cs = &o.r->contact;
+        for (int i = 0; i < cs->m; i++) {
+            if (o.r->status[i] == CX_PT_FREE)
+                continue;
+            double x[2] = {cs->x[2 * i] + o.r->u[2 * cs->node[i]], cs->x[2 * i + 1] + o.r->u[2 * cs->node[i] + 1]}, p[2];
+            CX_CHECK_OK(cx_render_project(o.r, &opt, x, p, NULL));
+            CX_CHECK(p[0] >= l.area[0] && p[0] <= l.area[0] + l.area[2] && p[1] >= l.area[1] &&
+                     p[1] <= l.area[1] + l.area[3]);
+        }
+        /* the body goes on past the area's right edge: clipped there */
+        int xm = (int)(0.5 * (l.area[0] + l.area[2] + l.bar[0]));
+        long ink = 0;
+        for (int y = (int)l.area[1]; y < (int)(l.area[1] + l.area[3]); y++)
+            ink += test_png_px(&img, xm, y)[0] < 250;
+        CX_CHECK(ink == 0);
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    solved_free(&o);
+}
+
+/* block3d: a quarter with symmetry x = 0 and y = 0: mirrored, the drawn
+ * body covers the other quadrants too. */
+static void test_mirror3d(void)
+{
+    solved o;
+    solve_scene(&o, "block3d", 2, 0);
+    CX_CHECK(o.sc.nsymmetry == 2);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.width = 600;
+    opt.height = 450;
+    opt.scene = &o.sc;
+    opt.view = CX_VIEW_ABOVE;
+    long body[2];
+    for (int mirror = 0; mirror < 2; mirror++) {
+        opt.mirror = mirror;
+        test_png img;
+        body[mirror] = -1;
+        if (render_read(o.r, &opt, &img) == 0) {
+            /* the point (-0.5, -0.5, 0.5) of the mirrored top: coloured or white */
+            double x[3] = {-0.5, -0.5, 0.5}, px[2];
+            CX_CHECK_OK(cx_render_project(o.r, &opt, x, px, NULL));
+            const unsigned char *q = test_png_px(&img, (int)px[0], (int)px[1]);
+            body[mirror] = !(q[0] > 245 && q[1] > 245 && q[2] > 245);
+            test_png_free(&img);
+        }
+    }
+    CX_CHECK(body[0] == 0 && body[1] == 1);
+    solved_free(&o);
+}
+
+/* 2D supports: stackbond's right half stands on rollers (its 'base'
+ * boundary, y held) just under y = 0; without the scene none is drawn.
+ * laminae: the status band stays off the strips' side edges. */
+static void test_supports(void)
+{
+    solved o;
+    solve_scene(&o, "stackbond", 5, 0);
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.field = CX_FIELD_STATUS;
+    long ink[2] = {0, 0};
+    for (int with = 0; with < 2; with++) {
+        opt.scene = with ? &o.sc : NULL;
+        test_png img;
+        if (render_read(o.r, &opt, &img) != 0) {
+            CX_CHECK(0);
+            continue;
+        }
+        double a[2] = {0.6, 0}, b[2] = {0.9, 0}, pa[2], pb[2];
+        CX_CHECK_OK(cx_render_project(o.r, &opt, a, pa, NULL));
+        CX_CHECK_OK(cx_render_project(o.r, &opt, b, pb, NULL));
+        for (int y = (int)pa[1] + 3; y < (int)pa[1] + 14; y++)
+            for (int x = (int)pa[0]; x < (int)pb[0]; x++)
+                ink[with] += test_png_px(&img, x, y)[0] < 150;
+        test_png_free(&img);
+    }
+    printf("stackbond: %ld dark pixels under the right half with its rollers, %ld without\n", ink[1], ink[0]);
+    CX_CHECK(ink[1] > ink[0] + 100);
+    solved_free(&o);
+
+    solve_scene(&o, "laminae", 5, 0);
+    opt.scene = &o.sc;
+    test_png img;
+    if (render_read(o.r, &opt, &img) == 0) {
+        /* 3 px inside the lowest strip's left edge, half-way up: the body's
+         * flat grey (as 20 px in), not a status band */
+        double H = 0.2, x[2] = {0, 0.5 * H}, px[2];
+        int node = -1;
+        double best = INFINITY;
+        for (int i = 0; i < o.r->mesh->nnodes; i++) {
+            double dd = hypot(o.r->mesh->x[2 * i] - x[0], o.r->mesh->x[2 * i + 1] - x[1]);
+            if (dd < best) {
+                best = dd;
+                node = i;
+            }
+        }
+        double s = cx_render_auto_scale(o.r);
+        x[0] += s * o.r->u[2 * node];
+        x[1] += s * o.r->u[2 * node + 1];
+        CX_CHECK_OK(cx_render_project(o.r, &opt, x, px, NULL));
+        const unsigned char *q = test_png_px(&img, (int)px[0] + 3, (int)px[1]);
+        const unsigned char *in = test_png_px(&img, (int)px[0] + 20, (int)px[1]);
+        CX_CHECK(near_colour(q, in, 6) && abs(q[0] - q[2]) < 6);
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    solved_free(&o);
+}
+
 int main(void)
 {
     test_masonry("stackbond", 1);
@@ -469,6 +822,10 @@ int main(void)
     test_units();
     test_legible();
     test_control();
+    test_camera();
+    test_mirror_crop();
+    test_mirror3d();
+    test_supports();
     if (!getenv("CX_TEST_KEEP"))
         remove(OUT);
     return check_finish("render_figures");

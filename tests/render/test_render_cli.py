@@ -58,6 +58,8 @@ def vtu_arrays(path):
     return piece.attrib, arrays
 
 
+REPO_SCENES = os.environ.get("SIGNORINI_SCENES", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scenes"))
+
 with tempfile.TemporaryDirectory() as tmp:
     png = os.path.join(tmp, "h.png")
     vtu = os.path.join(tmp, "h.vtu")
@@ -150,6 +152,34 @@ with tempfile.TemporaryDirectory() as tmp:
     one_line_error(code, err, "--view")
     code, out, err = run("render", "hertz", "--png", png, "--scale", "-1")
     usage_error(code, err, "--scale")
+    # camera and framing: bad values, 3D-only options on 2D, --mirror
+    # without symmetry planes, and the scene key's own errors
+    code, out, err = run("render", "halfball", "--png", png, "--camera", "35")
+    usage_error(code, err, "--camera", "AZ,EL")
+    code, out, err = run("render", "halfball", "--png", png, "--camera", "0,95")
+    usage_error(code, err, "--camera")
+    code, out, err = run("render", "hertz", "--png", png, "--view", "below")
+    one_line_error(code, err, "--view below", "3D")
+    code, out, err = run("render", "hertz", "--png", png, "--camera", "10,20")
+    one_line_error(code, err, "--camera", "3D")
+    code, out, err = run("render", "halfball", "--level", "4", "--png", png, "--mirror", "--quiet")
+    one_line_error(code, err, "--mirror", "halfball", "symmetry")
+    code, out, err = run("render", "hertz", "--png", png, "--crop", "body")
+    usage_error(code, err, "--crop")
+    with open(os.path.join(REPO_SCENES, "hertz.ini")) as f:
+        hertz_ini = f.read()
+    for bad, needle in (("x=0 x=1", "twice"), ("z=0", "symmetry"), ("x 0", "symmetry"), ("y=abc", "symmetry")):
+        path = os.path.join(tmp, "sym.ini")
+        with open(path, "w") as f:
+            f.write(hertz_ini.replace("symmetry = x=0", "symmetry = " + bad))
+        code, out, err = run("render", path, "--png", png)
+        one_line_error(code, err, "sym.ini:", needle)
+    code, out, err = run("render", "hertz", "--level", "8", "--quiet", "--png", png, "--mirror", "--crop",
+                         "contact", "--size", "300x225")
+    check(code == 0 and os.path.exists(png), f"--mirror --crop contact ({err})")
+    code, out, err = run("render", "halfball", "--level", "4", "--quiet", "--png", png, "--camera", "-20,-60",
+                         "--size", "300x225")
+    check(code == 0 and os.path.exists(png), f"--camera -20,-60 ({err})")
     code, out, err = run("render", "--help")
     check(code == 0 and "--field" in out, "render --help")
 
