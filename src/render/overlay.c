@@ -582,10 +582,20 @@ static void ov_triad(const cx_render_scene *sc, cairo_t *cr, double s)
                 order[j] = t;
             }
     static const char *const names[3] = {"x", "y", "z"};
+    char line[160];
+    snprintf(line, sizeof line, "from %s: az %g°, el %g°%s%s", sc->from_below ? "below" : "above", sc->az,
+             sc->el, sc->nfeat0 > 0 ? " · dashed: undeformed" : "",
+             sc->obstacle_ghost && sc->obstacle->kind != CX_OBST_PLANE ? ", obstacle outline" : "");
     for (int q = 0; q < 3; q++) {
         int k = order[q];
         double d[2] = {sc->R[k], -sc->R[3 + k]}, len = hypot(d[0], d[1]);
         double tip[2] = {o[0] + L * d[0], o[1] + L * d[1]};
+        /* a white halo, so that the triad reads over the body too */
+        cairo_set_source_rgba(cr, 1, 1, 1, 0.8);
+        cairo_set_line_width(cr, 4.0 * s);
+        cairo_move_to(cr, o[0], o[1]);
+        cairo_line_to(cr, tip[0], tip[1]);
+        cairo_stroke(cr);
         cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
         cairo_set_line_width(cr, 1.6 * s);
         cairo_move_to(cr, o[0], o[1]);
@@ -604,13 +614,14 @@ static void ov_triad(const cx_render_scene *sc, cairo_t *cr, double s)
             lx += 0.6 * F;
         cx_text(cr, names[k], lx, ly, 0.8 * F, 1, 0.5, 0.5);
     }
-    /* how the body is seen, beside the triad */
-    char line[160];
-    snprintf(line, sizeof line, "from %s: az %g°, el %g°%s%s", sc->from_below ? "below" : "above", sc->az,
-             sc->el, sc->nfeat0 > 0 ? " · dashed: undeformed" : "",
-             sc->obstacle_ghost && sc->obstacle->kind != CX_OBST_PLANE ? ", obstacle outline" : "");
+    /* how the body is seen, beside the triad, on a light backing (legible
+     * over the body when --crop contact fills the area) */
+    double tw = cx_text_width(cr, line, 0.75 * F, 0), tx = o[0] + L + 1.3 * F, ty = o[1] + 0.5 * L;
+    cairo_set_source_rgba(cr, 1, 1, 1, 0.7);
+    cairo_rectangle(cr, tx - 0.2 * F, ty - 0.5 * F, tw + 0.4 * F, F);
+    cairo_fill(cr);
     cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
-    cx_text(cr, line, o[0] + L + 1.3 * F, o[1] + 0.5 * L, 0.75 * F, 0, 0, 0.5);
+    cx_text(cr, line, tx, ty, 0.75 * F, 0, 0, 0.5);
 }
 
 /* The world axis along view row `row` (0: right, 1: up) when it is one
