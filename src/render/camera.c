@@ -252,7 +252,7 @@ static int cam_crop(const cx_render_scene *sc, cam_box *b, double body)
     return 1;
 }
 
-void cx_render_camera(cx_render_scene *sc)
+void cx_render_draw_area(const cx_render_scene *sc, double area[4])
 {
     cx_render_layout l;
     cx_render_layout_image(sc->r, sc->o, &l);
@@ -262,6 +262,14 @@ void cx_render_camera(cx_render_scene *sc)
         l.area[2] -= 4.6 * l.font;
         l.area[3] -= 2.8 * l.font;
     }
+    for (int k = 0; k < 4; k++)
+        area[k] = l.area[k];
+}
+
+void cx_render_camera(cx_render_scene *sc)
+{
+    cx_render_layout l;
+    cx_render_draw_area(sc, l.area);
     const cx_obstacle *ob = sc->obstacle;
     cam_box b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
     if (sc->dim == 2) {

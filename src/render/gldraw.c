@@ -202,11 +202,10 @@ static void gl_draw_scene(const cx_render_scene *sc, GLuint prog, int *calls)
      * would hide the contact zone: not drawn here */
     int see_through = sc->obstacle_ghost;   /* drawn by overlay.c as its outline */
     if (sc->o->crop_contact) {   /* the zoomed drawing stays in its area */
-        cx_render_layout l;
-        cx_render_layout_image(sc->r, sc->o, &l);
+        double a[4];
+        cx_render_draw_area(sc, a);
         glEnable(GL_SCISSOR_TEST);
-        glScissor((GLint)floor(l.area[0]), (GLint)floor(sc->h - l.area[1] - l.area[3]),
-                  (GLsizei)ceil(l.area[2]), (GLsizei)ceil(l.area[3]));
+        glScissor((GLint)floor(a[0]), (GLint)floor(sc->h - a[1] - a[3]), (GLsizei)ceil(a[2]), (GLsizei)ceil(a[3]));
     }
     if (lit) {
         glEnable(GL_DEPTH_TEST);

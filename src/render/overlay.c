@@ -654,8 +654,10 @@ static void ov_contact_axes(const cx_render_scene *sc, cairo_t *cr, double s)
             hi[k] = fmax(hi[k], p[k]);
         }
     }
-    double F = ov_font(sc), pad = 0.4 * F;
-    double X0 = lo[0] - pad, X1 = hi[0] + pad, Y0 = lo[1] - pad, Y1 = hi[1] + pad;
+    double F = ov_font(sc), pad = 0.4 * F, da[4];
+    cx_render_draw_area(sc, da);   /* --crop contact: the frame is the area's */
+    double X0 = fmax(lo[0] - pad, da[0]), X1 = fmin(hi[0] + pad, da[0] + da[2]);
+    double Y0 = fmax(lo[1] - pad, da[1]), Y1 = fmin(hi[1] + pad, da[1] + da[3]);
     cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
     cairo_set_line_width(cr, 1.0 * s);
     cairo_rectangle(cr, X0, Y0, X1 - X0, Y1 - Y0);
@@ -792,7 +794,9 @@ void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr)
     cx_render_layout_image(sc->r, sc->o, &l);
     cairo_save(cr);
     if (sc->o->crop_contact) {   /* the zoomed drawing stays in its area */
-        cairo_rectangle(cr, l.area[0], l.area[1], l.area[2], l.area[3]);
+        double a[4];
+        cx_render_draw_area(sc, a);
+        cairo_rectangle(cr, a[0], a[1], a[2], a[3]);
         cairo_clip(cr);
     }
     int shown = 0;

@@ -73,6 +73,9 @@ int cx_render_on_plane(const cx_render_scene *sc, int a, int b);
  * with crop_contact the contact zone) into the layout's drawing area. */
 void cx_render_camera_orient(cx_render_scene *sc);
 void cx_render_camera(cx_render_scene *sc);
+/* The rectangle the drawing is fitted into (x, y, w, h): the layout's
+ * area, less the contact view's room for axes; --crop contact clips to it. */
+void cx_render_draw_area(const cx_render_scene *sc, double area[4]);
 /* x reflected as copy c (--mirror) into y (may be x). */
 void cx_render_mirror(const cx_render_scene *sc, int c, const double x[3], double y[3]);
 /* The pixel of world point x (reflected as copy sc->copy first). */
