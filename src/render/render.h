@@ -7,10 +7,16 @@
  * An image shows one field on the deformed body: 2D meshes flat with the
  * displacement magnified (auto scale: the largest displacement is drawn as
  * 7 % of the body size, stated on the image), the undeformed outline faint,
- * the rigid obstacle and the contact points coloured by status; 3D bodies as
- * their lit surface, or with view CX_VIEW_CONTACT only the contact faces
- * seen from the obstacle. All bodies of a mesh go into one vertex buffer:
- * one draw call per field whatever the number of bodies.
+ * the rigid obstacle and the contact points coloured by status, the
+ * scene's supports; 3D bodies as their softly lit surface (colours within
+ * 12 % of the colour bar's, dark feature edges) from the side of their
+ * contact faces (cx_view), with the undeformed shape as a dashed wireframe
+ * and an axis triad, or with view CX_VIEW_CONTACT only the contact faces
+ * seen from the obstacle, with axes. --crop contact frames the points in
+ * contact; --mirror draws a half or quarter model whole across the
+ * scene's symmetry planes. All bodies of a mesh go into one vertex buffer:
+ * one draw call per field whatever the number of bodies (copies of
+ * --mirror included).
  *
  * The OpenGL context (OSMesa, render/glctx.c) is created inside
  * cx_render_png() and destroyed before it returns; nothing is created when

@@ -722,7 +722,7 @@ static void test_mirror_crop(void)
 }
 
 /* block3d: a quarter with symmetry x = 0 and y = 0: mirrored, the drawn
- * body covers the other quadrants too. */
+ * body covers the other quadrants too; and the soft lighting. */
 static void test_mirror3d(void)
 {
     solved o;
@@ -749,6 +749,52 @@ static void test_mirror3d(void)
         }
     }
     CX_CHECK(body[0] == 0 && body[1] == 1);
+
+    /* the lighting keeps the colour bar's colours: at the top face's and
+     * two side faces' middle nodes, every channel within [0.88, 1] of the
+     * colormap at the node's value (a few levels for rounding) */
+    opt.mirror = 0;
+    opt.field = CX_FIELD_UZ;
+    test_png img;
+    const cx_mesh *m = o.r->mesh;
+    double *val = CX_NEW(double, m->nnodes);
+    if (val && cx_field_nodal(o.r, CX_FIELD_UZ, val, NULL) == CX_OK && render_read(o.r, &opt, &img) == 0) {
+        double lo = 0, hi = 0, s = cx_render_auto_scale(o.r);
+        const char *t = test_png_text(&img, "colour range");
+        CX_CHECK(t && sscanf(t, "%lf:%lf", &lo, &hi) == 2 && hi > lo);
+        static const double at[3][3] = {{0.5, 0.5, 0.5}, {0.5, 0, 0.25}, {1, 0.5, 0.25}};
+        for (int f = 0; f < 3; f++) {
+            int node = 0;
+            double best = INFINITY;
+            for (int i = 0; i < m->nnodes; i++) {
+                double dd = 0;
+                for (int k = 0; k < 3; k++)
+                    dd += (m->x[3 * i + k] - at[f][k]) * (m->x[3 * i + k] - at[f][k]);
+                if (dd < best) {
+                    best = dd;
+                    node = i;
+                }
+            }
+            double x[3], px[2];
+            for (int k = 0; k < 3; k++)
+                x[k] = m->x[3 * node + k] + s * o.r->u[3 * node + k];
+            CX_CHECK_OK(cx_render_project(o.r, &opt, x, px, NULL));
+            unsigned char want[3];
+            cx_colormap(0, (val[node] - lo) / (hi - lo), want);
+            const unsigned char *q = test_png_px(&img, (int)px[0], (int)px[1]);
+            int ok = 1;
+            for (int c = 0; c < 3; c++)
+                ok &= q[c] >= 0.88 * want[c] - 5 && q[c] <= want[c] + 5;
+            if (!ok)
+                fprintf(stderr, "block3d face %d: %d %d %d for %d %d %d\n", f, q[0], q[1], q[2], want[0], want[1],
+                        want[2]);
+            CX_CHECK(ok);
+        }
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    cx_free(val);
     solved_free(&o);
 }
 
