@@ -210,64 +210,25 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     double *hx = yh + m, *hy = hx + NH;
     if (!x)
         return cx_diag_set(d, CX_ENOMEM, "plot: out of memory");
-    /* 2D: every point against its x. 3D: a profile, the points near one
-     * line of the contact face (along its first in-plane axis, through the
-     * peak), since every point against x mixes the whole face */
-    int ax = 0, bx = 1, n = 0;
-    double b0 = 0, band = 0;
-    if (dim == 3 && m > 0) {
-        double lo[3], hi[3];
-        for (int k = 0; k < 3; k++) {
-            lo[k] = INFINITY;
-            hi[k] = -INFINITY;
-            for (int i = 0; i < m; i++) {
-                lo[k] = fmin(lo[k], cs->x[3 * i + k]);
-                hi[k] = fmax(hi[k], cs->x[3 * i + k]);
-            }
-        }
-        int nrm = 0;   /* the face's normal axis: the one it hardly spreads along */
-        for (int k = 1; k < 3; k++)
-            if (hi[k] - lo[k] < hi[nrm] - lo[nrm])
-                nrm = k;
-        ax = nrm == 0 ? 1 : 0;
-        bx = nrm == 2 ? 1 : 2;
-        int peak = 0;
-        for (int i = 0; i < m; i++) {
-            double pi = cs->weight[i] > 0 ? res->lN[i] / cs->weight[i] : 0;
-            double pp = cs->weight[peak] > 0 ? res->lN[peak] / cs->weight[peak] : 0;
-            if (pi > pp)
-                peak = i;
-        }
-        b0 = cs->x[3 * peak + bx];
-        /* half a mean spacing of the points either side of the line */
-        band = 0.5 * sqrt(fmax((hi[ax] - lo[ax]) * (hi[bx] - lo[bx]), 0) / m);
-    }
+    /* 2D: every point against its x (3D draws the map of the contact
+     * face instead: render_png) */
+    int n = 0;
     for (int i = 0; i < m; i++) {
-        if (dim == 3 && fabs(cs->x[3 * i + bx] - b0) > band)
-            continue;
-        x[n] = cs->x[dim * i + ax];
+        x[n] = cs->x[dim * i];
         y[n] = cs->weight[i] > 0 ? res->lN[i] / cs->weight[i] : 0;
         yh[n] = cx_scene_hertz_pressure(sc, x[n]);
         n++;
     }
-    /* in order along the line (insertion sort: one line of a face) */
+    /* in order along x (insertion sort) */
     for (int i = 1; i < n; i++)
         for (int j = i; j > 0 && x[j - 1] > x[j]; j--) {
             double t = x[j]; x[j] = x[j - 1]; x[j - 1] = t;
             t = y[j]; y[j] = y[j - 1]; y[j - 1] = t;
         }
-    const char *axes = "xyz";
     char title[200], what[160];
-    if (dim == 3) {
-        snprintf(title, sizeof title, "%s level %d: contact pressure on the line %c = %.3g (%s, kkt %.1e)",
-                 sc->id, res->run.level, axes[bx], b0, res->run.method, res->run.kkt);
-        snprintf(what, sizeof what, "%c on the contact face (%d points within %.2g of %c = %.3g)", axes[ax], n,
-                 band, axes[bx], b0);
-    } else {
-        snprintf(title, sizeof title, "%s level %d: contact pressure (%s, kkt %.1e)", sc->id,
-                 res->run.level, res->run.method, res->run.kkt);
-        snprintf(what, sizeof what, "x, position along the contact boundary");
-    }
+    snprintf(title, sizeof title, "%s level %d: contact pressure (%s, kkt %.1e)", sc->id, res->run.level,
+             res->run.method, res->run.kkt);
+    snprintf(what, sizeof what, "x, position along the contact boundary");
     m = n;
     cx_plot pl;
     char xlab[200], ylab[128];
@@ -275,8 +236,7 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     cx_field_axis_label(&res->run, CX_FIELD_PRESSURE, ylab, sizeof ylab);
     cx_plot_init(&pl, title, xlab, ylab);
     pl.font_scale = r->font_scale;
-    cx_plot_add_series(&pl, dim == 3 ? "computed (nodal force / lumped area)" : "computed (nodal force / lumped length)",
-                       m, x, y, dim == 3 ? CX_PLOT_LINE | CX_PLOT_MARKERS : CX_PLOT_MARKERS);
+    cx_plot_add_series(&pl, "computed (nodal force / lumped length)", m, x, y, CX_PLOT_MARKERS);
     if (sc->has_hertz && m > 0) {
         /* the analytical curve on a fine grid, so that it is smooth */
         double x1 = x[m - 1] > x[0] ? x[m - 1] : x[0];
@@ -289,11 +249,6 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     }
     cx_plot_add_text(&pl, "scene", sc->id);
     cx_plot_add_text(&pl, "method", res->run.method);
-    if (dim == 3) {
-        char line[96];
-        snprintf(line, sizeof line, "along %c at %c = %.6g, band %.3g, %d points", axes[ax], axes[bx], b0, band, n);
-        cx_plot_add_text(&pl, "profile", line);
-    }
     int rc = cx_plot_write_png(&pl, r->png, r->w, r->h, d);
     cx_free(x);
     return rc;
