@@ -108,6 +108,7 @@ typedef struct cx_render_opts {
     double range_lo, range_hi;    /* (so that several figures share one scale) */
     int no_title;                 /* no title lines (a caption says it) */
     const char *title;            /* the title instead of the scene's (NULL: the scene's) */
+    int log;                      /* logarithmic colour scale (magnitudes; with range: 0 < lo) */
 } cx_render_opts;
 
 void cx_render_opts_default(cx_render_opts *o);

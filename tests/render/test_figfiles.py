@@ -1,0 +1,176 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Figure files besides the PNG: the animation of a run (--frames DIR,
+--gif FILE: frame count = iterations + 1, every frame the same size, the
+same global colour table and the same colour range, the bar's pixels the
+same in the first and last frame), vector files (--svg parses as XML with
+<text> for the tick labels and paths for the curves; --pdf is a PDF whose
+text objects spell the axis label), and the log colour scale (--log; the
+colour-bar labels never in C's 1e+09 form). Needs Debian's python3-pil
+(run with /usr/bin/python3)."""
+import os
+import re
+import sys
+import tempfile
+import xml.etree.ElementTree as ET
+import zlib
+
+from PIL import Image
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from clicheck import check, finish, one_line_error, run, usage_error  # noqa: E402
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def iterations(out):
+    m = re.search(r"converged in (\d+) iterations", out)
+    return int(m.group(1)) if m else -1
+
+
+def gif_tables(path):
+    """(global colour table size or 0, number of images, images with a
+    local colour table), from the GIF's blocks."""
+    d = open(path, "rb").read()
+    flags = d[10]
+    gct = 3 * (1 << ((flags & 7) + 1)) if flags & 0x80 else 0
+    pos, images, local = 13 + gct, 0, 0
+    while pos < len(d) and d[pos] != 0x3B:
+        if d[pos] == 0x21:   # extension: label, then sub-blocks
+            pos += 2
+        else:                # image descriptor, its own table, LZW size
+            images += 1
+            f = d[pos + 9]
+            local += bool(f & 0x80)
+            pos += 10 + (3 * (1 << ((f & 7) + 1)) if f & 0x80 else 0) + 1
+        while d[pos] != 0:
+            pos += d[pos] + 1
+        pos += 1
+    return gct // 3, images, local
+
+
+def svg_texts(path):
+    root = ET.parse(path).getroot()
+    return root, ["".join(t.itertext()) for t in root.iter(SVG + "text")]
+
+
+def pdf_strings(path):
+    """The literal strings of the text objects (BT ... ET) of every
+    content stream, one per text object, kerning gaps joined."""
+    data = open(path, "rb").read()
+    out = []
+    for m in re.finditer(rb"stream\r?\n(.*?)\r?\nendstream", data, re.S):
+        try:
+            s = zlib.decompress(m.group(1))
+        except zlib.error:
+            continue
+        for bt in re.finditer(rb"BT(.*?)ET", s, re.S):
+            parts = re.findall(rb"\(((?:\\.|[^\\)])*)\)", bt.group(1))
+            out.append(b"".join(parts).decode("latin-1"))
+    return data, out
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    # ---- the animation of a slider run ---------------------------------
+    gif, frames = os.path.join(tmp, "slider.gif"), os.path.join(tmp, "frames")
+    code, out, err = run("render", "slider", "--size", "400x300", "--gif", gif, "--frames", frames)
+    n = iterations(out)
+    check(code == 0 and n > 1, f"slider converges in more than one iteration ({code}, {n}): {err}")
+    check(os.path.exists(gif), "the GIF is written")
+    if os.path.exists(gif):
+        im = Image.open(gif)
+        check(im.format == "GIF" and im.n_frames == n + 1, f"GIF frames = iterations + 1: {im.n_frames}, {n}")
+        check(im.info.get("loop") == 0, "the GIF loops")
+        m = re.search(rb"colour range ([-0-9.e+]+):([-0-9.e+]+)", im.info.get("comment", b""))
+        check(m is not None and float(m.group(2)) > float(m.group(1)), f"comment: {im.info.get('comment')}")
+        sizes, rgb = set(), []
+        for k in range(im.n_frames):
+            im.seek(k)
+            sizes.add(im.size)
+            rgb.append(im.convert("RGB"))
+        check(sizes == {(400, 300)}, f"every frame 400x300: {sizes}")
+        ncol, nimg, nlocal = gif_tables(gif)
+        check(ncol == 256 and nimg == n + 1 and nlocal == 0, f"one global table of 256 colours: {ncol}, {nimg}, {nlocal}")
+        # the colour bar (right strip, below the title) is the same in the
+        # first and the last frame (neither has the 'still running' banner)
+        box = (int(0.85 * 400), int(0.3 * 300), 400, int(0.85 * 300))
+        check(list(rgb[0].crop(box).getdata()) == list(rgb[-1].crop(box).getdata()),
+              "colour bar identical in the first and last frame")
+        check(list(rgb[0].getdata()) != list(rgb[-1].getdata()), "the run changes the picture")
+        # a middle frame carries the banner (still running), the last not
+        mid = rgb[1].crop((0, int(0.1 * 300), 400, int(0.2 * 300))).getcolors(1 << 16)
+        banner = [c for c, px in mid if px[0] > 140 and px[1] < 80 and px[2] < 30]
+        check(sum(banner) > 1000, "frame 1 shows the 'still running' banner")
+    names = sorted(os.listdir(frames)) if os.path.isdir(frames) else []
+    check(names == [f"frame_{k:04d}.png" for k in range(n + 1)], f"frames 0..{n}: {names}")
+    ranges, iters = set(), []
+    for k, name in enumerate(names):
+        p = Image.open(os.path.join(frames, name))
+        ranges.add(p.text.get("colour range"))
+        iters.append(int(p.text.get("iterations", "-1")))
+        check(p.size == (400, 300) and p.text.get("frame") == str(k), f"{name}: size and frame chunk")
+    check(len(ranges) == 1, f"one colour range in every frame: {ranges}")
+    check(iters == list(range(n + 1)), f"frame k is iteration k: {iters}")
+
+    # a GIF in a missing directory: one line, nothing left
+    code, out, err = run("render", "slider", "--gif", os.path.join(tmp, "no", "x.gif"))
+    one_line_error(code, err, "x.gif")
+    # the frames directory is a file
+    code, out, err = run("render", "slider", "--frames", gif)
+    one_line_error(code, err, "--frames")
+
+    # ---- vector plots -------------------------------------------------------
+    svg, pdf = os.path.join(tmp, "conv.svg"), os.path.join(tmp, "conv.pdf")
+    code, out, err = run("render", "hertz", "--level", "8", "--plot", "convergence", "--method", "ssn-tresca",
+                         "--method", "pdas", "--svg", svg, "--pdf", pdf)
+    check(code == 0 and os.path.exists(svg) and os.path.exists(pdf), f"--svg and --pdf ({err})")
+    if os.path.exists(svg):
+        root, texts = svg_texts(svg)
+        check(root.tag == SVG + "svg" and root.get("width") == "600pt", f"an SVG of 600 pt: {root.attrib}")
+        check("iteration" in texts and "kkt error" in texts, f"axis labels as <text>: {texts}")
+        check(any(t.startswith("10") and len(t) > 2 for t in texts), f"decade tick labels as <text>: {texts}")
+        check("ssn-tresca" in texts and "pdas" in texts, f"legend entries as <text>: {texts}")
+        # the curves: stroked paths in the two series' colours
+        strokes = {re.search(r"stroke:(rgb\([^)]*\))", p.get("style", "")).group(1)
+                   for p in root.iter(SVG + "path") if "stroke:rgb" in p.get("style", "")}
+        check(len(strokes) >= 4, f"paths for the grid, frame and two curves: {strokes}")
+        check(not list(root.iter(SVG + "image")), "a plot embeds no bitmap")
+    if os.path.exists(pdf):
+        data, strings = pdf_strings(pdf)
+        check(data.startswith(b"%PDF-") and data.rstrip().endswith(b"%%EOF"), "a whole PDF")
+        check(any("iteration" in t for t in strings) and any("kkt error" in t for t in strings),
+              f"PDF text: {strings}")
+
+    # ---- an image as SVG: the body embedded, text and bar as vectors -------
+    code, out, err = run("render", "hertz", "--level", "8", "--svg", svg, "--pdf", pdf)
+    check(code == 0, f"image --svg ({err})")
+    if os.path.exists(svg):
+        root, texts = svg_texts(svg)
+        check(len(list(root.iter(SVG + "image"))) == 1, "the GL layer embedded once")
+        check(any("von Mises" in t for t in texts), f"colour-bar title as <text>: {texts}")
+        check(sum(bool(re.fullmatch(r"[0-9.]+", t)) for t in texts) >= 3, f"colour-bar ticks: {texts}")
+
+    # ---- --log, and labels never in 1e+09 form ------------------------------
+    png = os.path.join(tmp, "log.png")
+    code, out, err = run("render", "twoblocks-paper", "--level", "4", "--log", "--png", png, "--svg", svg)
+    check(code in (0, 3), f"--log ({err})")
+    if os.path.exists(png):
+        rng = Image.open(png).text.get("colour range", "")
+        check(rng.endswith("(log)"), f"the range is logarithmic: {rng}")
+        lo, hi = (float(x) for x in rng.split()[0].split(":"))
+        check(0 < lo < hi and hi / lo <= 1e6 * (1 + 1e-9), f"a positive range of at most 6 decades: {rng}")
+        root, texts = svg_texts(svg)
+        check(any(re.fullmatch(r"10[⁰¹²³⁴⁵⁶⁷⁸⁹⁻]+", t) for t in texts), f"decades on the bar: {texts}")
+    code, out, err = run("render", "twoblocks-paper", "--level", "4", "--svg", svg)
+    root, texts = svg_texts(svg)
+    ticks = [t for t in texts if re.fullmatch(r"[-0-9.e+]+", t)]
+    check(len(ticks) >= 3 and not any("e" in t for t in ticks), f"no 1e+09 bar labels: {ticks}")
+    check(any("×10" in t for t in texts), f"the bar in units of 10ⁿ: {texts}")
+    code, out, err = run("render", "hertz", "--level", "4", "--field", "sxx", "--log", "--png", png)
+    one_line_error(code, err, "--log")
+    code, out, err = run("render", "hertz", "--level", "4", "--log", "--range", "0:5", "--png", png)
+    one_line_error(code, err, "--range")
+    code, out, err = run("render", "hertz", "--level", "4")
+    usage_error(code, err, "--png")
+
+finish("render_figfiles")
