@@ -7,16 +7,17 @@
 #include <stdio.h>
 #include <string.h>
 
-static double axis_nice_step(double span, int target)
+/* integer: counts (iterations), steps of 1, 2 or 5 times 10^k, k >= 0 */
+static double axis_nice_step(double span, int target, int integer)
 {
     double raw = span / (target > 1 ? target : 1);
     double p = pow(10.0, floor(log10(raw)));
     double f = raw / p;
-    double nice = f <= 1.0 ? 1.0 : f <= 2.0 ? 2.0 : f <= 2.5 ? 2.5 : f <= 5.0 ? 5.0 : 10.0;
-    return nice * p;
+    double nice = f <= 1.0 ? 1.0 : f <= 2.0 ? 2.0 : f <= 2.5 && !integer ? 2.5 : f <= 5.0 ? 5.0 : 10.0;
+    return integer ? fmax(1.0, nice * p) : nice * p;
 }
 
-static void axis_make_linear(cx_axis *a, double lo, double hi, int target, int expand)
+static void axis_make_linear(cx_axis *a, double lo, double hi, int target, int expand, int integer)
 {
     /* a span of rounding noise (a uniform pressure 1 ± 1e-8) reads as a
      * constant, not as ticks with nine digits */
@@ -26,7 +27,7 @@ static void axis_make_linear(cx_axis *a, double lo, double hi, int target, int e
         lo = c - w;
         hi = c + w;
     }
-    double step = axis_nice_step(hi - lo, target);
+    double step = axis_nice_step(hi - lo, target, integer);
     double t0 = floor(lo / step + 1e-9) * step;
     double t1 = ceil(hi / step - 1e-9) * step;
     if (expand) {
@@ -97,7 +98,13 @@ void cx_axis_make(cx_axis *a, double lo, double hi, int log, int target, int exp
     if (log)
         axis_make_log(a, lo, hi, target, expand);
     else
-        axis_make_linear(a, lo, hi, target, expand);
+        axis_make_linear(a, lo, hi, target, expand, 0);
+}
+
+void cx_axis_make_integer(cx_axis *a, double lo, double hi, int target, int expand)
+{
+    memset(a, 0, sizeof *a);
+    axis_make_linear(a, lo, hi, target, expand, 1);
 }
 
 double cx_axis_frac(const cx_axis *a, double v)
@@ -126,9 +133,16 @@ static void axis_superscript(int e, char *buf, size_t len)
 void cx_axis_colorbar(cx_axis *a, double lo, double hi, int log, int target)
 {
     cx_axis_make(a, lo, hi, log, target, 0);
-    double big = fmax(fabs(lo), fabs(hi));
+    cx_axis_unit(a);
+}
+
+void cx_axis_unit(cx_axis *a)
+{
+    if (a->log || a->nticks == 0)
+        return;
+    double big = fmax(fabs(a->lo), fabs(a->hi));
     int e = big > 0 ? (int)floor(log10(big) + 1e-9) : 0;
-    if (!log && (e >= 4 || e <= -3))
+    if (e >= 4 || e <= -3)
         a->exp10 = e;
 }
 

@@ -25,10 +25,16 @@ typedef struct cx_axis {
  * is widened. Log axes need lo > 0. */
 void cx_axis_make(cx_axis *a, double lo, double hi, int log, int target, int expand);
 
+/* A linear axis of counts (iterations): integer steps of 1, 2 or 5 times
+ * 10^k, never 2.5. */
+void cx_axis_make_integer(cx_axis *a, double lo, double hi, int target, int expand);
+
 /* Colour-bar ticks of [lo, hi] (not expanded). Linear: values of 10^4
  * and more, or below 10^-2, are labelled in units of a common power of
  * ten, a->exp10, which the bar's title names ("×10⁵"); log: decades. */
 void cx_axis_colorbar(cx_axis *a, double lo, double hi, int log, int target);
+/* The same unit on a linear axis already made (plots). */
+void cx_axis_unit(cx_axis *a);
 /* ", ×10⁵" for a->exp10 = 5, "" for 0: the title's suffix. */
 void cx_axis_unit_suffix(const cx_axis *a, char *buf, size_t len);
 

@@ -341,7 +341,14 @@ static void plot_axes(cairo_t *cr, const cx_plot *p, const plot_frame *f, double
      * cut, and are centred on the image when the frame's centre leaves
      * them too little room on one side */
     double W = f->W, room = W - 8 * s;
-    double fx = 16 * s, ft = 18 * s, wx = cx_text_width(cr, p->xlabel, fx, 0);
+    /* large or small linear values: ticks in units of 10^n, named after
+     * the label as on the colour bar */
+    char xlabel[CX_PLOT_LABELLEN + 32], ylabel[CX_PLOT_LABELLEN + 32];
+    snprintf(xlabel, sizeof xlabel, "%s", p->xlabel);
+    snprintf(ylabel, sizeof ylabel, "%s", p->ylabel);
+    cx_axis_unit_suffix(&f->ax, xlabel + strlen(xlabel), sizeof xlabel - strlen(xlabel));
+    cx_axis_unit_suffix(&f->ay, ylabel + strlen(ylabel), sizeof ylabel - strlen(ylabel));
+    double fx = 16 * s, ft = 18 * s, wx = cx_text_width(cr, xlabel, fx, 0);
     double wt = cx_text_width(cr, p->title, ft, 1);
     if (wx > room) {
         fx *= room / wx;
@@ -354,8 +361,8 @@ static void plot_axes(cairo_t *cr, const cx_plot *p, const plot_frame *f, double
     double mid = 0.5 * (f->x0 + f->x1);
     double xc = 0.5 * wx + 4 * s > fmin(mid, W - mid) ? 0.5 * W : mid;
     double tc = 0.5 * wt + 4 * s > fmin(mid, W - mid) ? 0.5 * W : mid;
-    cx_text(cr, p->xlabel, xc, f->y1 + 30 * s, fx, 0, 0.5, 0.0);
-    cx_text_vertical(cr, p->ylabel, f->x0 - maxw - 24 * s, 0.5 * (f->y0 + f->y1), 16 * s, 0);
+    cx_text(cr, xlabel, xc, f->y1 + 30 * s, fx, 0, 0.5, 0.0);
+    cx_text_vertical(cr, ylabel, f->x0 - maxw - 24 * s, 0.5 * (f->y0 + f->y1), 16 * s, 0);
     cx_text(cr, p->title, tc, f->y0 - 14 * s, ft, 1, 0.5, 1.0);
 }
 
@@ -448,8 +455,11 @@ static void plot_series(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
             cairo_save(cr);
             cairo_rectangle(cr, f->x0 - 2 * r, f->y0 - 2 * r, f->x1 - f->x0 + 4 * r, f->y1 - f->y0 + 4 * r);
             cairo_clip(cr);
+            /* a long series (hundreds of iterations) marks every few
+             * points, and its last, so that the markers do not merge */
+            int every = (int)fmax(1, ceil(sr->n * 3.0 * r / fmax(f->x1 - f->x0, 1)));
             for (int i = 0; i < sr->n; i++)
-                if (plot_drawable(p, f, sr->x[i], sr->y[i]))
+                if ((i % every == 0 || i == sr->n - 1) && plot_drawable(p, f, sr->x[i], sr->y[i]))
                     plot_marker(cr, k, plot_px(f, sr->x[i]), plot_py(f, sr->y[i]), r);
             plot_marker_ink(cr, k, s);
             cairo_restore(cr);
@@ -462,7 +472,9 @@ typedef struct plot_legend_box {
     int n;                    /* entries */
     double fs, row, pad, sample;
     double x, y, w, h;        /* where it goes */
-    int outside;              /* right of the plot area (every corner covered data) */
+    int cols;                 /* entries side by side (below the plot) */
+    double entry_w;           /* the width of one entry */
+    int outside;              /* below the plot area (every corner covered something) */
     long hits;                /* data points and reference lines under it */
 } plot_legend_box;
 
@@ -479,8 +491,23 @@ static void plot_legend_size(cairo_t *cr, const cx_plot *p, double s, plot_legen
     b->row = 22 * s;
     b->pad = 8 * s;
     b->sample = 34 * s;
-    b->w = b->pad * 3 + b->sample + wmax;
+    b->cols = 1;
+    b->entry_w = b->pad * 2 + b->sample + wmax;
+    b->w = b->pad + b->entry_w;
     b->h = b->pad * 2 + b->row * b->n;
+}
+
+/* The legend in columns across a width of room, rows as needed. */
+static void plot_legend_columns(plot_legend_box *b, double room)
+{
+    int cols = (int)fmax(1, floor((room - b->pad) / b->entry_w));
+    if (cols > b->n)
+        cols = b->n;
+    int rows = (b->n + cols - 1) / cols;
+    cols = (b->n + rows - 1) / rows;   /* as even as the rows allow */
+    b->cols = cols;
+    b->w = b->pad + cols * b->entry_w;
+    b->h = b->pad * 2 + b->row * rows;
 }
 
 /* Data points (and reference lines, their labels beside them, as many
@@ -555,7 +582,7 @@ static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_legend_box *b,
         const cx_plot_series *sr = &p->series[k];
         if (!sr->label[0])
             continue;
-        double y = b->y + b->pad + b->row * (r + 0.5), x = b->x + b->pad;
+        double y = b->y + b->pad + b->row * (r / b->cols + 0.5), x = b->x + b->pad + b->entry_w * (r % b->cols);
         plot_rgb(cr, plot_color_of(sr, k));
         if (sr->style & CX_PLOT_LINE) {
             double dash[] = {8 * s, 5 * s};
@@ -576,16 +603,16 @@ static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_legend_box *b,
     }
 }
 
-/* The frame and axes of a w x h plot whose right `reserve` pixels hold
+/* The frame and axes of a w x h plot whose bottom `reserve` pixels hold
  * the legend. */
 static void plot_layout(const cx_plot *p, plot_frame *f, int w, int h, double s, const double *xr,
                         const double *yr, double reserve)
 {
     f->W = w;
     f->x0 = 88 * s;
-    f->x1 = w - 22 * s - reserve;
+    f->x1 = w - 22 * s;
     f->y0 = 46 * s;
-    f->y1 = h - 60 * s;
+    f->y1 = h - 60 * s - reserve;
     f->yd = f->y1;
     f->mx = f->my = 6 * s;
     f->zband = 0;
@@ -601,15 +628,19 @@ static void plot_layout(const cx_plot *p, plot_frame *f, int w, int h, double s,
         f->yz = 0.5 * (f->yd + 3 * s + f->y1);
     }
     int xt = (int)fmax(3, (f->x1 - f->x0) / (110 * s));
-    if (p->integer_x && !p->logx)   /* a step of at least 1: no tick at 1.5 */
-        xt = (int)fmax(1, fmin(xt, floor(xr[1] - xr[0])));
-    cx_axis_make(&f->ax, xr[0], xr[1], p->logx, xt, !p->fixed_x);
+    if (p->integer_x && !p->logx)   /* integer steps: no tick at 1.5 or 2.5 */
+        cx_axis_make_integer(&f->ax, xr[0], xr[1], xt, !p->fixed_x);
+    else
+        cx_axis_make(&f->ax, xr[0], xr[1], p->logx, xt, !p->fixed_x);
     cx_axis_make(&f->ay, yr[0], yr[1], p->logy, (int)fmax(3, (f->y1 - f->y0) / (70 * s)), !p->fixed_y);
+    cx_axis_unit(&f->ax);
+    cx_axis_unit(&f->ay);
 }
 
-/* Lay the plot out: the legend in the emptiest corner of the plot area
- * if one is empty, else right of it (the area narrows), its text
- * shrinking if it is taller than the area. */
+/* Lay the plot out: the legend in a corner of the plot area where it
+ * covers nothing (no point, line or reference line), else below the
+ * plot in as many columns as the width holds (the area gets shorter),
+ * its text shrinking if it would take more than a third of the height. */
 static int plot_arrange(cairo_t *cr, const cx_plot *p, int w, int h, plot_frame *f, plot_legend_box *lb,
                         double *sp, cx_diag *d)
 {
@@ -632,19 +663,18 @@ static int plot_arrange(cairo_t *cr, const cx_plot *p, int w, int h, plot_frame 
     plot_legend_corner(p, f, s, lb);
     if (lb->hits == 0)
         return CX_OK;
-    /* outside, right of the area: shrink the entries to fit its height
-     * and keep at least half the width for the data */
-    double k = fmin(1.0, (f->y1 - f->y0) / lb->h);
-    double s2 = s * k;
-    plot_legend_size(cr, p, s2, lb);
-    if (lb->w > 0.45 * w) {
-        s2 *= 0.45 * w / lb->w;
+    double s2 = s, room = w - 16 * s;
+    for (int tries = 0; tries < 4; tries++) {
         plot_legend_size(cr, p, s2, lb);
+        plot_legend_columns(lb, room);
+        if (lb->h <= h / 3.0 && lb->w <= room)
+            break;
+        s2 *= fmin(h / 3.0 / lb->h, room / lb->w) * 0.98;
     }
-    plot_layout(p, f, w, h, s, xr, yr, lb->w + 4 * s);
+    plot_layout(p, f, w, h, s, xr, yr, lb->h + 6 * s);
     lb->outside = 1;
-    lb->x = f->x1 + 10 * s;
-    lb->y = f->y0;
+    lb->x = 0.5 * (w - lb->w);
+    lb->y = h - lb->h - 6 * s;
     lb->hits = 0;
     return CX_OK;
 }

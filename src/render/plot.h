@@ -23,8 +23,8 @@
  * Series k is drawn in colour k % 12 of the series palette shared with
  * the explorer (out/palette.h; unless its color says) with marker shape
  * k % 11: twelve series differ in colour, every pair differs for up to
- * 132 series, and neighbours in both. The legend goes in the corner of
- * the plot area with no data under it, else right of the area. The PNG's "Series"
+ * 132 series, and neighbours in both. The legend goes in a corner of
+ * the plot area with nothing under it, else below the plot in columns. The PNG's "Series"
  * tEXt chunk lists them, one line each: "LABEL\tcolor=C\tmarker=SHAPE". Axis ranges come from the drawable data
  * and the reference lines, unless fixed with cx_plot_set_xrange/yrange.
  *
@@ -125,8 +125,8 @@ int cx_plot_write_png(const cx_plot *p, const char *path, int w, int h, cx_diag 
  * 0x00RRGGBB words), e.g. to compose it into a larger image. */
 int cx_plot_draw_rgb(const cx_plot *p, unsigned char *buf, int w, int h, int stride, cx_diag *d);
 
-/* Where the legend goes in a w x h figure: *outside 1 when it is right
- * of the plot area (every corner of the area held data), and *covered
+/* Where the legend goes in a w x h figure: *outside 1 when it is below
+ * the plot area (every corner of the area held something), and *covered
  * the data points and reference lines under it (0 unless nothing else
  * was possible). CX_EINVAL as cx_plot_write_png. */
 int cx_plot_legend_place(const cx_plot *p, int w, int h, int *outside, long *covered, cx_diag *d);

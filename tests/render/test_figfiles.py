@@ -166,6 +166,12 @@ with tempfile.TemporaryDirectory() as tmp:
     ticks = [t for t in texts if re.fullmatch(r"[-0-9.e+]+", t)]
     check(len(ticks) >= 3 and not any("e" in t for t in ticks), f"no 1e+09 bar labels: {ticks}")
     check(any("×10" in t for t in texts), f"the bar in units of 10ⁿ: {texts}")
+    # a plot of large values: plain ticks, the power of ten after the label
+    code, out, err = run("render", "twoblocks-paper", "--level", "4", "--plot", "pressure", "--svg", svg)
+    root, texts = svg_texts(svg)
+    check(any(t.startswith("contact pressure") and t.endswith("×10⁷") for t in texts), f"y label ×10ⁿ: {texts}")
+    ticks = [t for t in texts if re.fullmatch(r"[-0-9.]+", t)]
+    check(len(ticks) >= 6 and not any("×" in t for t in texts if len(t) < 8), f"plain ticks: {texts}")
     code, out, err = run("render", "hertz", "--level", "4", "--field", "sxx", "--log", "--png", png)
     one_line_error(code, err, "--log")
     code, out, err = run("render", "hertz", "--level", "4", "--log", "--range", "0:5", "--png", png)

@@ -58,6 +58,13 @@ static void test_axis(void)
     CX_CHECK(a.exp10 == 4);
     cx_axis_label(&a, 5e3, lab, sizeof lab);
     CX_CHECK(strcmp(lab, "0.5") == 0);
+    /* counts: 1..10 never in steps of 2.5 */
+    cx_axis_make_integer(&a, 1.0, 10.0, 6, 1);
+    CX_CHECK(a.step == 1.0 || a.step == 2.0 || a.step == 5.0);
+    for (int i = 0; i < a.nticks; i++)
+        CX_CHECK(a.ticks[i] == floor(a.ticks[i]));
+    cx_axis_make_integer(&a, 0.0, 3.0, 8, 1);
+    CX_CHECK(a.step == 1.0);
     /* log bars: decades */
     cx_axis_colorbar(&a, 1e-3, 10.0, 1, 6);
     CX_CHECK(a.exp10 == 0 && a.nticks >= 4);
