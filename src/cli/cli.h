@@ -53,7 +53,7 @@ int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session 
                        int quiet, cx_diag *d);
 /* Non-zero if a drawing was asked for (--png, --svg, --pdf, --gif, --frames). */
 int cli_render_wanted(const cli_render_args *r);
-/* How many of --png and --vtu are '-' (standard output). */
+/* How many of --png, --vtu, --svg, --pdf and --gif are '-' (standard output). */
 int cli_render_stdout_users(const cli_render_args *r);
 
 /* Print "signorini CMD: message" on stderr and return CX_EXIT_ERROR. */

@@ -607,7 +607,8 @@ int cli_render_wanted(const cli_render_args *r)
 
 int cli_render_stdout_users(const cli_render_args *r)
 {
-    return cx_outfile_is_stdout(r->png) + cx_outfile_is_stdout(r->vtu);
+    return cx_outfile_is_stdout(r->png) + cx_outfile_is_stdout(r->vtu) + cx_outfile_is_stdout(r->svg) +
+           cx_outfile_is_stdout(r->pdf) + cx_outfile_is_stdout(r->gif);
 }
 
 int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,

@@ -141,6 +141,11 @@ with tempfile.TemporaryDirectory() as tmp:
         check(any("iteration" in t for t in strings) and any("kkt error" in t for t in strings),
               f"PDF text: {strings}")
 
+    # --svg - : the SVG on standard output, the summary on standard error
+    code, out, err = run("render", "hertz", "--level", "4", "--plot", "pressure", "--svg", "-")
+    check(code == 0 and out.startswith("<?xml") and out.rstrip().endswith("</svg>") and "converged" in err,
+          f"--svg - ({code}): {err!r}")
+
     # ---- an image as SVG: the body embedded, text and bar as vectors -------
     code, out, err = run("render", "hertz", "--level", "8", "--svg", svg, "--pdf", pdf)
     check(code == 0, f"image --svg ({err})")
