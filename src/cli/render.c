@@ -594,7 +594,8 @@ int cli_render_check(const cli_render_args *r, int dim, cx_diag *d)
 {
     (void)dim;
     if (cli_render_wanted(r))
-        return cx_diag_set(d, CX_EUNSUPPORTED, "--png: built without rendering (meson -Drender=disabled)");
+        return cx_diag_set(d, CX_EUNSUPPORTED, "%s: built without rendering (meson -Drender=disabled)",
+                           r->png ? "--png" : r->svg ? "--svg" : r->pdf ? "--pdf" : r->gif ? "--gif" : "--frames");
     return CX_OK;
 }
 

@@ -114,6 +114,9 @@ static int vec_write_file(const char *path, int w, int h, cx_vector_format fmt, 
         surf = cairo_pdf_surface_create_for_stream(vec_write, &v, pw, ph);
         cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_TITLE, title);
         cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATOR, "signorini " CX_VERSION);
+        /* no date (cairo writes the clock's by default): the same figure
+         * gives the same bytes, as the PNG does */
+        cairo_pdf_surface_set_metadata(surf, CAIRO_PDF_METADATA_CREATE_DATE, "");
     }
     cairo_t *cr = cairo_create(surf);
     cairo_scale(cr, CX_VECTOR_PT_PER_PX, CX_VECTOR_PT_PER_PX);

@@ -112,6 +112,11 @@ with tempfile.TemporaryDirectory() as tmp:
     check(len(ranges) == 1, f"one colour range in every frame: {ranges}")
     check(iters == list(range(n + 1)), f"frame k is iteration k: {iters}")
 
+    # the same run gives the same bytes
+    gif2 = os.path.join(tmp, "again.gif")
+    code, out, err = run("render", "slider", "--size", "400x300", "--gif", gif2)
+    check(code == 0 and open(gif, "rb").read() == open(gif2, "rb").read(), "the GIF is reproducible")
+
     # a GIF in a missing directory: one line, nothing left
     code, out, err = run("render", "slider", "--gif", os.path.join(tmp, "no", "x.gif"))
     one_line_error(code, err, "x.gif")
@@ -140,6 +145,13 @@ with tempfile.TemporaryDirectory() as tmp:
         check(data.startswith(b"%PDF-") and data.rstrip().endswith(b"%%EOF"), "a whole PDF")
         check(any("iteration" in t for t in strings) and any("kkt error" in t for t in strings),
               f"PDF text: {strings}")
+
+    # the same figure gives the same bytes (no date in the PDF)
+    svg2, pdf2 = os.path.join(tmp, "again.svg"), os.path.join(tmp, "again.pdf")
+    code, out, err = run("render", "hertz", "--level", "8", "--plot", "convergence", "--method", "ssn-tresca",
+                         "--method", "pdas", "--svg", svg2, "--pdf", pdf2)
+    check(open(svg, "rb").read() == open(svg2, "rb").read(), "the SVG is reproducible")
+    check(open(pdf, "rb").read() == open(pdf2, "rb").read(), "the PDF is reproducible")
 
     # --svg - : the SVG on standard output, the summary on standard error
     code, out, err = run("render", "hertz", "--level", "4", "--plot", "pressure", "--svg", "-")
