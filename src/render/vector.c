@@ -71,7 +71,7 @@ static int vec_svg_text(vec_buf *v, const cx_text_rec *rec)
     at -= 6;
     vec_buf t = {0};
     char line[512];
-    snprintf(line, sizeof line, "<g id=\"text\" font-family=\"DejaVu Sans\" xml:space=\"preserve\">\n");
+    snprintf(line, sizeof line, "<g id=\"text\" font-family=\"DejaVu Sans, Verdana, sans-serif\" xml:space=\"preserve\">\n");
     vec_put(&t, line, strlen(line));
     for (int i = 0; i < rec->n; i++) {
         const cx_text_item *it = &rec->v[i];
