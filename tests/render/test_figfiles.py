@@ -12,10 +12,9 @@ import os
 import re
 import sys
 import tempfile
+import struct
 import xml.etree.ElementTree as ET
 import zlib
-
-from PIL import Image
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from clicheck import check, finish, one_line_error, run, usage_error  # noqa: E402
@@ -28,25 +27,96 @@ def iterations(out):
     return int(m.group(1)) if m else -1
 
 
-def gif_tables(path):
-    """(global colour table size or 0, number of images, images with a
-    local colour table), from the GIF's blocks."""
+def lzw(min_size, data):
+    """The colour indices of one GIF image (LZW, codes LSB first)."""
+    clear, end = 1 << min_size, (1 << min_size) + 1
+    size, table, out, prev = min_size + 1, None, bytearray(), None
+    acc = nacc = pos = 0
+    while True:
+        while nacc < size and pos < len(data):
+            acc |= data[pos] << nacc
+            nacc += 8
+            pos += 1
+        if nacc < size:
+            break
+        code = acc & ((1 << size) - 1)
+        acc >>= size
+        nacc -= size
+        if code == clear:
+            table = [bytes([i]) for i in range(clear)] + [b"", b""]
+            size, prev = min_size + 1, None
+            continue
+        if code == end:
+            break
+        if prev is None:
+            entry = table[code]
+        else:
+            entry = table[code] if code < len(table) else prev + prev[:1]
+            table.append(prev + entry[:1])
+            if len(table) == 1 << size and size < 12:
+                size += 1
+        out += entry
+        prev = entry
+    return bytes(out)
+
+
+def gif_read(path):
+    """{"size", "table" (RGB triples), "local" (images with their own
+    table), "comment", "loop", "frames": [(w, h, indices, delay)]}."""
     d = open(path, "rb").read()
-    flags = d[10]
+    check(d[:6] == b"GIF89a", f"{path}: GIF89a")
+    w, h, flags = struct.unpack("<HHB", d[6:11])
     gct = 3 * (1 << ((flags & 7) + 1)) if flags & 0x80 else 0
-    pos, images, local = 13 + gct, 0, 0
-    while pos < len(d) and d[pos] != 0x3B:
-        if d[pos] == 0x21:   # extension: label, then sub-blocks
-            pos += 2
-        else:                # image descriptor, its own table, LZW size
-            images += 1
-            f = d[pos + 9]
-            local += bool(f & 0x80)
-            pos += 10 + (3 * (1 << ((f & 7) + 1)) if f & 0x80 else 0) + 1
+    g = {"size": (w, h), "table": [tuple(d[13 + i:16 + i]) for i in range(0, gct, 3)], "local": 0,
+         "comment": b"", "loop": None, "frames": []}
+    pos, delay = 13 + gct, 0
+
+    def blocks(pos):
+        data = bytearray()
         while d[pos] != 0:
+            data += d[pos + 1:pos + 1 + d[pos]]
             pos += d[pos] + 1
-        pos += 1
-    return gct // 3, images, local
+        return bytes(data), pos + 1
+
+    while pos < len(d) and d[pos] != 0x3B:
+        if d[pos] == 0x21:
+            label = d[pos + 1]
+            data, pos = blocks(pos + 2)
+            if label == 0xF9:
+                delay = struct.unpack("<H", data[1:3])[0]
+            elif label == 0xFE:
+                g["comment"] += data
+            elif label == 0xFF and data[:11] == b"NETSCAPE2.0":
+                g["loop"] = struct.unpack("<H", data[12:14])[0]
+        else:
+            x, y, fw, fh, f = struct.unpack("<HHHHB", d[pos + 1:pos + 10])
+            g["local"] += bool(f & 0x80)
+            pos += 10 + (3 * (1 << ((f & 7) + 1)) if f & 0x80 else 0)
+            min_size = d[pos]
+            data, pos = blocks(pos + 1)
+            g["frames"].append((fw, fh, lzw(min_size, data), delay))
+    return g
+
+
+def png_text(path):
+    """(width, height, {tEXt key: value}) of a PNG."""
+    d = open(path, "rb").read()
+    pos, text, w, h = 8, {}, 0, 0
+    while pos < len(d):
+        n, kind = struct.unpack(">I4s", d[pos:pos + 8])
+        body = d[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h = struct.unpack(">II", body[:8])
+        elif kind == b"tEXt":
+            k, v = body.split(b"\0", 1)
+            text[k.decode("latin-1")] = v.decode("latin-1")
+        pos += 12 + n
+    return w, h, text
+
+
+def crop(frame, x0, y0, x1, y1):
+    w, h, px, _ = frame
+    return b"".join(px[y * w + x0:y * w + x1] for y in range(y0, y1))
 
 
 def svg_texts(path):
@@ -78,37 +148,35 @@ with tempfile.TemporaryDirectory() as tmp:
     check(code == 0 and n > 1, f"slider converges in more than one iteration ({code}, {n}): {err}")
     check(os.path.exists(gif), "the GIF is written")
     if os.path.exists(gif):
-        im = Image.open(gif)
-        check(im.format == "GIF" and im.n_frames == n + 1, f"GIF frames = iterations + 1: {im.n_frames}, {n}")
-        check(im.info.get("loop") == 0, "the GIF loops")
-        m = re.search(rb"colour range ([-0-9.e+]+):([-0-9.e+]+)", im.info.get("comment", b""))
-        check(m is not None and float(m.group(2)) > float(m.group(1)), f"comment: {im.info.get('comment')}")
-        sizes, rgb = set(), []
-        for k in range(im.n_frames):
-            im.seek(k)
-            sizes.add(im.size)
-            rgb.append(im.convert("RGB"))
-        check(sizes == {(400, 300)}, f"every frame 400x300: {sizes}")
-        ncol, nimg, nlocal = gif_tables(gif)
-        check(ncol == 256 and nimg == n + 1 and nlocal == 0, f"one global table of 256 colours: {ncol}, {nimg}, {nlocal}")
+        g = gif_read(gif)
+        fr = g["frames"]
+        check(len(fr) == n + 1, f"GIF frames = iterations + 1: {len(fr)}, {n}")
+        check(g["loop"] == 0, f"the GIF loops: {g['loop']}")
+        m = re.search(rb"colour range ([-0-9.e+]+):([-0-9.e+]+)", g["comment"])
+        check(m is not None and float(m.group(2)) > float(m.group(1)), f"comment: {g['comment']}")
+        check(g["size"] == (400, 300) and all(f[0:2] == (400, 300) and len(f[2]) == 400 * 300 for f in fr),
+              f"every frame 400x300, whole: {[(f[0], f[1], len(f[2])) for f in fr]}")
+        check(len(g["table"]) == 256 and g["local"] == 0, f"one global table of 256 colours: {len(g['table'])}, {g['local']}")
+        check([f[3] for f in fr] == [50] * n + [300], f"0.5 s a frame, the last 3 s: {[f[3] for f in fr]}")
         # the colour bar (right strip, below the title) is the same in the
         # first and the last frame (neither has the 'still running' banner)
         box = (int(0.85 * 400), int(0.3 * 300), 400, int(0.85 * 300))
-        check(list(rgb[0].crop(box).getdata()) == list(rgb[-1].crop(box).getdata()),
-              "colour bar identical in the first and last frame")
-        check(list(rgb[0].getdata()) != list(rgb[-1].getdata()), "the run changes the picture")
+        check(crop(fr[0], *box) == crop(fr[-1], *box), "colour bar identical in the first and last frame")
+        check(fr[0][2] != fr[-1][2], "the run changes the picture")
         # a middle frame carries the banner (still running), the last not
-        mid = rgb[1].crop((0, int(0.1 * 300), 400, int(0.2 * 300))).getcolors(1 << 16)
-        banner = [c for c, px in mid if px[0] > 140 and px[1] < 80 and px[2] < 30]
-        check(sum(banner) > 1000, "frame 1 shows the 'still running' banner")
+        def banner(f):
+            px = crop(f, 0, int(0.1 * 300), 400, int(0.2 * 300))
+            return sum(1 for i in px if g["table"][i][0] > 140 and g["table"][i][1] < 80 and g["table"][i][2] < 30)
+        check(banner(fr[1]) > 1000 and banner(fr[-1]) == 0, f"the banner in frame 1, not in the last: "
+              f"{banner(fr[1])}, {banner(fr[-1])}")
     names = sorted(os.listdir(frames)) if os.path.isdir(frames) else []
     check(names == [f"frame_{k:04d}.png" for k in range(n + 1)], f"frames 0..{n}: {names}")
     ranges, iters = set(), []
     for k, name in enumerate(names):
-        p = Image.open(os.path.join(frames, name))
-        ranges.add(p.text.get("colour range"))
-        iters.append(int(p.text.get("iterations", "-1")))
-        check(p.size == (400, 300) and p.text.get("frame") == str(k), f"{name}: size and frame chunk")
+        w, h, text = png_text(os.path.join(frames, name))
+        ranges.add(text.get("colour range"))
+        iters.append(int(text.get("iterations", "-1")))
+        check((w, h) == (400, 300) and text.get("frame") == str(k), f"{name}: size and frame chunk")
     check(len(ranges) == 1, f"one colour range in every frame: {ranges}")
     check(iters == list(range(n + 1)), f"frame k is iteration k: {iters}")
 
@@ -172,7 +240,7 @@ with tempfile.TemporaryDirectory() as tmp:
     code, out, err = run("render", "twoblocks-paper", "--level", "4", "--log", "--png", png, "--svg", svg)
     check(code in (0, 3), f"--log ({err})")
     if os.path.exists(png):
-        rng = Image.open(png).text.get("colour range", "")
+        rng = png_text(png)[2].get("colour range", "")
         check(rng.endswith("(log)"), f"the range is logarithmic: {rng}")
         lo, hi = (float(x) for x in rng.split()[0].split(":"))
         check(0 < lo < hi and hi / lo <= 1e6 * (1 + 1e-9), f"a positive range of at most 6 decades: {rng}")
