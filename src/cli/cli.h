@@ -33,7 +33,7 @@ typedef struct cli_render_args {
     const cx_opt_list *methods, *sets;
     /* vector files, the animation, the log colour scale (issue 22) */
     const char *svg, *pdf, *frames, *gif;
-    int log;
+    int log, every;      /* --log; --every K: the animation draws every K-th iterate */
 } cli_render_args;
 /* --set KEY=VALUE into pv; with several --method (nmethods > 1) a key pv's
  * method has not is skipped (it is another method's). */

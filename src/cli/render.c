@@ -129,6 +129,9 @@ const cx_opt cli_render_opts[] = {
     {"gif", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
      "the same animation as a looping GIF (0.5 s a frame, the\n"
      "last 3 s)", offsetof(cli_render_args, gif), NULL},
+    {"every", 0, CX_OPT_INT, 1, 1000000, 0, NULL, "K",
+     "--frames, --gif: every K-th iterate only, and the last\n"
+     "(default 1: all; for runs of hundreds of iterations)", offsetof(cli_render_args, every), NULL},
     {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
 };
 
@@ -137,6 +140,7 @@ void cli_render_args_init(cli_render_args *r)
     memset(r, 0, sizeof *r);
     r->plot = -1;
     r->font_scale = 1;
+    r->every = 1;
     r->w = 1200;
     r->h = 900;
 }
@@ -499,6 +503,7 @@ static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *
 
 typedef struct anim_watch {
     cx_anim *a;
+    int every;           /* draw iterates k with k % every == 0, and the last */
     cx_session *s;       /* the session stepped (to complete its iterate) */
     const cx_scene *sc;
     int level;
@@ -523,8 +528,10 @@ static int render_anim_frame(anim_watch *w)
 static int render_anim_observe(void *ctx, const cx_session *s, const cx_iterate *it)
 {
     (void)s;
-    (void)it;
-    return render_anim_frame(ctx) != CX_OK;
+    anim_watch *w = ctx;
+    if (it->iter % w->every != 0 && it->reason == CX_ITERATING)
+        return 0;
+    return render_anim_frame(w) != CX_OK;
 }
 
 /* --frames and --gif: the run again from its start (the method, its
@@ -544,7 +551,7 @@ static int render_animate(const cli_render_args *r, const cx_scene *sc, cx_sessi
         cx_options opt = *cx_session_options(s);
         rc = cx_session_set_method(s, m, &pv, &opt, d);
     }
-    anim_watch w = {a, s, sc, res->run.level, d, 0};
+    anim_watch w = {a, r->every > 0 ? r->every : 1, s, sc, res->run.level, d, 0};
     if (rc == CX_OK)
         rc = render_anim_frame(&w);
     if (rc == CX_OK) {
@@ -558,8 +565,8 @@ static int render_animate(const cli_render_args *r, const cx_scene *sc, cx_sessi
         double lo, hi;
         cx_anim_range(a, &lo, &hi);
         int n = cx_anim_count(a);
-        fprintf(stderr, "animation: %d frames (iterations 0..%d), colour range %.4g:%.4g%s, %.2f s%s%s%s%s\n", n,
-                n - 1, lo, hi, o.log ? " (log)" : "", cx_anim_seconds(a), r->frames ? "; " : "",
+        fprintf(stderr, "animation: %d frames (iterations 0..%d%s), colour range %.4g:%.4g%s, %.2f s%s%s%s%s\n", n,
+                cx_session_iterate(s)->iter, r->every > 1 ? ", every few" : "", lo, hi, o.log ? " (log)" : "", cx_anim_seconds(a), r->frames ? "; " : "",
                 r->frames ? r->frames : "", r->gif ? "; " : "", r->gif ? r->gif : "");
     }
     cx_anim_destroy(&a);

@@ -13,7 +13,7 @@ from clicheck import check, finish, run, usage_error  # noqa: E402
 SOLVE = {"method", "friction", "F", "slip", "level", "tol", "max-iter", "stop", "time-limit", "set",
          "json", "baseline", "quiet", "vtu-series",
          "png", "field", "scale", "font-scale", "cmap", "range", "title", "no-title", "size", "view", "edges", "vtu", "vtu-ascii", "plot", "timing"}
-SOLVE |= {"svg", "pdf", "log", "frames", "gif"}   # render/: vector files, log scale, animation
+SOLVE |= {"svg", "pdf", "log", "frames", "gif", "every"}   # render/: vector files, log scale, animation
 BENCH = {"methods", "friction", "slip", "F", "max-iter", "time-limit", "repeat", "threads", "csv", "json",
          "png", "cache"}
 

@@ -185,6 +185,13 @@ with tempfile.TemporaryDirectory() as tmp:
     code, out, err = run("render", "slider", "--size", "400x300", "--gif", gif2)
     check(code == 0 and open(gif, "rb").read() == open(gif2, "rb").read(), "the GIF is reproducible")
 
+    # --every 2: iterates 0, 2, 4, ... and the last
+    frames2 = os.path.join(tmp, "every")
+    code, out, err = run("render", "slider", "--size", "400x300", "--frames", frames2, "--every", "2")
+    want = sorted(set(range(0, n + 1, 2)) | {n})
+    got = [int(png_text(os.path.join(frames2, f))[2].get("iterations", "-1")) for f in sorted(os.listdir(frames2))]
+    check(code == 0 and got == want, f"--every 2 draws iterations {want}: {got}")
+
     # a GIF in a missing directory: one line, nothing left
     code, out, err = run("render", "slider", "--gif", os.path.join(tmp, "no", "x.gif"))
     one_line_error(code, err, "x.gif")
