@@ -34,6 +34,9 @@ typedef struct cli_render_args {
     /* the solve's --method and --set (borrowed): a convergence or work
      * plot runs each method named */
     const cx_opt_list *methods, *sets;
+    /* vector files, the animation, the log colour scale (issue 22) */
+    const char *svg, *pdf, *frames, *gif;
+    int log, every;      /* --log; --every K: the animation draws every K-th iterate */
 } cli_render_args;
 /* --set KEY=VALUE into pv; with several --method (nmethods > 1) a key pv's
  * method has not is skipped (it is another method's). */
@@ -51,7 +54,9 @@ int cli_render_check(const cli_render_args *r, int dim, cx_diag *d);
  * session s (the convergence plots run the scene's other methods on s). */
 int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
                        int quiet, cx_diag *d);
-/* How many of --png and --vtu are '-' (standard output). */
+/* Non-zero if a drawing was asked for (--png, --svg, --pdf, --gif, --frames). */
+int cli_render_wanted(const cli_render_args *r);
+/* How many of --png, --vtu, --svg, --pdf and --gif are '-' (standard output). */
 int cli_render_stdout_users(const cli_render_args *r);
 
 /* Print "signorini CMD: message" on stderr and return CX_EXIT_ERROR. */

@@ -11,7 +11,9 @@
 #include <string.h>
 
 #if CX_HAVE_RENDER
+#include "render/anim.h"
 #include "render/render.h"
+#include "render/vector.h"
 #endif
 
 static const char render_usage[] =
@@ -144,6 +146,26 @@ const cx_opt cli_render_opts[] = {
      "(one factorisation + solve of K) marked", offsetof(cli_render_args, plot), NULL},
     {"timing", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "print the time of each rendering stage",
      offsetof(cli_render_args, timing), NULL},
+    {"svg", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
+     "also the figure as SVG: plots as vectors with <text>\n"
+     "labels; an image as its rendered body under vector\n"
+     "text, colour bar and markers", offsetof(cli_render_args, svg), NULL},
+    {"pdf", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE", "also the figure as PDF (as --svg, searchable text)",
+     offsetof(cli_render_args, pdf), NULL},
+    {"log", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL,
+     "logarithmic colour scale (von-mises, u, pressure; with\n"
+     "--range MIN:MAX, 0 < MIN, so that figures share one)", offsetof(cli_render_args, log), NULL},
+    {"frames", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR",
+     "an animation: run the method again from the start and\n"
+     "draw every iterate, DIR/frame_0000.png ... (iterations +\n"
+     "1 frames; the last iterate's camera, scale and colour\n"
+     "range in every frame)", offsetof(cli_render_args, frames), NULL},
+    {"gif", 0, CX_OPT_STRING, 0, 0, 0, NULL, "FILE",
+     "the same animation as a looping GIF (0.5 s a frame, the\n"
+     "last 3 s)", offsetof(cli_render_args, gif), NULL},
+    {"every", 0, CX_OPT_INT, 1, 1000000, 0, NULL, "K",
+     "--frames, --gif: every K-th iterate only, and the last\n"
+     "(default 1: all; for runs of hundreds of iterations)", offsetof(cli_render_args, every), NULL},
     {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
 };
 
@@ -153,6 +175,7 @@ void cli_render_args_init(cli_render_args *r)
     r->plot = -1;
     r->crop = -1;
     r->font_scale = 1;
+    r->every = 1;
     r->w = 1200;
     r->h = 900;
 }
@@ -198,6 +221,18 @@ int cli_sets_check(const cx_opt_list *methods, const cx_opt_list *sets, cx_diag 
 }
 
 #if CX_HAVE_RENDER
+
+/* A plot to each file asked for: PNG, SVG, PDF. */
+static int render_plot_out(const cli_render_args *r, const cx_plot *pl, cx_diag *d)
+{
+    if (r->png)
+        CX_TRY(cx_plot_write_png(pl, r->png, r->w, r->h, d));
+    if (r->svg)
+        CX_TRY(cx_plot_write_vector(pl, r->svg, r->w, r->h, CX_VECTOR_SVG, d));
+    if (r->pdf)
+        CX_TRY(cx_plot_write_vector(pl, r->pdf, r->w, r->h, CX_VECTOR_PDF, d));
+    return CX_OK;
+}
 
 /* The contact pressure lN / weight along the boundary, with Hertz's. */
 static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, const cx_result *res,
@@ -249,7 +284,7 @@ static int render_plot_pressure(const cli_render_args *r, const cx_scene *sc, co
     }
     cx_plot_add_text(&pl, "scene", sc->id);
     cx_plot_add_text(&pl, "method", res->run.method);
-    int rc = cx_plot_write_png(&pl, r->png, r->w, r->h, d);
+    int rc = render_plot_out(r, &pl, d);
     cx_free(x);
     return rc;
 }
@@ -398,13 +433,46 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
     cx_plot_add_text(&pl, "friction", cx_friction_name(law));
     cx_plot_add_text(&pl, "methods", methods);
     if (rc == CX_OK)
-        rc = cx_plot_write_png(&pl, r->png, r->w, r->h, d);
+        rc = render_plot_out(r, &pl, d);
     for (int k = 0; k < CX_SCENE_MAX_METHODS + 1; k++) {
         cx_free(rec[k].it);
         cx_free(rec[k].kkt);
         cx_free(rec[k].time);
     }
     return rc;
+}
+
+/* The image options from the command line; map3d: 3D --plot pressure,
+ * the map of the pressure on the contact face seen from the obstacle. */
+static int render_image_opts(const cli_render_args *r, const cx_scene *sc, int map3d, cx_render_opts *o,
+                             cx_diag *d)
+{
+    cx_render_opts_default(o);
+    o->width = r->w;
+    o->height = r->h;
+    o->scale = r->scale;
+    o->font_scale = r->font_scale;
+    o->cmap = r->cmap - 1;
+    o->no_title = r->no_title;
+    o->title = r->title;
+    o->log = r->log;
+    if (r->range && render_parse_range(r->range, &o->range_lo, &o->range_hi))
+        o->has_range = 1;
+    o->edges = r->edges;
+    o->view = r->view;
+    /* 3D camera and framing */
+    o->has_camera = r->camera && render_parse_camera(r->camera, &o->cam_az, &o->cam_el);
+    o->crop_contact = r->crop == 0;
+    o->mirror = r->mirror;
+    o->scene = sc;
+    if (map3d) {
+        o->field = CX_FIELD_PRESSURE;
+        o->view = CX_VIEW_CONTACT;
+    }
+    if (!map3d && r->field_name && (o->field = cx_field_from_name(r->field_name)) < 0)
+        return cx_diag_set(d, CX_EINVAL, "--field '%s': unknown field (see 'signorini render --help')",
+                           r->field_name);
+    return CX_OK;
 }
 
 static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
@@ -418,37 +486,95 @@ static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *
     if (r->plot >= 1)
         return render_plot_convergence(r, sc, s, res, r->plot == 2, d);
     cx_render_opts o;
-    cx_render_opts_default(&o);
-    o.width = r->w;
-    o.height = r->h;
-    o.scale = r->scale;
-    o.font_scale = r->font_scale;
-    o.cmap = r->cmap - 1;
-    o.no_title = r->no_title;
-    o.title = r->title;
-    if (r->range && render_parse_range(r->range, &o.range_lo, &o.range_hi))
-        o.has_range = 1;
-    o.edges = r->edges;
-    o.view = r->view;
-    /* 3D camera and framing */
-    o.has_camera = r->camera && render_parse_camera(r->camera, &o.cam_az, &o.cam_el);
-    o.crop_contact = r->crop == 0;
-    o.mirror = r->mirror;
-    o.scene = sc;
-    if (map3d) {
-        o.field = CX_FIELD_PRESSURE;
-        o.view = CX_VIEW_CONTACT;
-    }
-    if (!map3d && r->field_name && (o.field = cx_field_from_name(r->field_name)) < 0)
-        return cx_diag_set(d, CX_EINVAL, "--field '%s': unknown field (see 'signorini render --help')",
-                           r->field_name);
+    CX_TRY(render_image_opts(r, sc, map3d, &o, d));
     cx_render_timing t;
-    CX_TRY(cx_render_png(res, &o, r->png, &t, d));
-    if (r->timing)
-        fprintf(stderr, "render %s %dx%d: context %.3f s, fields+geometry %.3f s, draw %.3f s, "
-                "text %.3f s, png %.3f s\n", r->png, o.width, o.height, t.context, t.fields,
-                t.draw, t.text, t.png);
+    if (r->png) {
+        CX_TRY(cx_render_png(res, &o, r->png, &t, d));
+        if (r->timing)
+            fprintf(stderr, "render %s %dx%d: context %.3f s, fields+geometry %.3f s, draw %.3f s, "
+                    "text %.3f s, png %.3f s\n", r->png, o.width, o.height, t.context, t.fields,
+                    t.draw, t.text, t.png);
+    }
+    double t0 = cx_clock_now();
+    if (r->svg)
+        CX_TRY(cx_render_vector(res, &o, r->svg, CX_VECTOR_SVG, d));
+    if (r->pdf)
+        CX_TRY(cx_render_vector(res, &o, r->pdf, CX_VECTOR_PDF, d));
+    if (r->timing && (r->svg || r->pdf))
+        fprintf(stderr, "render svg/pdf: %.3f s\n", cx_clock_now() - t0);
     return CX_OK;
+}
+
+typedef struct anim_watch {
+    cx_anim *a;
+    int every;           /* draw iterates k with k % every == 0, and the last */
+    cx_session *s;       /* the session stepped (to complete its iterate) */
+    const cx_scene *sc;
+    int level;
+    cx_diag *d;
+    int failed;
+} anim_watch;
+
+/* One frame: the session's iterate, whole. */
+static int render_anim_frame(anim_watch *w)
+{
+    cx_result *fr = NULL;
+    int rc = cx_session_complete_iterate(w->s, w->d);
+    if (rc == CX_OK)
+        rc = cx_result_from_session(&fr, w->s, w->sc, w->level, w->d);
+    if (rc == CX_OK)
+        rc = cx_anim_add(w->a, fr, w->d);
+    cx_result_destroy(&fr);
+    w->failed = rc != CX_OK;
+    return rc;
+}
+
+static int render_anim_observe(void *ctx, const cx_session *s, const cx_iterate *it)
+{
+    (void)s;
+    anim_watch *w = ctx;
+    if (it->iter % w->every != 0 && it->reason == CX_ITERATING)
+        return 0;
+    return render_anim_frame(w) != CX_OK;
+}
+
+/* --frames and --gif: the run again from its start (the method, its
+ * parameters and options, on the session's operators), a frame per
+ * iterate, with res (the first run's last iterate) fixing the camera,
+ * scale and colour range. */
+static int render_animate(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
+                          int quiet, cx_diag *d)
+{
+    cx_render_opts o;
+    CX_TRY(render_image_opts(r, sc, 0, &o, d));
+    cx_anim *a = NULL;
+    int rc = cx_anim_create(&a, res, &o, r->frames, r->gif, d);
+    if (rc == CX_OK) {
+        const cx_method *m = cx_session_method(s);
+        cx_param_values pv = *cx_session_params(s);
+        cx_options opt = *cx_session_options(s);
+        rc = cx_session_set_method(s, m, &pv, &opt, d);
+    }
+    anim_watch w = {a, r->every > 0 ? r->every : 1, s, sc, res->run.level, d, 0};
+    if (rc == CX_OK)
+        rc = render_anim_frame(&w);
+    if (rc == CX_OK) {
+        rc = cx_solver_solve(s, render_anim_observe, &w, d);
+        if (rc == CX_OK && w.failed)
+            rc = CX_EIO;   /* the frame's error is in d */
+    }
+    if (rc == CX_OK)
+        rc = cx_anim_finish(a, d);
+    if (rc == CX_OK && !quiet) {
+        double lo, hi;
+        cx_anim_range(a, &lo, &hi);
+        int n = cx_anim_count(a);
+        fprintf(stderr, "animation: %d frames (iterations 0..%d%s), colour range %.4g:%.4g%s, %.2f s%s%s%s%s\n", n,
+                cx_session_iterate(s)->iter, r->every > 1 ? ", every few" : "", lo, hi, o.log ? " (log)" : "", cx_anim_seconds(a), r->frames ? "; " : "",
+                r->frames ? r->frames : "", r->gif ? "; " : "", r->gif ? r->gif : "");
+    }
+    cx_anim_destroy(&a);
+    return rc;
 }
 
 int cli_render_check(const cli_render_args *r, int dim, cx_diag *d)
@@ -481,16 +607,23 @@ static int render_png(const cli_render_args *r, const cx_scene *sc, cx_session *
 int cli_render_check(const cli_render_args *r, int dim, cx_diag *d)
 {
     (void)dim;
-    if (r->png)
-        return cx_diag_set(d, CX_EUNSUPPORTED, "--png: built without rendering (meson -Drender=disabled)");
+    if (cli_render_wanted(r))
+        return cx_diag_set(d, CX_EUNSUPPORTED, "%s: built without rendering (meson -Drender=disabled)",
+                           r->png ? "--png" : r->svg ? "--svg" : r->pdf ? "--pdf" : r->gif ? "--gif" : "--frames");
     return CX_OK;
 }
 
 #endif
 
+int cli_render_wanted(const cli_render_args *r)
+{
+    return r->png || r->svg || r->pdf || r->gif || r->frames;
+}
+
 int cli_render_stdout_users(const cli_render_args *r)
 {
-    return cx_outfile_is_stdout(r->png) + cx_outfile_is_stdout(r->vtu);
+    return cx_outfile_is_stdout(r->png) + cx_outfile_is_stdout(r->vtu) + cx_outfile_is_stdout(r->svg) +
+           cx_outfile_is_stdout(r->pdf) + cx_outfile_is_stdout(r->gif);
 }
 
 int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session *s, cx_result *res,
@@ -501,7 +634,13 @@ int cli_render_outputs(const cli_render_args *r, const cx_scene *sc, cx_session 
         if (!quiet && !cx_outfile_is_stdout(r->vtu))
             fprintf(stderr, "wrote %s\n", r->vtu);
     }
-    return r->png ? render_png(r, sc, s, res, d) : CX_OK;
+    if (r->png || r->svg || r->pdf)
+        CX_TRY(render_png(r, sc, s, res, d));
+#if CX_HAVE_RENDER
+    if (r->frames || r->gif)
+        CX_TRY(render_animate(r, sc, s, res, quiet, d));
+#endif
+    return CX_OK;
 }
 
 int cli_render(int argc, char **argv)

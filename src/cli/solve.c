@@ -242,8 +242,8 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     }
     if (parsed)
         return cli_usage(cmd, d.msg);
-    if (strcmp(cmd, "render") == 0 && !a.render.png)
-        return cli_usage(cmd, "missing --png FILE");
+    if (strcmp(cmd, "render") == 0 && !cli_render_wanted(&a.render))
+        return cli_usage(cmd, "missing --png FILE (or --svg, --pdf, --gif, --frames)");
     cx_options opt;
     cx_options_default(&opt);
     opt.tol = a.s.tol;

@@ -7,16 +7,17 @@
 #include <stdio.h>
 #include <string.h>
 
-static double axis_nice_step(double span, int target)
+/* integer: counts (iterations), steps of 1, 2 or 5 times 10^k, k >= 0 */
+static double axis_nice_step(double span, int target, int integer)
 {
     double raw = span / (target > 1 ? target : 1);
     double p = pow(10.0, floor(log10(raw)));
     double f = raw / p;
-    double nice = f <= 1.0 ? 1.0 : f <= 2.0 ? 2.0 : f <= 2.5 ? 2.5 : f <= 5.0 ? 5.0 : 10.0;
-    return nice * p;
+    double nice = f <= 1.0 ? 1.0 : f <= 2.0 ? 2.0 : f <= 2.5 && !integer ? 2.5 : f <= 5.0 ? 5.0 : 10.0;
+    return integer ? fmax(1.0, nice * p) : nice * p;
 }
 
-static void axis_make_linear(cx_axis *a, double lo, double hi, int target, int expand)
+static void axis_make_linear(cx_axis *a, double lo, double hi, int target, int expand, int integer)
 {
     /* a span of rounding noise (a uniform pressure 1 ± 1e-8) reads as a
      * constant, not as ticks with nine digits */
@@ -26,7 +27,7 @@ static void axis_make_linear(cx_axis *a, double lo, double hi, int target, int e
         lo = c - w;
         hi = c + w;
     }
-    double step = axis_nice_step(hi - lo, target);
+    double step = axis_nice_step(hi - lo, target, integer);
     double t0 = floor(lo / step + 1e-9) * step;
     double t1 = ceil(hi / step - 1e-9) * step;
     if (expand) {
@@ -97,7 +98,13 @@ void cx_axis_make(cx_axis *a, double lo, double hi, int log, int target, int exp
     if (log)
         axis_make_log(a, lo, hi, target, expand);
     else
-        axis_make_linear(a, lo, hi, target, expand);
+        axis_make_linear(a, lo, hi, target, expand, 0);
+}
+
+void cx_axis_make_integer(cx_axis *a, double lo, double hi, int target, int expand)
+{
+    memset(a, 0, sizeof *a);
+    axis_make_linear(a, lo, hi, target, expand, 1);
 }
 
 double cx_axis_frac(const cx_axis *a, double v)
@@ -123,8 +130,66 @@ static void axis_superscript(int e, char *buf, size_t len)
     buf[n] = '\0';
 }
 
+void cx_axis_colorbar(cx_axis *a, double lo, double hi, int log, int target)
+{
+    cx_axis_make(a, lo, hi, log, target, 0);
+    cx_axis_unit(a);
+}
+
+void cx_axis_unit(cx_axis *a)
+{
+    if (a->log || a->nticks == 0)
+        return;
+    double big = fmax(fabs(a->lo), fabs(a->hi));
+    int e = big > 0 ? (int)floor(log10(big) + 1e-9) : 0;
+    if (e >= 4 || e <= -3)
+        a->exp10 = e;
+}
+
+void cx_axis_unit_suffix(const cx_axis *a, char *buf, size_t len)
+{
+    buf[0] = '\0';
+    if (a->exp10 == 0 || len < 8)
+        return;
+    snprintf(buf, len, ", ×10");
+    axis_superscript(a->exp10, buf, len);
+}
+
+/* "1.5×10⁹": v with `digits` significant digits, in the form a reader
+ * writes, trailing zeros dropped. */
+static void axis_sci(double v, int digits, char *buf, size_t len)
+{
+    int e = (int)floor(log10(fabs(v)) + 1e-9);
+    double m = v / pow(10.0, e);
+    char mant[32];
+    snprintf(mant, sizeof mant, "%.*f", digits > 1 ? digits - 1 : 0, m);
+    if (strchr(mant, '.')) {   /* 1.50 -> 1.5, 2.0 -> 2 */
+        char *z = mant + strlen(mant) - 1;
+        while (*z == '0')
+            *z-- = '\0';
+        if (*z == '.')
+            *z = '\0';
+    }
+    if (strcmp(mant, "10") == 0 || strcmp(mant, "-10") == 0) {   /* rounded up a decade */
+        snprintf(mant, sizeof mant, "%s1", v < 0 ? "-" : "");
+        e++;
+    }
+    snprintf(buf, len, "%s×10", mant);
+    axis_superscript(e, buf, len);
+}
+
 void cx_axis_label(const cx_axis *a, double v, char *buf, size_t len)
 {
+    if (!a->log && a->exp10 != 0) {   /* in units of 10^exp10 */
+        cx_axis u = *a;
+        double unit = pow(10.0, a->exp10);
+        u.exp10 = 0;
+        u.lo /= unit;
+        u.hi /= unit;
+        u.step /= unit;
+        cx_axis_label(&u, v / unit, buf, len);
+        return;
+    }
     if (a->log) {
         int e = (int)floor(log10(v) + 0.5);
         if (fabs(v / pow(10.0, e) - 1.0) > 1e-9) {   /* 2 or 5 x 10^k */
@@ -157,7 +222,7 @@ void cx_axis_label(const cx_axis *a, double v, char *buf, size_t len)
             digits = 1;
         if (digits > 6)
             digits = 6;
-        snprintf(buf, len, "%.*g", digits, v);
+        axis_sci(v, digits, buf, len);
     } else {
         int dec = (int)ceil(-log10(a->step) - 1e-9);
         if (dec < 0)

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "cx_config.h"
+#include "render/image_impl.h"
 #include "render/pngfile.h"
 
 void cx_render_opts_default(cx_render_opts *o)
@@ -127,21 +128,44 @@ static void img_clear(cx_render_scene *sc)
 }
 
 /* The colour range: magnitudes [0, max], signed fields [-M, M]; over the
- * contact nodes for the pressure and the contact view. */
+ * contact nodes for the pressure and the contact view. Under --log the
+ * range of the positive values (at most 6 decades below the largest),
+ * and the values and range as their log10, which the GL and the overlays
+ * map linearly; what is below the range takes its lowest colour. */
 static void img_range(cx_render_scene *sc)
 {
     const cx_mesh *m = sc->r->mesh;
     const cx_contact_set *cs = &sc->r->contact;
     int on_contact = sc->o->field == CX_FIELD_PRESSURE || sc->o->view == CX_VIEW_CONTACT;
-    double lo = INFINITY, hi = -INFINITY;
+    double lo = INFINITY, hi = -INFINITY, pos = INFINITY;
     int n = on_contact ? cs->m : m->nnodes;
     for (int i = 0; i < n; i++) {
         double v = sc->val[on_contact ? cs->node[i] : i];
         lo = fmin(lo, v);
         hi = fmax(hi, v);
+        if (v > 0)
+            pos = fmin(pos, v);
     }
     if (!(lo <= hi))
         lo = hi = 0;
+    if (sc->o->log) {
+        if (sc->o->has_range) {
+            lo = sc->o->range_lo;
+            hi = sc->o->range_hi;
+        } else if (!(hi > 0)) {   /* nothing positive: three decades below 1 */
+            lo = 1e-3;
+            hi = 1;
+        } else {
+            lo = fmax(pos, 1e-6 * hi);
+            if (!(hi > lo))
+                lo = 0.1 * hi;
+        }
+        sc->lo = log10(lo);
+        sc->hi = log10(hi);
+        for (int i = 0; i < m->nnodes; i++)
+            sc->val[i] = sc->val[i] > 0 ? log10(sc->val[i]) : sc->lo - 1;
+        return;
+    }
     if (cx_field_is_signed(sc->o->field) && lo < 0 && hi > 0) {
         double M = fmax(fabs(lo), fabs(hi));
         sc->lo = -M;
@@ -171,8 +195,8 @@ static void img_range(cx_render_scene *sc)
     }
 }
 
-static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *o, double *t_fields,
-                       cx_diag *d)
+static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *o, const cx_render_fix *fix,
+                       double *t_fields, cx_diag *d)
 {
     double t0 = cx_clock_now();
     memset(sc, 0, sizeof *sc);
@@ -206,7 +230,7 @@ static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *
         }
         sc->ncopies = 1 << sc->nsym;
     }
-    sc->scale = sc->o->scale > 0 ? sc->o->scale : cx_render_auto_scale(r);
+    sc->scale = fix ? fix->scale : sc->o->scale > 0 ? sc->o->scale : cx_render_auto_scale(r);
     for (int i = 0; i < nn; i++)
         for (int k = 0; k < dim; k++) {
             sc->x0[3 * i + k] = m->x[dim * i + k];
@@ -218,6 +242,11 @@ static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *
         sc->hi = 1;
     } else {
         img_range(sc);
+        if (fix) {   /* an animation's: every frame in the final iterate's colours */
+            sc->lo = fix->lo;
+            sc->hi = fix->hi;
+            sc->diverging = !o->log && cx_field_is_signed(f) && sc->lo < 0 && sc->hi > 0;
+        }
     }
     /* the body carries the colours, except for contact-only fields seen
      * on the whole body */
@@ -227,6 +256,14 @@ static int img_prepare(cx_render_scene *sc, cx_result *r, const cx_render_opts *
     if (cx_render_geometry(sc) != CX_OK)
         return cx_diag_set(d, CX_ENOMEM, "render: out of memory");
     cx_render_camera(sc);
+    if (fix) {   /* and seen from where it is seen */
+        memcpy(sc->R, fix->R, sizeof sc->R);
+        sc->k = fix->k;
+        sc->cx = fix->cx;
+        sc->cy = fix->cy;
+        sc->zmin = fix->zmin;
+        sc->zmax = fix->zmax;
+    }
     *t_fields = cx_clock_now() - t0;
     return CX_OK;
 }
@@ -252,6 +289,12 @@ static int img_check(const cx_result *r, const cx_render_opts *o, cx_diag *d)
     if (o->has_range && !(isfinite(o->range_lo) && isfinite(o->range_hi) && o->range_lo < o->range_hi))
         return cx_diag_set(d, CX_EINVAL, "--range %g:%g: expected finite MIN < MAX", o->range_lo,
                            o->range_hi);
+    if (o->log && cx_field_is_signed(o->field))
+        return cx_diag_set(d, CX_EINVAL, "--log: only for magnitudes (von-mises, u, pressure), not %s",
+                           cx_field_name(o->field));
+    if (o->log && o->has_range && !(o->range_lo > 0))
+        return cx_diag_set(d, CX_EINVAL, "--range %g:%g with --log: expected 0 < MIN < MAX", o->range_lo,
+                           o->range_hi);
     if (!(o->font_scale >= 0.25 && o->font_scale <= 4))
         return cx_diag_set(d, CX_EINVAL, "--font-scale %g: expected 0.25..4", o->font_scale);
     if (o->msaa < 0 || o->msaa > 4)
@@ -265,7 +308,7 @@ int cx_render_project(cx_result *r, const cx_render_opts *o, const double *x, do
     CX_TRY(img_check(r, o, d));
     cx_render_scene sc;
     double tf;
-    int rc = img_prepare(&sc, r, o, &tf, d);
+    int rc = img_prepare(&sc, r, o, NULL, &tf, d);
     if (rc == CX_OK) {
         double x3[3] = {0, 0, 0};
         for (int k = 0; k < r->dim; k++)
@@ -276,30 +319,66 @@ int cx_render_project(cx_result *r, const cx_render_opts *o, const double *x, do
     return rc;
 }
 
-int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_render_timing *t,
-                  cx_diag *d)
+static void img_fix_of(const cx_render_scene *sc, cx_render_fix *fix)
 {
-    cx_render_timing tm = {0};
+    memcpy(fix->R, sc->R, sizeof sc->R);
+    fix->k = sc->k;
+    fix->cx = sc->cx;
+    fix->cy = sc->cy;
+    fix->zmin = sc->zmin;
+    fix->zmax = sc->zmax;
+    fix->scale = sc->scale;
+    fix->lo = sc->lo;
+    fix->hi = sc->hi;
+}
+
+int cx_render_image_fix(cx_result *r, const cx_render_opts *o, cx_render_fix *fix, cx_diag *d)
+{
     CX_TRY(img_check(r, o, d));
     cx_render_scene sc;
-    int rc = img_prepare(&sc, r, o, &tm.fields, d);
-    int stride = cairo_format_stride_for_width(CAIRO_FORMAT_ARGB32, sc.w);
-    unsigned char *gl = NULL, *out = NULL;
+    double tf;
+    int rc = img_prepare(&sc, r, o, NULL, &tf, d);
+    if (rc == CX_OK)
+        img_fix_of(&sc, fix);
+    img_clear(&sc);
+    return rc;
+}
+
+void cx_render_buf_clear(cx_render_buf *b)
+{
+    cx_free(b->rgb);
+    cx_free(b->gl);
+    memset(b, 0, sizeof *b);
+}
+
+int cx_render_image_draw(cx_result *r, const cx_render_opts *o, const cx_render_fix *fix, int compose,
+                         cx_render_buf *b, cx_render_timing *t, cx_diag *d)
+{
+    cx_render_timing tm = {0};
+    memset(b, 0, sizeof *b);
+    CX_TRY(img_check(r, o, d));
+    cx_render_scene sc;
+    int rc = img_prepare(&sc, r, o, fix, &tm.fields, d);
+    b->w = sc.w;
+    b->h = sc.h;
+    b->stride = cairo_format_stride_for_width(CAIRO_FORMAT_ARGB32, sc.w);
     if (rc == CX_OK) {
-        gl = cx_calloc((size_t)stride, (size_t)sc.h);
-        out = cx_calloc((size_t)stride, (size_t)sc.h);
-        if (!gl || !out)
+        b->gl = cx_calloc((size_t)b->stride, (size_t)sc.h);
+        b->rgb = compose ? cx_calloc((size_t)b->stride, (size_t)sc.h) : NULL;
+        if (!b->gl || (compose && !b->rgb))
             rc = cx_diag_set(d, CX_ENOMEM, "render: out of memory");
     }
     if (rc == CX_OK) {
         double t0 = cx_clock_now();
-        rc = cx_render_gl_draw(&sc, gl, stride, &tm.context, &tm.draw_calls, d);
+        rc = cx_render_gl_draw(&sc, b->gl, b->stride, &tm.context, &tm.draw_calls, d);
         tm.draw = cx_clock_now() - t0 - tm.context;
     }
-    if (rc == CX_OK) {
+    if (rc == CX_OK && compose) {
         double t0 = cx_clock_now();
-        cairo_surface_t *so = cairo_image_surface_create_for_data(out, CAIRO_FORMAT_RGB24, sc.w, sc.h, stride);
-        cairo_surface_t *sg = cairo_image_surface_create_for_data(gl, CAIRO_FORMAT_ARGB32, sc.w, sc.h, stride);
+        cairo_surface_t *so = cairo_image_surface_create_for_data(b->rgb, CAIRO_FORMAT_RGB24, sc.w, sc.h,
+                                                                  b->stride);
+        cairo_surface_t *sg = cairo_image_surface_create_for_data(b->gl, CAIRO_FORMAT_ARGB32, sc.w, sc.h,
+                                                                  b->stride);
         cairo_t *cr = cairo_create(so);
         cx_render_underlay(&sc, cr);
         cairo_set_source_surface(cr, sg, 0, 0);
@@ -314,61 +393,111 @@ int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_re
         tm.text = cx_clock_now() - t0;
     }
     if (rc == CX_OK) {
-        double t0 = cx_clock_now();
-        const cx_run_record *run = &r->run;
-        char level[32], F[32], slip[32], kkt[32], scale[32];
-        snprintf(level, sizeof level, "%d", run->level);
-        snprintf(F, sizeof F, "%.17g", run->F);
-        snprintf(slip, sizeof slip, "%.17g", run->slip_bound);
-        snprintf(kkt, sizeof kkt, "%.6e", run->kkt);
-        char outcome[CX_DIAG_LEN + 160];   /* the outcome in solve/'s words */
-        cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
-                         sizeof outcome);
-        snprintf(scale, sizeof scale, "%.6g", sc.scale);
-        char tol[32], iters[32], args[1024];
-        snprintf(tol, sizeof tol, "%.6g", run->tol);
-        char range[80], camera[96];
+        /* where the camera stood, for the PNG's text */
         if (sc.dim == 2)
-            snprintf(camera, sizeof camera, "2d%s%s", o->crop_contact ? " crop contact" : "",
+            snprintf(b->camera, sizeof b->camera, "2d%s%s", o->crop_contact ? " crop contact" : "",
                      sc.ncopies > 1 ? " mirror" : "");
         else if (o->view == CX_VIEW_CONTACT)
-            snprintf(camera, sizeof camera, "contact view%s", o->crop_contact ? " crop contact" : "");
+            snprintf(b->camera, sizeof b->camera, "contact view%s", o->crop_contact ? " crop contact" : "");
         else
-            snprintf(camera, sizeof camera, "az %g el %g%s%s", sc.az, sc.el, o->crop_contact ? " crop contact" : "",
-                     sc.ncopies > 1 ? " mirror" : "");
-        snprintf(range, sizeof range, "%.9g:%.9g%s", sc.lo, sc.hi, o->has_range ? " (set)" : "");
-        snprintf(iters, sizeof iters, "%d", run->iterations);
-        cx_run_record_solve_args(run, args, sizeof args);
-        cx_png_text text[] = {
-            {"Title", run->title},
-            {"scene", run->scene},
-            {"level", level},
-            {"method", run->method},
-            {"friction", cx_friction_name(run->friction)},
-            {"F", F},
-            {"slip bound", slip},
-            {"parameters", run->params_text},
-            {"kkt error", kkt},
-            {"converged", run->converged ? "yes" : "no"},
-            {"reason", cx_reason_id(run->reason)},
-            {"tolerance", tol},
-            {"iterations", iters},
-            {"outcome", outcome},
-            {"solve options", args},
-            {"field", cx_field_name(o->field)},
-            {"displacement scale", scale},
-            {"colour range", range},
-            {"colormap", cx_cmap_name(o->cmap)},
-            {"camera", camera},
-            {"Software", "signorini " CX_VERSION},
-        };
-        rc = cx_png_write_xrgb(path, out, sc.w, sc.h, stride, text,
-                               (int)(sizeof text / sizeof text[0]), d);
+            snprintf(b->camera, sizeof b->camera, "az %g el %g%s%s", sc.az, sc.el,
+                     o->crop_contact ? " crop contact" : "", sc.ncopies > 1 ? " mirror" : "");
+        img_fix_of(&sc, &b->fix);
+        b->lo = o->log ? pow(10.0, sc.lo) : sc.lo;
+        b->hi = o->log ? pow(10.0, sc.hi) : sc.hi;
+    } else {
+        cx_render_buf_clear(b);
+    }
+    img_clear(&sc);
+    if (t)
+        *t = tm;
+    return rc;
+}
+
+int cx_render_image_vector(cx_result *r, const cx_render_opts *o, const cx_render_buf *b, cairo_t *cr,
+                           cx_diag *d)
+{
+    cx_render_scene sc;
+    double tf;
+    int rc = img_prepare(&sc, r, o, &b->fix, &tf, d);
+    if (rc == CX_OK) {
+        cairo_surface_t *sg = cairo_image_surface_create_for_data(b->gl, CAIRO_FORMAT_ARGB32, b->w, b->h,
+                                                                  b->stride);
+        cx_render_underlay(&sc, cr);
+        cairo_save(cr);
+        cairo_set_source_surface(cr, sg, 0, 0);
+        cairo_paint(cr);
+        cairo_restore(cr);
+        cx_render_overlay(&sc, cr);
+        if (cairo_status(cr) != CAIRO_STATUS_SUCCESS)
+            rc = cx_diag_set(d, CX_EEXTERNAL, "cairo: %s", cairo_status_to_string(cairo_status(cr)));
+        cairo_surface_destroy(sg);
+    }
+    img_clear(&sc);
+    return rc;
+}
+
+int cx_render_image_write_png(const cx_result *r, const cx_render_opts *o, const cx_render_buf *b,
+                              const char *path, const char *const *extra, cx_diag *d)
+{
+    const cx_run_record *run = &r->run;
+    char level[32], F[32], slip[32], kkt[32], scale[32];
+    snprintf(level, sizeof level, "%d", run->level);
+    snprintf(F, sizeof F, "%.17g", run->F);
+    snprintf(slip, sizeof slip, "%.17g", run->slip_bound);
+    snprintf(kkt, sizeof kkt, "%.6e", run->kkt);
+    char outcome[CX_DIAG_LEN + 160];   /* the outcome in solve/'s words */
+    cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
+                     sizeof outcome);
+    snprintf(scale, sizeof scale, "%.6g", b->fix.scale);
+    char tol[32], iters[32], args[1024];
+    snprintf(tol, sizeof tol, "%.6g", run->tol);
+    char range[80];
+    snprintf(range, sizeof range, "%.9g:%.9g%s%s", b->lo, b->hi, o->has_range ? " (set)" : "",
+             o->log ? " (log)" : "");
+    snprintf(iters, sizeof iters, "%d", run->iterations);
+    cx_run_record_solve_args(run, args, sizeof args);
+    cx_png_text text[32] = {
+        {"Title", run->title},
+        {"scene", run->scene},
+        {"level", level},
+        {"method", run->method},
+        {"friction", cx_friction_name(run->friction)},
+        {"F", F},
+        {"slip bound", slip},
+        {"parameters", run->params_text},
+        {"kkt error", kkt},
+        {"converged", run->converged ? "yes" : "no"},
+        {"reason", cx_reason_id(run->reason)},
+        {"tolerance", tol},
+        {"iterations", iters},
+        {"outcome", outcome},
+        {"solve options", args},
+        {"field", cx_field_name(o->field)},
+        {"displacement scale", scale},
+        {"colour range", range},
+        {"colormap", cx_cmap_name(o->cmap)},
+        {"camera", b->camera},
+    };
+    int nt = 20;
+    for (int i = 0; extra && extra[i] && nt < 31; i += 2)
+        text[nt++] = (cx_png_text){extra[i], extra[i + 1]};
+    text[nt++] = (cx_png_text){"Software", "signorini " CX_VERSION};
+    return cx_png_write_xrgb(path, b->rgb, b->w, b->h, b->stride, text, nt, d);
+}
+
+int cx_render_png(cx_result *r, const cx_render_opts *o, const char *path, cx_render_timing *t,
+                  cx_diag *d)
+{
+    cx_render_buf b;
+    cx_render_timing tm = {0};
+    int rc = cx_render_image_draw(r, o, NULL, 1, &b, &tm, d);
+    if (rc == CX_OK) {
+        double t0 = cx_clock_now();
+        rc = cx_render_image_write_png(r, o, &b, path, NULL, d);
         tm.png = cx_clock_now() - t0;
     }
-    cx_free(gl);
-    cx_free(out);
-    img_clear(&sc);
+    cx_render_buf_clear(&b);
     if (t)
         *t = tm;
     return rc;

@@ -80,18 +80,6 @@ static void ov_banner(const cx_render_scene *sc, cairo_t *cr)
                 0, 0.5, l.banner[2] - 0.9 * l.font);
 }
 
-/* "⁻¹²": an exponent in UTF-8 superscripts, into buf (48 bytes). */
-static const char *ov_superscript(int e, char buf[48])
-{
-    static const char *const dig[10] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
-    char num[16];
-    snprintf(num, sizeof num, "%d", e);
-    buf[0] = '\0';
-    for (const char *c = num; *c; c++)
-        strcat(buf, *c == '-' ? "⁻" : dig[*c - '0']);
-    return buf;
-}
-
 static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
 {
     cx_render_layout l;
@@ -110,31 +98,25 @@ static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
     cairo_set_line_width(cr, 1.0 * s);
     cairo_rectangle(cr, x, y, bw, bh);
     cairo_stroke(cr);
-    /* large or small values: ticks in units of 10^n, named in the title */
-    double F = l.font, big = fmax(fabs(sc->lo), fabs(sc->hi)), unit = 1;
-    int e = big > 0 ? (int)floor(log10(big) + 1e-9) : 0;
-    if (e >= 4 || e <= -3)
-        unit = pow(10.0, e);
-    else
-        e = 0;
+    /* large or small values: ticks in units of 10^n, named in the title;
+     * --log: decades (sc->lo, sc->hi are their log10) */
+    double F = l.font, vlo = sc->o->log ? pow(10.0, sc->lo) : sc->lo;
+    double vhi = sc->o->log ? pow(10.0, sc->hi) : sc->hi;
     cx_axis ax;
-    cx_axis_make(&ax, sc->lo, sc->hi, 0, (int)fmax(3, fmin(8, bh / (2.2 * F))), 0);
+    cx_axis_colorbar(&ax, vlo, vhi, sc->o->log, (int)fmax(3, fmin(8, bh / (2.2 * F))));
     char lab[64];
     for (int i = 0; i < ax.nticks; i++) {
         double ty = y + bh * (1 - cx_axis_frac(&ax, ax.ticks[i]));
         cairo_move_to(cr, x + bw, ty);
         cairo_line_to(cr, x + bw + 0.25 * F, ty);
         cairo_stroke(cr);
-        cx_axis_label(&ax, ax.ticks[i] / unit, lab, sizeof lab);
+        cx_axis_label(&ax, ax.ticks[i], lab, sizeof lab);
         cx_text(cr, lab, x + bw + 0.35 * F, ty, F, 0, 0, 0.5);
     }
     char title[200];
     cx_field_axis_label(&sc->r->run, sc->o->field, title, sizeof title);
-    if (e != 0) {
-        size_t n = strlen(title);
-        char sup[48];
-        snprintf(title + n, sizeof title - n, ", ×10%s", ov_superscript(e, sup));
-    }
+    size_t tn = strlen(title);
+    cx_axis_unit_suffix(&ax, title + tn, sizeof title - tn);
     cx_text_vertical(cr, title, sc->w - 0.75 * F, y + 0.5 * bh, 0.9 * F, 0);
 }
 

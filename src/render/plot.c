@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cx_config.h"
+#include "out/palette.h"
 #include "render/axis.h"
 #include "render/pngfile.h"
 #include "render/text.h"
@@ -94,12 +95,12 @@ void cx_plot_set_yrange(cx_plot *p, double lo, double hi)
 
 /* ---- drawing ------------------------------------------------------------ */
 
-/* A qualitative palette (Tableau 10), readable on white. */
-static const double plot_palette[10][3] = {
-    {0.122, 0.467, 0.706}, {1.000, 0.498, 0.055}, {0.173, 0.627, 0.173},
-    {0.839, 0.153, 0.157}, {0.580, 0.404, 0.741}, {0.549, 0.337, 0.294},
-    {0.890, 0.467, 0.761}, {0.498, 0.498, 0.498}, {0.737, 0.741, 0.133},
-    {0.090, 0.745, 0.812}};
+/* The series colours: the one table the explorer uses too (out/palette.h). */
+static void plot_rgb(cairo_t *cr, int color)
+{
+    const unsigned char *c = cx_palette_series[color % CX_PALETTE_NSERIES];
+    cairo_set_source_rgb(cr, c[0] / 255.0, c[1] / 255.0, c[2] / 255.0);
+}
 
 static int plot_ok(double v, int log)
 {
@@ -111,6 +112,8 @@ typedef struct plot_frame {
     double yd;               /* bottom of the data's y range (y1 without a zero band) */
     int zband;               /* log y with exact zeros: a band below the decades */
     double yz;               /* the band's centre, where y = 0 is drawn */
+    double W;                /* the figure's width */
+    double mx, my;           /* data kept this far inside the frame (markers whole) */
     cx_axis ax, ay;
 } plot_frame;
 
@@ -123,14 +126,15 @@ static int plot_drawable(const cx_plot *p, const plot_frame *f, double x, double
 
 static double plot_px(const plot_frame *f, double x)
 {
-    return f->x0 + cx_axis_frac(&f->ax, x) * (f->x1 - f->x0);
+    return f->x0 + f->mx + cx_axis_frac(&f->ax, x) * (f->x1 - f->x0 - 2 * f->mx);
 }
 
 static double plot_py(const plot_frame *f, double y)
 {
     if (f->zband && y == 0.0)
         return f->yz;
-    return f->yd - cx_axis_frac(&f->ay, y) * (f->yd - f->y0);
+    double bot = f->zband ? f->yd : f->yd - f->my;
+    return bot - cx_axis_frac(&f->ay, y) * (bot - f->y0 - f->my);
 }
 
 /* Data ranges over drawable points and reference lines; 0 if none. */
@@ -183,16 +187,18 @@ static int plot_ranges(const cx_plot *p, double *xr, double *yr)
     return 1;
 }
 
-/* Seven marker shapes: with the ten colours (7 and 10 coprime), series k
- * gets colour k % 10 and shape k % 7, so that the first 70 series differ
- * by the pair and neighbours by both (told apart in grey print too). */
-#define PLOT_NSHAPES 7
-static const char *const plot_shape_names[PLOT_NSHAPES] = {"circle", "square", "triangle", "diamond",
-                                                           "triangle-down", "plus", "cross"};
+/* Eleven marker shapes: with the twelve colours (11 and 12 coprime),
+ * series k gets colour k % 12 and shape k % 11, so that the first twelve
+ * series differ in colour, the first eleven in shape too, the first 132
+ * by the pair, and neighbours by both (told apart in grey print too). */
+#define PLOT_NSHAPES 11
+static const char *const plot_shape_names[PLOT_NSHAPES] = {
+    "circle", "square", "triangle", "diamond", "triangle-down", "plus", "cross", "star", "pentagon",
+    "triangle-left", "triangle-right"};
 
 static int plot_color_of(const cx_plot_series *sr, int k)
 {
-    return (sr->color >= 0 ? sr->color : k) % 10;
+    return (sr->color >= 0 ? sr->color : k) % CX_PALETTE_NSERIES;
 }
 
 /* Filled shapes are filled; the plus and the cross are stroked. */
@@ -231,18 +237,44 @@ static void plot_marker(cairo_t *cr, int shape, double x, double y, double r)
         cairo_move_to(cr, x, y - 1.2 * r);
         cairo_line_to(cr, x, y + 1.2 * r);
         break;
-    default:
+    case 6:
         cairo_move_to(cr, x - r, y - r);
         cairo_line_to(cr, x + r, y + r);
         cairo_move_to(cr, x - r, y + r);
         cairo_line_to(cr, x + r, y - r);
+        break;
+    case 7:   /* a five-pointed star */
+    case 8:   /* a pentagon */
+    {
+        int star = shape % PLOT_NSHAPES == 7, np = star ? 10 : 5;
+        for (int i = 0; i < np; i++) {
+            double a = -CX_PI / 2 + 2 * CX_PI * i / np, rr = star && (i & 1) ? 0.5 * r : 1.2 * r;
+            if (i == 0)
+                cairo_move_to(cr, x + rr * cos(a), y + rr * sin(a));
+            else
+                cairo_line_to(cr, x + rr * cos(a), y + rr * sin(a));
+        }
+        cairo_close_path(cr);
+        break;
+    }
+    case 9:
+        cairo_move_to(cr, x - 1.15 * r, y);
+        cairo_line_to(cr, x + 0.7 * r, y - r);
+        cairo_line_to(cr, x + 0.7 * r, y + r);
+        cairo_close_path(cr);
+        break;
+    default:
+        cairo_move_to(cr, x + 1.15 * r, y);
+        cairo_line_to(cr, x - 0.7 * r, y - r);
+        cairo_line_to(cr, x - 0.7 * r, y + r);
+        cairo_close_path(cr);
         break;
     }
 }
 
 static void plot_marker_ink(cairo_t *cr, int shape, double s)
 {
-    if (shape % PLOT_NSHAPES >= 5) {
+    if (shape % PLOT_NSHAPES == 5 || shape % PLOT_NSHAPES == 6) {
         cairo_set_line_width(cr, 2.0 * s);
         cairo_stroke(cr);
     } else {
@@ -308,8 +340,15 @@ static void plot_axes(cairo_t *cr, const cx_plot *p, const plot_frame *f, double
     /* labels and title shrink to fit the image's width rather than be
      * cut, and are centred on the image when the frame's centre leaves
      * them too little room on one side */
-    double W = cairo_image_surface_get_width(cairo_get_target(cr)), room = W - 8 * s;
-    double fx = 16 * s, ft = 18 * s, wx = cx_text_width(cr, p->xlabel, fx, 0);
+    double W = f->W, room = W - 8 * s;
+    /* large or small linear values: ticks in units of 10^n, named after
+     * the label as on the colour bar */
+    char xlabel[CX_PLOT_LABELLEN + 32], ylabel[CX_PLOT_LABELLEN + 32];
+    snprintf(xlabel, sizeof xlabel, "%s", p->xlabel);
+    snprintf(ylabel, sizeof ylabel, "%s", p->ylabel);
+    cx_axis_unit_suffix(&f->ax, xlabel + strlen(xlabel), sizeof xlabel - strlen(xlabel));
+    cx_axis_unit_suffix(&f->ay, ylabel + strlen(ylabel), sizeof ylabel - strlen(ylabel));
+    double fx = 16 * s, ft = 18 * s, wx = cx_text_width(cr, xlabel, fx, 0);
     double wt = cx_text_width(cr, p->title, ft, 1);
     if (wx > room) {
         fx *= room / wx;
@@ -322,8 +361,8 @@ static void plot_axes(cairo_t *cr, const cx_plot *p, const plot_frame *f, double
     double mid = 0.5 * (f->x0 + f->x1);
     double xc = 0.5 * wx + 4 * s > fmin(mid, W - mid) ? 0.5 * W : mid;
     double tc = 0.5 * wt + 4 * s > fmin(mid, W - mid) ? 0.5 * W : mid;
-    cx_text(cr, p->xlabel, xc, f->y1 + 30 * s, fx, 0, 0.5, 0.0);
-    cx_text_vertical(cr, p->ylabel, f->x0 - maxw - 24 * s, 0.5 * (f->y0 + f->y1), 16 * s, 0);
+    cx_text(cr, xlabel, xc, f->y1 + 30 * s, fx, 0, 0.5, 0.0);
+    cx_text_vertical(cr, ylabel, f->x0 - maxw - 24 * s, 0.5 * (f->y0 + f->y1), 16 * s, 0);
     cx_text(cr, p->title, tc, f->y0 - 14 * s, ft, 1, 0.5, 1.0);
 }
 
@@ -384,8 +423,7 @@ static void plot_series(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
     double r = 4.0 * s;
     for (int k = 0; k < p->nseries; k++) {
         const cx_plot_series *sr = &p->series[k];
-        const double *c = plot_palette[plot_color_of(sr, k)];
-        cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+        plot_rgb(cr, plot_color_of(sr, k));
         if (sr->style & CX_PLOT_LINE) {
             /* lines stop at the frame */
             cairo_save(cr);
@@ -417,8 +455,11 @@ static void plot_series(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
             cairo_save(cr);
             cairo_rectangle(cr, f->x0 - 2 * r, f->y0 - 2 * r, f->x1 - f->x0 + 4 * r, f->y1 - f->y0 + 4 * r);
             cairo_clip(cr);
+            /* a long series (hundreds of iterations) marks every few
+             * points, and its last, so that the markers do not merge */
+            int every = (int)fmax(1, ceil(sr->n * 3.0 * r / fmax(f->x1 - f->x0, 1)));
             for (int i = 0; i < sr->n; i++)
-                if (plot_drawable(p, f, sr->x[i], sr->y[i]))
+                if ((i % every == 0 || i == sr->n - 1) && plot_drawable(p, f, sr->x[i], sr->y[i]))
                     plot_marker(cr, k, plot_px(f, sr->x[i]), plot_py(f, sr->y[i]), r);
             plot_marker_ink(cr, k, s);
             cairo_restore(cr);
@@ -426,54 +467,112 @@ static void plot_series(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
     }
 }
 
-/* The legend box goes in the corner of the plot area that covers the
- * fewest data points. */
-static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_frame *f, double s)
+/* The legend: its box's size at scale s (a row per labelled series). */
+typedef struct plot_legend_box {
+    int n;                    /* entries */
+    double fs, row, pad, sample;
+    double x, y, w, h;        /* where it goes */
+    int cols;                 /* entries side by side (below the plot) */
+    double entry_w;           /* the width of one entry */
+    int outside;              /* below the plot area (every corner covered something) */
+    long hits;                /* data points and reference lines under it */
+} plot_legend_box;
+
+static void plot_legend_size(cairo_t *cr, const cx_plot *p, double s, plot_legend_box *b)
 {
-    int n = 0;
-    double wmax = 0, fs = 14 * s;
+    double wmax = 0;
+    b->n = 0;
+    b->fs = 14 * s;
     for (int k = 0; k < p->nseries; k++)
         if (p->series[k].label[0]) {
-            n++;
-            wmax = fmax(wmax, cx_text_width(cr, p->series[k].label, fs, 0));
+            b->n++;
+            wmax = fmax(wmax, cx_text_width(cr, p->series[k].label, b->fs, 0));
         }
-    if (!p->legend || n == 0)
-        return;
-    double row = 22 * s, pad = 8 * s, sample = 34 * s;
-    double bw = pad * 3 + sample + wmax, bh = pad * 2 + row * n;
-    double best_x = f->x1 - bw - pad, best_y = f->y0 + pad;
-    long best = -1;
-    for (int corner = 0; corner < 4; corner++) {
-        double bx = (corner & 1) ? f->x0 + pad : f->x1 - bw - pad;
-        double by = (corner & 2) ? f->y1 - bh - pad : f->y0 + pad;
-        long hits = 0;
-        for (int k = 0; k < p->nseries; k++) {
-            const cx_plot_series *sr = &p->series[k];
-            for (int i = 0; i < sr->n; i++) {
-                if (!plot_drawable(p, f, sr->x[i], sr->y[i]))
-                    continue;
-                double x = plot_px(f, sr->x[i]), y = plot_py(f, sr->y[i]);
-                hits += x >= bx && x <= bx + bw && y >= by && y <= by + bh;
-            }
-        }
-        /* a reference line (and its label) through the box counts as much
-         * as many points */
-        for (int k = 0; k < p->nrefs; k++) {
-            const cx_plot_ref *r = &p->refs[k];
-            if (!plot_ok(r->value, r->vertical ? p->logx : p->logy))
+    b->row = 22 * s;
+    b->pad = 8 * s;
+    b->sample = 34 * s;
+    b->cols = 1;
+    b->entry_w = b->pad * 2 + b->sample + wmax;
+    b->w = b->pad + b->entry_w;
+    b->h = b->pad * 2 + b->row * b->n;
+}
+
+/* The legend in columns across a width of room, rows as needed. */
+static void plot_legend_columns(plot_legend_box *b, double room)
+{
+    int cols = (int)fmax(1, floor((room - b->pad) / b->entry_w));
+    if (cols > b->n)
+        cols = b->n;
+    int rows = (b->n + cols - 1) / cols;
+    cols = (b->n + rows - 1) / rows;   /* as even as the rows allow */
+    b->cols = cols;
+    b->w = b->pad + cols * b->entry_w;
+    b->h = b->pad * 2 + b->row * rows;
+}
+
+/* Data points (and reference lines, their labels beside them, as many
+ * points each) under the box at (bx, by). */
+static long plot_legend_cover(const cx_plot *p, const plot_frame *f, double s, double bx, double by,
+                              double bw, double bh)
+{
+    long hits = 0;
+    double r = 5 * s;   /* a marker's reach */
+    for (int k = 0; k < p->nseries; k++) {
+        const cx_plot_series *sr = &p->series[k];
+        double px = 0, py = 0;
+        int prev = 0;
+        for (int i = 0; i < sr->n; i++) {
+            if (!plot_drawable(p, f, sr->x[i], sr->y[i])) {
+                prev = 0;
                 continue;
-            double v = r->vertical ? plot_px(f, r->value) : plot_py(f, r->value);
-            double a = r->vertical ? bx - 20 * s : by - 20 * s, b = r->vertical ? bx + bw : by + bh + 4 * s;
-            hits += (v >= a && v <= b) ? 50 : 0;
-        }
-        if (best < 0 || hits < best) {
-            best = hits;
-            best_x = bx;
-            best_y = by;
+            }
+            double x = plot_px(f, sr->x[i]), y = plot_py(f, sr->y[i]);
+            hits += x >= bx - r && x <= bx + bw + r && y >= by - r && y <= by + bh + r;
+            /* the line between points too: its midpoints */
+            if (prev && (sr->style & CX_PLOT_LINE))
+                for (int q = 1; q < 8; q++) {
+                    double mx = px + (x - px) * q / 8, my = py + (y - py) * q / 8;
+                    hits += mx >= bx && mx <= bx + bw && my >= by && my <= by + bh;
+                }
+            px = x;
+            py = y;
+            prev = 1;
         }
     }
+    for (int k = 0; k < p->nrefs; k++) {
+        const cx_plot_ref *rf = &p->refs[k];
+        if (!plot_ok(rf->value, rf->vertical ? p->logx : p->logy))
+            continue;
+        double v = rf->vertical ? plot_px(f, rf->value) : plot_py(f, rf->value);
+        double a = rf->vertical ? bx - 20 * s : by - 20 * s, b = rf->vertical ? bx + bw : by + bh + 4 * s;
+        hits += (v >= a && v <= b) ? 50 : 0;
+    }
+    return hits;
+}
+
+/* The corner of the plot area that covers the fewest points. */
+static void plot_legend_corner(const cx_plot *p, const plot_frame *f, double s, plot_legend_box *b)
+{
+    b->hits = -1;
+    b->outside = 0;
+    for (int corner = 0; corner < 4; corner++) {
+        double bx = (corner & 1) ? f->x0 + b->pad : f->x1 - b->w - b->pad;
+        double by = (corner & 2) ? f->y1 - b->h - b->pad : f->y0 + b->pad;
+        long hits = plot_legend_cover(p, f, s, bx, by, b->w, b->h);
+        if (b->hits < 0 || hits < b->hits) {
+            b->hits = hits;
+            b->x = bx;
+            b->y = by;
+        }
+    }
+}
+
+static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_legend_box *b, double s)
+{
+    if (!p->legend || b->n == 0)
+        return;
     cairo_set_source_rgba(cr, 1, 1, 1, 0.9);
-    cairo_rectangle(cr, best_x, best_y, bw, bh);
+    cairo_rectangle(cr, b->x, b->y, b->w, b->h);
     cairo_fill_preserve(cr);
     cairo_set_source_rgb(cr, 0.6, 0.6, 0.6);
     cairo_set_line_width(cr, 1.0 * s);
@@ -483,73 +582,134 @@ static void plot_legend(cairo_t *cr, const cx_plot *p, const plot_frame *f, doub
         const cx_plot_series *sr = &p->series[k];
         if (!sr->label[0])
             continue;
-        const double *c = plot_palette[plot_color_of(sr, k)];
-        double y = best_y + pad + row * (r + 0.5), x = best_x + pad;
-        cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+        double y = b->y + b->pad + b->row * (r / b->cols + 0.5), x = b->x + b->pad + b->entry_w * (r % b->cols);
+        plot_rgb(cr, plot_color_of(sr, k));
         if (sr->style & CX_PLOT_LINE) {
             double dash[] = {8 * s, 5 * s};
             cairo_set_dash(cr, dash, (sr->style & CX_PLOT_DASHED) ? 2 : 0, 0);
             cairo_set_line_width(cr, 2.2 * s);
             cairo_move_to(cr, x, y);
-            cairo_line_to(cr, x + sample, y);
+            cairo_line_to(cr, x + b->sample, y);
             cairo_stroke(cr);
             cairo_set_dash(cr, NULL, 0, 0);
         }
         if (sr->style & CX_PLOT_MARKERS) {
-            plot_marker(cr, k, x + 0.5 * sample, y, 4.0 * s);
+            plot_marker(cr, k, x + 0.5 * b->sample, y, 4.0 * s);
             plot_marker_ink(cr, k, s);
         }
         cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-        cx_text(cr, sr->label, x + sample + pad, y, fs, 0, 0.0, 0.5);
+        cx_text(cr, sr->label, x + b->sample + b->pad, y, b->fs, 0, 0.0, 0.5);
         r++;
     }
 }
 
-static int plot_draw(const cx_plot *p, cairo_surface_t *surf, int w, int h, cx_diag *d)
+/* The frame and axes of a w x h plot whose bottom `reserve` pixels hold
+ * the legend. */
+static void plot_layout(const cx_plot *p, plot_frame *f, int w, int h, double s, const double *xr,
+                        const double *yr, double reserve)
+{
+    f->W = w;
+    f->x0 = 88 * s;
+    f->x1 = w - 22 * s;
+    f->y0 = 46 * s;
+    f->y1 = h - 60 * s - reserve;
+    f->yd = f->y1;
+    f->mx = f->my = 6 * s;
+    f->zband = 0;
+    if (p->logy)
+        for (int k = 0; k < p->nseries && !f->zband; k++)
+            for (int i = 0; i < p->series[k].n; i++)
+                if (p->series[k].y[i] == 0.0 && plot_ok(p->series[k].x[i], p->logx)) {
+                    f->zband = 1;
+                    break;
+                }
+    if (f->zband) {
+        f->yd = f->y1 - 34 * s;
+        f->yz = 0.5 * (f->yd + 3 * s + f->y1);
+    }
+    int xt = (int)fmax(3, (f->x1 - f->x0) / (110 * s));
+    if (p->integer_x && !p->logx)   /* integer steps: no tick at 1.5 or 2.5 */
+        cx_axis_make_integer(&f->ax, xr[0], xr[1], xt, !p->fixed_x);
+    else
+        cx_axis_make(&f->ax, xr[0], xr[1], p->logx, xt, !p->fixed_x);
+    cx_axis_make(&f->ay, yr[0], yr[1], p->logy, (int)fmax(3, (f->y1 - f->y0) / (70 * s)), !p->fixed_y);
+    cx_axis_unit(&f->ax);
+    cx_axis_unit(&f->ay);
+}
+
+/* Lay the plot out: the legend in a corner of the plot area where it
+ * covers nothing (no point, line or reference line), else below the
+ * plot in as many columns as the width holds (the area gets shorter),
+ * its text shrinking if it would take more than a third of the height. */
+static int plot_arrange(cairo_t *cr, const cx_plot *p, int w, int h, plot_frame *f, plot_legend_box *lb,
+                        double *sp, cx_diag *d)
 {
     double xr[2], yr[2];
     if (!plot_ranges(p, xr, yr))
         return cx_diag_set(d, CX_EINVAL, "plot '%s': no point to draw", p->title);
     if ((p->logx && !(xr[0] > 0)) || (p->logy && !(yr[0] > 0)))
         return cx_diag_set(d, CX_EINVAL, "plot '%s': a log axis needs a positive range", p->title);
-    cairo_t *cr = cairo_create(surf);
     /* every size in proportion to the tick-label font (14 s), which is
      * cx_render_font_px: legible when the figure is printed small */
     double s = cx_render_font_px(w, h, p->font_scale) / 14.0;
-    plot_frame f;
-    f.x0 = 88 * s;
-    f.x1 = w - 22 * s;
-    f.y0 = 46 * s;
-    f.y1 = h - 60 * s;
-    f.yd = f.y1;
-    f.zband = 0;
-    if (p->logy)
-        for (int k = 0; k < p->nseries && !f.zband; k++)
-            for (int i = 0; i < p->series[k].n; i++)
-                if (p->series[k].y[i] == 0.0 && plot_ok(p->series[k].x[i], p->logx)) {
-                    f.zband = 1;
-                    break;
-                }
-    if (f.zband) {
-        f.yd = f.y1 - 34 * s;
-        f.yz = 0.5 * (f.yd + 3 * s + f.y1);
+    *sp = s;
+    plot_layout(p, f, w, h, s, xr, yr, 0);
+    memset(lb, 0, sizeof *lb);
+    if (!p->legend)
+        return CX_OK;
+    plot_legend_size(cr, p, s, lb);
+    if (lb->n == 0)
+        return CX_OK;
+    plot_legend_corner(p, f, s, lb);
+    if (lb->hits == 0)
+        return CX_OK;
+    double s2 = s, room = w - 16 * s;
+    for (int tries = 0; tries < 4; tries++) {
+        plot_legend_size(cr, p, s2, lb);
+        plot_legend_columns(lb, room);
+        if (lb->h <= h / 3.0 && lb->w <= room)
+            break;
+        s2 *= fmin(h / 3.0 / lb->h, room / lb->w) * 0.98;
     }
-    int xt = (int)fmax(3, (f.x1 - f.x0) / (110 * s));
-    if (p->integer_x && !p->logx)   /* a step of at least 1: no tick at 1.5 */
-        xt = (int)fmax(1, fmin(xt, floor(xr[1] - xr[0])));
-    cx_axis_make(&f.ax, xr[0], xr[1], p->logx, xt, !p->fixed_x);
-    cx_axis_make(&f.ay, yr[0], yr[1], p->logy, (int)fmax(3, (f.y1 - f.y0) / (70 * s)),
-                 !p->fixed_y);
+    plot_layout(p, f, w, h, s, xr, yr, lb->h + 6 * s);
+    lb->outside = 1;
+    lb->x = 0.5 * (w - lb->w);
+    lb->y = h - lb->h - 6 * s;
+    lb->hits = 0;
+    return CX_OK;
+}
+
+int cx_plot_legend_place(const cx_plot *p, int w, int h, int *outside, long *covered, cx_diag *d)
+{
+    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 8, 8);
+    cairo_t *cr = cairo_create(surf);
+    plot_frame f;
+    plot_legend_box lb;
+    double s;
+    int rc = plot_arrange(cr, p, w, h, &f, &lb, &s, d);
+    if (rc == CX_OK) {
+        *outside = lb.outside;
+        *covered = lb.n ? plot_legend_cover(p, &f, s, lb.x, lb.y, lb.w, lb.h) : 0;
+    }
+    cairo_destroy(cr);
+    cairo_surface_destroy(surf);
+    return rc;
+}
+
+int cx_plot_draw_cairo(const cx_plot *p, cairo_t *cr, int w, int h, cx_diag *d)
+{
+    plot_frame f;
+    plot_legend_box lb;
+    double s;
+    CX_TRY(plot_arrange(cr, p, w, h, &f, &lb, &s, d));
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
     plot_axes(cr, p, &f, s);
     plot_zero_band(cr, &f, s);
     plot_refs(cr, p, &f, s);
     plot_series(cr, p, &f, s);
-    plot_legend(cr, p, &f, s);
+    plot_legend(cr, p, &lb, lb.fs / 14.0);
     cairo_status_t st = cairo_status(cr);
-    cairo_destroy(cr);
-    cairo_surface_flush(surf);
     if (st != CAIRO_STATUS_SUCCESS)
         return cx_diag_set(d, CX_EEXTERNAL, "cairo: %s", cairo_status_to_string(st));
     return CX_OK;
@@ -564,7 +724,10 @@ int cx_plot_draw_rgb(const cx_plot *p, unsigned char *buf, int w, int h, int str
         cairo_surface_destroy(surf);
         return cx_diag_set(d, CX_EEXTERNAL, "cairo: cannot create a %dx%d surface", w, h);
     }
-    int rc = plot_draw(p, surf, w, h, d);
+    cairo_t *cr = cairo_create(surf);
+    int rc = cx_plot_draw_cairo(p, cr, w, h, d);
+    cairo_destroy(cr);
+    cairo_surface_flush(surf);
     cairo_surface_destroy(surf);
     return rc;
 }

@@ -20,8 +20,11 @@
  * a shaded band below the lowest decade, labelled "0 (exact)", not at an
  * arbitrary floor.
  *
- * Series k is drawn in colour k % 10 (unless its color says) with marker
- * shape k % 7: every pair differs for up to 70 series. The PNG's "Series"
+ * Series k is drawn in colour k % 12 of the series palette shared with
+ * the explorer (out/palette.h; unless its color says) with marker shape
+ * k % 11: twelve series differ in colour, every pair differs for up to
+ * 132 series, and neighbours in both. The legend goes in a corner of
+ * the plot area with nothing under it, else below the plot in columns. The PNG's "Series"
  * tEXt chunk lists them, one line each: "LABEL\tcolor=C\tmarker=SHAPE". Axis ranges come from the drawable data
  * and the reference lines, unless fixed with cx_plot_set_xrange/yrange.
  *
@@ -121,5 +124,16 @@ int cx_plot_write_png(const cx_plot *p, const char *path, int w, int h, cx_diag 
  * pixels, `stride` bytes apart, stride >= 4 w; cairo's native-endian
  * 0x00RRGGBB words), e.g. to compose it into a larger image. */
 int cx_plot_draw_rgb(const cx_plot *p, unsigned char *buf, int w, int h, int stride, cx_diag *d);
+
+/* Where the legend goes in a w x h figure: *outside 1 when it is below
+ * the plot area (every corner of the area held something), and *covered
+ * the data points and reference lines under it (0 unless nothing else
+ * was possible). CX_EINVAL as cx_plot_write_png. */
+int cx_plot_legend_place(const cx_plot *p, int w, int h, int *outside, long *covered, cx_diag *d);
+
+/* Draw the plot on any cairo context (an image, SVG or PDF surface:
+ * render/vector.h), in w x h units. */
+typedef struct _cairo cairo_t;
+int cx_plot_draw_cairo(const cx_plot *p, cairo_t *cr, int w, int h, cx_diag *d);
 
 #endif

@@ -124,6 +124,7 @@ typedef struct cx_render_opts {
     int crop_contact;             /* frame the contact zone (points in contact) only */
     int mirror;                   /* draw the full body across the scene's symmetry planes */
     const cx_scene *scene;        /* its supports (2D rollers) and symmetry planes; NULL: none */
+    int log;                      /* logarithmic colour scale (magnitudes; with range: 0 < lo) */
 } cx_render_opts;
 
 void cx_render_opts_default(cx_render_opts *o);

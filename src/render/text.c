@@ -2,8 +2,68 @@
 /* Anchored text with cairo's toy font API (enough for labels and titles). */
 #include "render/text.h"
 
+#include "base/base.h"
+
 #include <cairo.h>
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
+
+/* cairo's user-data key: only its address matters (no state) */
+static const cairo_user_data_key_t text_rec_key;
+
+void cx_text_record_attach(cairo_surface_t *surf, cx_text_rec *rec)
+{
+    cairo_surface_set_user_data(surf, &text_rec_key, rec, NULL);
+}
+
+void cx_text_rec_clear(cx_text_rec *rec)
+{
+    for (int i = 0; i < rec->n; i++)
+        cx_free(rec->v[i].s);
+    cx_free(rec->v);
+    memset(rec, 0, sizeof *rec);
+}
+
+/* Record s at the current point of cr; 1 if recorded (no glyphs drawn). */
+static int text_record(cairo_t *cr, const char *s, double size, int bold)
+{
+    cx_text_rec *rec = cairo_surface_get_user_data(cairo_get_target(cr), &text_rec_key);
+    if (!rec)
+        return 0;
+    if (rec->n == rec->cap) {
+        int cap = rec->cap ? 2 * rec->cap : 64;
+        cx_text_item *v = cx_realloc(rec->v, sizeof *v * (size_t)cap);
+        if (!v) {
+            rec->failed = 1;
+            return 1;
+        }
+        rec->v = v;
+        rec->cap = cap;
+    }
+    cx_text_item *it = &rec->v[rec->n];
+    double x, y, ux = 1, uy = 0;
+    cairo_get_current_point(cr, &x, &y);
+    cairo_user_to_device(cr, &x, &y);
+    cairo_user_to_device_distance(cr, &ux, &uy);
+    it->x = x;
+    it->y = y;
+    it->size = size * hypot(ux, uy);
+    it->angle = atan2(uy, ux) * 180 / 3.141592653589793;
+    it->bold = bold;
+    double a = 1;
+    it->rgb[0] = it->rgb[1] = it->rgb[2] = 0;
+    cairo_pattern_get_rgba(cairo_get_source(cr), &it->rgb[0], &it->rgb[1], &it->rgb[2], &a);
+    size_t len = strlen(s);
+    if (!(it->s = cx_malloc(len + 1))) {
+        rec->failed = 1;
+        return 1;
+    }
+    memcpy(it->s, s, len + 1);
+    rec->n++;
+    cairo_new_path(cr);
+    return 1;
+}
 
 static void text_font(cairo_t *cr, double size, int bold)
 {
@@ -32,7 +92,8 @@ double cx_text(cairo_t *cr, const char *s, double x, double y, double size, int 
      * that labels of one row line up */
     double h = fe.ascent + fe.descent;
     cairo_move_to(cr, x - ax * te.x_advance, y - ay * h + fe.ascent);
-    cairo_show_text(cr, s);
+    if (!text_record(cr, s, size, bold))
+        cairo_show_text(cr, s);
     return te.x_advance;
 }
 

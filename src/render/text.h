@@ -21,4 +21,23 @@ void cx_text_vertical(cairo_t *cr, const char *s, double x, double y, double siz
 double cx_text_fit(cairo_t *cr, const char *s, double x, double y, double size, int bold,
                    double ax, double ay, double maxw);
 
+/* Text as text, for SVG: while a recorder is attached to a surface, cx_text
+ * on it records each string (where it starts, in device units, its size,
+ * angle, weight and colour) instead of drawing glyphs, so that the file can
+ * carry <text> elements a reader can select, search and edit. */
+typedef struct _cairo_surface cairo_surface_t;
+typedef struct cx_text_item {
+    char *s;
+    double x, y, size, angle;   /* baseline start (device units), degrees clockwise */
+    int bold;
+    double rgb[3];
+} cx_text_item;
+typedef struct cx_text_rec {
+    cx_text_item *v;
+    int n, cap;
+    int failed;                 /* out of memory: some text was lost */
+} cx_text_rec;
+void cx_text_record_attach(cairo_surface_t *surf, cx_text_rec *rec);
+void cx_text_rec_clear(cx_text_rec *rec);
+
 #endif

@@ -14,6 +14,7 @@ SOLVE = {"method", "friction", "F", "slip", "level", "tol", "max-iter", "stop", 
          "json", "baseline", "quiet", "vtu-series",
          "png", "field", "scale", "font-scale", "cmap", "range", "title", "no-title", "size", "view", "edges", "vtu", "vtu-ascii", "plot", "timing"}
 SOLVE |= {"camera", "crop", "mirror"}   # render's camera and framing (issue 22)
+SOLVE |= {"svg", "pdf", "log", "frames", "gif", "every"}   # render/: vector files, log scale, animation
 BENCH = {"methods", "friction", "slip", "F", "max-iter", "time-limit", "repeat", "threads", "csv", "json",
          "png", "cache"}
 

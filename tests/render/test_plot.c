@@ -10,6 +10,7 @@
 #include "check.h"
 #include "pngread.h"
 #include "render/axis.h"
+#include "out/palette.h"
 #include "render/plot.h"
 
 static void test_axis(void)
@@ -34,10 +35,44 @@ static void test_axis(void)
     CX_CHECK(a.nticks >= 4 && a.nticks <= 12);
     cx_axis_label(&a, 1e-10, lab, sizeof lab);
     CX_CHECK(strcmp(lab, "10⁻¹⁰") == 0);
-    /* large values are scientific */
+    /* large values are scientific, as a reader writes them (never C's
+     * "1.5e+06") */
     cx_axis_make(&a, 0.0, 2.5e6, 0, 5, 1);
     cx_axis_label(&a, 1.5e6, lab, sizeof lab);
-    CX_CHECK(strcmp(lab, "1.5e+06") == 0);
+    CX_CHECK(strcmp(lab, "1.5×10⁶") == 0);
+    cx_axis_label(&a, 1e6, lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "1×10⁶") == 0);
+    cx_axis_make(&a, 0.0, 4e-4, 0, 4, 1);
+    cx_axis_label(&a, 2e-4, lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "2×10⁻⁴") == 0);
+    /* colour bars: a common power of ten named once in the title */
+    char suf[32];
+    cx_axis_colorbar(&a, 0.0, 2.9e5, 0, 6);
+    CX_CHECK(a.exp10 == 5);
+    cx_axis_label(&a, 1e5, lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "1.0") == 0 || strcmp(lab, "1") == 0);
+    cx_axis_unit_suffix(&a, suf, sizeof suf);
+    CX_CHECK(strcmp(suf, ", ×10⁵") == 0);
+    /* 10^4: steps of 0.5 x 10^4 keep their decimal (the step in the unit) */
+    cx_axis_colorbar(&a, 0.0, 2.0e4, 0, 5);
+    CX_CHECK(a.exp10 == 4);
+    cx_axis_label(&a, 5e3, lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "0.5") == 0);
+    /* counts: 1..10 never in steps of 2.5 */
+    cx_axis_make_integer(&a, 1.0, 10.0, 6, 1);
+    CX_CHECK(a.step == 1.0 || a.step == 2.0 || a.step == 5.0);
+    for (int i = 0; i < a.nticks; i++)
+        CX_CHECK(a.ticks[i] == floor(a.ticks[i]));
+    cx_axis_make_integer(&a, 0.0, 3.0, 8, 1);
+    CX_CHECK(a.step == 1.0);
+    /* log bars: decades */
+    cx_axis_colorbar(&a, 1e-3, 10.0, 1, 6);
+    CX_CHECK(a.exp10 == 0 && a.nticks >= 4);
+    cx_axis_label(&a, 1e-3, lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "10⁻³") == 0);
+    /* moderate values: plain, no unit */
+    cx_axis_colorbar(&a, 0.0, 262.0, 0, 6);
+    CX_CHECK(a.exp10 == 0);
 }
 
 int main(void)
@@ -69,9 +104,11 @@ int main(void)
     CX_CHECK_OK(test_png_read(&img, a));
     CX_CHECK(img.w == 600 && img.h == 400);
     CX_CHECK(test_png_colours(&img) > 20);
-    /* series 0 is Tableau blue (31,119,180), series 1 orange (255,127,14) */
-    CX_CHECK(test_png_count(&img, 31, 119, 180, 12) > 200);
-    CX_CHECK(test_png_count(&img, 255, 127, 14, 40) > 50);
+    /* series 0 and 1 in the explorer's first two series colours (one
+     * table, out/palette.h): blue, orange */
+    const unsigned char *c0 = cx_palette_series[0], *c1 = cx_palette_series[1];
+    CX_CHECK(test_png_count(&img, c0[0], c0[1], c0[2], 12) > 200);
+    CX_CHECK(test_png_count(&img, c1[0], c1[1], c1[2], 40) > 50);
     /* white background in the corner, and the markers where the data say:
      * the peak (x = 0, y = 1) is at the top-centre of the plot area */
     const unsigned char *c = test_png_px(&img, 2, 2);
@@ -93,7 +130,7 @@ int main(void)
     CX_CHECK_OK(cx_plot_add_vline(&lg, 4e-3, "baseline"));
     CX_CHECK_OK(cx_plot_write_png(&lg, a, 400, 300, &d));
     /* the exact 0 is drawn in the labelled band below the decades: its
-     * grey (0.95 -> 242) fill is there, the marker (Tableau blue) in it */
+     * grey (0.95 -> 242) fill is there, the marker (series blue) in it */
     CX_CHECK_OK(test_png_read(&img, a));
     CX_CHECK(test_png_count(&img, 242, 242, 242, 1) > 1000);
     {
@@ -102,7 +139,8 @@ int main(void)
             for (int xx = 0; xx < img.w; xx++) {
                 const unsigned char *q = test_png_px(&img, xx, yy);
                 const unsigned char *below = yy + 6 < img.h ? test_png_px(&img, xx, yy + 6) : q;
-                in_band += abs(q[0] - 31) + abs(q[1] - 119) + abs(q[2] - 180) < 30 && abs(below[0] - 242) <= 2 && below[0] == below[2];
+                in_band += abs(q[0] - c0[0]) + abs(q[1] - c0[1]) + abs(q[2] - c0[2]) < 30 &&
+                           abs(below[0] - 242) <= 2 && below[0] == below[2];
             }
         CX_CHECK(in_band > 0);
     }
@@ -126,6 +164,48 @@ int main(void)
             if (j == k - 1)
                 CX_CHECK(ck != cj && strcmp(mk, mj) != 0);
         }
+    }
+    /* twelve series: twelve colours, the first eleven their own shape */
+    {
+        int cs[12];
+        const char *ms[12];
+        for (int k = 0; k < 12; k++) {
+            cx_plot_series_style(&many, k, &cs[k], &ms[k]);
+            for (int j = 0; j < k; j++) {
+                CX_CHECK(cs[j] != cs[k]);
+                if (k < 11)
+                    CX_CHECK(strcmp(ms[j], ms[k]) != 0);
+            }
+        }
+    }
+    /* the legend covers no data: twelve series filling the area go right
+     * of it; one series along the diagonal leaves a corner free */
+    {
+        enum { NP = 40 };
+        static double gx[12][NP], gy[12][NP];
+        cx_plot full;
+        cx_plot_init(&full, "work-precision", "time [s]", "kkt error");
+        full.logx = full.logy = 1;
+        for (int k = 0; k < 12; k++) {
+            for (int i = 0; i < NP; i++) {
+                gx[k][i] = pow(10.0, -3 + 3.0 * i / (NP - 1));
+                gy[k][i] = pow(10.0, -12 + 12.0 * ((i * 7 + k * 5) % NP) / (NP - 1));
+            }
+            CX_CHECK_OK(cx_plot_add_series(&full, "ssn-tresca rho=0.001", NP, gx[k], gy[k], CX_PLOT_MARKERS));
+        }
+        int outside = -1;
+        long covered = -1;
+        CX_CHECK_OK(cx_plot_legend_place(&full, 1200, 900, &outside, &covered, &d));
+        CX_CHECK(outside == 1 && covered == 0);
+        cx_plot one;
+        cx_plot_init(&one, "diagonal", "x", "y");
+        CX_CHECK_OK(cx_plot_add_series(&one, "m", NP, gx[0], gx[0], CX_PLOT_LINE | CX_PLOT_MARKERS));
+        one.logx = one.logy = 1;
+        CX_CHECK_OK(cx_plot_legend_place(&one, 1200, 900, &outside, &covered, &d));
+        CX_CHECK(outside == 0 && covered == 0);
+        CX_CHECK_OK(cx_plot_write_png(&full, "full_legend.png", 1200, 900, &d));
+        if (!getenv("CX_TEST_KEEP"))   /* kept to be looked at */
+            remove("full_legend.png");
     }
     /* 2 and 5 ticks of a log axis in the decades' notation */
     {
