@@ -4,6 +4,7 @@
 #include "tui/tui_impl.h"
 
 #include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -48,6 +49,44 @@ static int job_probe(cx_session *s, const cx_friction_state *fr, tui_job *j, cx_
     return status;
 }
 
+/* Which methods refuse this problem outright, before anyone tries them:
+ * each method (under each law it supports) is set on a nested session
+ * while the session's cancel flag is up, so that every operator a method
+ * would build (a factorisation, the Schur complement) is refused as
+ * interrupted before it starts, and only what a method knows for free
+ * comes through: the dual methods' "K is not positive definite" when the
+ * supports leave a body held by contact alone (solve/dual.c), or a refusal
+ * the operator cache remembers. Nothing is built, nothing counted; the
+ * session's own set_method clears the flag after. */
+static void job_screen_methods(cx_session *s, const cx_friction_state *base, tui_job *j)
+{
+    const cx_problem *p = cx_session_problem(s);
+    cx_counters *run = cx_session_counters(s), saved = *run;
+    cx_session_cancel(s);
+    for (int i = 0; i < cx_method_count(); i++)
+        for (int law = 0; law < 3; law++) {
+            const cx_method *m = cx_method_at(i);
+            j->refused[i][law][0] = '\0';
+            if (cx_method_check(m, p, (cx_friction)law, NULL) != CX_OK)
+                continue;   /* greyed by its flags already */
+            cx_friction_state fr = *base;
+            fr.law = (cx_friction)law;
+            fr.s = fr.Fi = NULL;
+            cx_session *child = NULL;
+            cx_diag d;
+            cx_diag_clear(&d);
+            int status = cx_session_nested_create(&child, s, &d);
+            if (status == CX_OK)
+                status = cx_session_set_friction(child, &fr, &d);
+            if (status == CX_OK)
+                status = cx_session_set_method(child, m, NULL, NULL, &d);
+            cx_session_destroy(&child);
+            if (status == CX_EUNSUPPORTED)
+                snprintf(j->refused[i][law], CX_DIAG_LEN, "%s", d.msg);
+        }
+    *run = saved;
+}
+
 static void job_run(tui_state *st)
 {
     tui_job *j = &st->job;
@@ -65,6 +104,8 @@ static void job_run(tui_state *st)
             fr = state_friction(j->law, j->coef, &fr);
             j->status = cx_session_set_friction(j->session, &fr, &j->diag);
         }
+        if (j->status == CX_OK && j->refused)
+            job_screen_methods(j->session, &fr, j);
         if (j->status == CX_OK) {
             atomic_store(&j->phase, TUI_PHASE_FACTORISE);
             j->status = cx_session_set_method(j->session, j->method, &j->params, &j->opt, &j->diag);
@@ -138,6 +179,8 @@ void tui_job_start(tui_state *st, int kind)
     j->probed = 0;
     j->expand = !st->running;
     memset(&j->probe, 0, sizeof j->probe);
+    if (kind == TUI_JOB_BUILD && !j->refused)
+        j->refused = tui_xalloc(NULL, sizeof j->refused[0] * (size_t)(cx_method_count() + 1));
     atomic_store(&j->phase, TUI_PHASE_IDLE);
     /* 'running' is kept: a run asked for during the job starts after it */
     if (!st->sync) {
@@ -175,4 +218,6 @@ void tui_job_clear(tui_state *st)
         j->worker = NULL;
     }
     cx_session_destroy(&j->session);
+    free(j->refused);
+    j->refused = NULL;
 }

@@ -38,6 +38,10 @@ typedef struct tui_job {
     cx_counters counters, draw;
     /* output of a build */
     cx_session *session;
+    /* ... and the methods its problem refuses before any factorisation
+     * (per registry entry and law, "" if not known to refuse): the
+     * state's refused table for the new level */
+    char (*refused)[3][CX_DIAG_LEN];
     void *worker;          /* pthread_t *, when a worker thread runs */
 } tui_job;
 

@@ -255,7 +255,12 @@ int tui_state_poll(tui_state *st)
             st->level = j->level;
             st->build_time = cx_clock_now() - j->t0;
             tui_history_clear(st->history);
-            memset(st->refused, 0, sizeof st->refused[0] * (size_t)cx_method_count());
+            /* what the new problem refuses up front (job.c), greyed before
+             * anyone tries it */
+            if (j->refused)
+                memcpy(st->refused, j->refused, sizeof st->refused[0] * (size_t)cx_method_count());
+            else
+                memset(st->refused, 0, sizeof st->refused[0] * (size_t)cx_method_count());
             st->m = -1;
             st->info = cx_session_problem(st->session);
             tui_meshview_update(&st->mesh_view, st->info->mesh);
