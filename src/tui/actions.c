@@ -710,6 +710,7 @@ static int act_edit(tui_state *st)
     st->editing = 1;
     char v[64];
     tui_field_value(st, st->field, v, sizeof v);
+    v[strcspn(v, " ")] = '\0';   /* the value, not what follows it (the level's dofs) */
     if (strcmp(v, "-") == 0)
         v[0] = '\0';
     st->edit_len = snprintf(st->edit, sizeof st->edit, "%s", v);

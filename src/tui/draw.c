@@ -100,6 +100,15 @@ static void draw_header(const tui_state *st, int cols)
         if (st->running)
             n += snprintf(line + n, sizeof line - (size_t)n, " %.3g steps/s %s", st->pace, bar);
         snprintf(line + n, sizeof line - (size_t)n, " %s", st->scene.title[0] ? st->scene.title : st->scene.id);
+        /* too long: the title cut at a word, with an ellipsis */
+        if (draw_columns(line) > cols) {
+            const char *ell = tui_sym("…", "~");
+            char *sp;
+            while (draw_columns(line) + 1 > cols && (sp = strrchr(line + n, ' ')) && sp > line + n)
+                *sp = '\0';
+            size_t l = strlen(line);
+            snprintf(line + l, sizeof line - l, "%s", ell);
+        }
         tui_put(1, 0, TUI_C_LABEL, cols, "%s", line);
     }
 }

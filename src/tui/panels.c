@@ -330,11 +330,22 @@ void tui_panel_plot(const tui_state *st, tui_box b)
     /* the legend, top right (where converging curves do not go): the
      * newest runs, each in its colour, method and changed parameters */
     int nleg = nr < h - 1 ? nr : h - 1;
-    int lgw = 0;
+    int lgw = 0, laws = 0;
     char leg[TUI_MAX_RUNS][64];
+    /* the law too, when the runs shown differ in it (ssn-tresca under
+     * none and under tresca would read the same) */
+    for (int k = 0; k < nleg; k++)
+        laws |= 1 << tui_state_run_at(st, nr - nleg + k)->law;
     for (int k = 0; k < nleg; k++) {
         const tui_run *run = tui_state_run_at(st, nr - nleg + k);
-        tui_run_legend(run, leg[k], sizeof leg[k]);
+        char one[64];
+        tui_run_legend(run, one, sizeof one);
+        if (laws & (laws - 1)) {
+            size_t at = strcspn(one, " ");
+            snprintf(leg[k], sizeof leg[k], "%.*s %s%s", (int)at, one, cx_friction_name(run->law), one + at);
+        } else {
+            snprintf(leg[k], sizeof leg[k], "%s", one);
+        }
         int l = (int)strlen(leg[k]) + 3;
         lgw = l > lgw ? l : lgw;
     }
@@ -343,6 +354,10 @@ void tui_panel_plot(const tui_state *st, tui_box b)
         const tui_run *run = tui_state_run_at(st, nr - nleg + k);
         int x = b.x + b.w - lgw;
         tui_put(b.y + 1 + k, x, TUI_C_SERIES0 + tui_run_colour(run), 3, "%s ", tui_sym("━━", "--"));
+        /* short of room: cut with an ellipsis (a click on the run in the
+         * runs table shows the whole legend) */
+        if ((int)strlen(leg[k]) > lgw - 3)
+            snprintf(leg[k] + lgw - 4, sizeof leg[k] - (size_t)(lgw - 4), "%s", tui_sym("…", "~"));
         tui_put(b.y + 1 + k, x + 3, TUI_C_SERIES0 + tui_run_colour(run), lgw - 3, "%-*s", lgw - 3, leg[k]);
     }
 }
@@ -625,13 +640,16 @@ void tui_panel_runs(const tui_state *st, tui_box b)
              * iterations are in their column), cut with an ellipsis only
              * when even that is too long */
             int avail = b.w - 40;
-            if ((int)strlen(outcome) > avail && run->reason)
-                snprintf(outcome, sizeof outcome, "%s%s", cx_reason_str(run->reason),
-                         tui_run_cached(run) ? ", cached" : "");
-            if ((int)strlen(outcome) > avail && avail > 1)
-                snprintf(outcome + avail - 1, sizeof outcome - (size_t)avail + 1, "%s", tui_sym("…", "~"));
-            tui_put(y, b.x, role, b.w, "%-10.10s %-7s %-6.6s %4d %s  %s%s%s", run->method, cx_friction_name(run->law),
-                coef, s ? s->iter : 0, kkt, outcome, run->changed[0] ? "; " : "", run->changed);
+            char tail[CX_DIAG_LEN + 200];
+            snprintf(tail, sizeof tail, "%s%s%s", outcome, run->changed[0] ? "; " : "", run->changed);
+            if ((int)strlen(tail) > avail && run->reason)
+                snprintf(tail, sizeof tail, "%s%s%s%s", cx_reason_str(run->reason),
+                         tui_run_cached(run) ? ", cached" : "", run->changed[0] ? "; " : "", run->changed);
+            /* the full legend is in the status line when the run is clicked */
+            if ((int)strlen(tail) > avail && avail > 1)
+                snprintf(tail + avail - 1, sizeof tail - (size_t)avail + 1, "%s", tui_sym("…", "~"));
+            tui_put(y, b.x, role, b.w, "%-10.10s %-7s %-6.6s %4d %s  %s", run->method, cx_friction_name(run->law),
+                coef, s ? s->iter : 0, kkt, tail);
         }
     }
 }

@@ -245,7 +245,9 @@ try:
         h = header()
         laws.append(h[1] if h else None)
         keys("r")
-        wait_for(lambda t: "converged" in status_block() and header() is not None,
+        # the status message, not a runs table row ("converged in N
+        # iterations: kkt ..." only there; it may wrap, behind a 'cached' label)
+        wait_for(lambda t: re.search(r"converged in \d+ iterations: kkt", status_block()) and header() is not None,
                  f"a run under {laws[-1]} to converge")
     check(laws == ["tresca", "coulomb", "none", "tresca"], f"'f' x4 visits the three laws and comes back: {laws}")
     keys("q")
@@ -410,7 +412,7 @@ try:
     start(f"{exe} tui hertz --method ssn-tresca")
     wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
     keys("r")
-    wait_for(lambda t: "converged" in status_block(), "the first run to converge")
+    wait_for(lambda t: re.search(r"converged in \d+ iterations: kkt", status_block()), "the first run to converge")
 
     def sgr(button, x, y):
         """A press at column x, row y (1-based), as a terminal reports it."""
@@ -424,7 +426,7 @@ try:
     sgr(64, 3, row_of(screen(), "friction") + 1)   # the wheel up: the next law
     wait_for(lambda t: header() and header()[1] == "tresca", "the wheel on the friction row to choose tresca")
     keys("r")
-    wait_for(lambda t: "converged" in status_block() and "cached" in status_block(),
+    wait_for(lambda t: re.search(r"cached \(0 fact\.\): converged in \d+ iterations: kkt", status_block()),
              "the second run to converge, said to be served by the cache")
     t = screen()
     check(any("■ ssn-tresca tresca" in l and "cached" in l for l in t.splitlines()),
