@@ -5,6 +5,7 @@
 #include "solve/dual_impl.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 struct cx_dual {
@@ -71,9 +72,56 @@ static int dual_build(void **obj, const cx_problem *p, const void *arg, cx_count
     return CX_OK;
 }
 
+/* A rigid translation K cannot see: a body none of whose nodes has
+ * component c prescribed is held in that direction by contact alone, so K
+ * is singular whatever the factorisation would say. Known from the supports
+ * at no cost, so that the dual methods refuse such a scene before paying
+ * for a failed Cholesky (the explorer greys them up front). Sets *body and
+ * *comp of the first such body, returns 1; 0 if every body is supported in
+ * every direction (K may still be singular through a rotation: the
+ * factorisation then says so, and the cache remembers it). */
+static int dual_rigid_translation(const cx_problem *p, int *body, int *comp)
+{
+    const cx_mesh *me = p->mesh;
+    if (!me || !p->map.free_of || p->map.nall != me->dim * me->nnodes)
+        return 0;
+    int dim = me->dim, nb = me->nbodies > 0 ? me->nbodies : 1;
+    unsigned char *held = cx_calloc((size_t)nb * (size_t)dim, 1);
+    if (!held)
+        return 0;
+    for (int e = 0; e < me->nelems; e++) {
+        int b = me->body ? me->body[e] : 0;
+        for (int k = 0; k < me->npe; k++) {
+            int node = me->conn[me->npe * e + k];
+            for (int c = 0; c < dim; c++)
+                held[dim * b + c] |= p->map.free_of[dim * node + c] < 0;
+        }
+    }
+    int found = 0;
+    for (int i = 0; i < nb * dim && !found; i++)
+        if (!held[i]) {
+            *body = i / dim;
+            *comp = i % dim;
+            found = 1;
+        }
+    cx_free(held);
+    return found;
+}
+
 int cx_dual_get(cx_session *s, cx_dual **D, cx_diag *d)
 {
     void *obj = NULL;
+    int body, comp;
+    const cx_problem *p = cx_session_problem(s);
+    if (dual_rigid_translation(p, &body, &comp)) {
+        char who[32] = "the body";
+        if (p->mesh->nbodies > 1)
+            snprintf(who, sizeof who, "body %d", body + 1);
+        return cx_diag_set(d, CX_EUNSUPPORTED,
+                           "the dual methods need K^-1, but K is not positive definite: %s has no "
+                           "support in %c (held only by contact); use ssn-tresca",
+                           who, "xyz"[comp]);
+    }
     CX_TRY(cx_session_cache_get(s, "dual:K", dual_build, NULL, dual_destroy, &obj, d));
     *D = obj;
     return CX_OK;

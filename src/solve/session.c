@@ -185,6 +185,10 @@ int cx_session_schur(cx_session *s, cx_schur **S, const double **fc, cx_diag *d)
     if (s->parent)   /* a nested session has its parent's K and f */
         return cx_session_schur(s->parent, S, fc, d);
     if (!s->schur) {
+        /* as in cx_session_cache_get: a cancel or the time limit stops a
+         * factorisation before it starts (it cannot once it has) */
+        if (cx_session_interrupted(s))
+            return cx_diag_set(d, CX_ENUMERIC, "interrupted before building the Schur complement");
         cx_counters before = s->run;
         int st = CX_ENOMEM;
         if ((s->schur_load = CX_NEW(double, s->p->nc)))
@@ -248,6 +252,8 @@ int cx_session_schur_normal(cx_session *s, cx_schur **S, const double **fc, cons
     if (!S)
         return CX_OK;
     if (!s->schur_n) {
+        if (cx_session_interrupted(s))
+            return cx_diag_set(d, CX_ENUMERIC, "interrupted before building the Schur complement");
         cx_counters before = s->run;
         int st = CX_ENOMEM;
         if ((s->schur_n_load = CX_NEW(double, s->nn > 0 ? s->nn : 1)))
@@ -310,9 +316,10 @@ int cx_session_cache_get(cx_session *s, const char *key, cx_cache_build_fn build
     session_count_cache(s, &before);
     if (d && st != CX_OK)
         *d = bd;
-    /* a matrix that cannot be factorised stays so: remember the failure, so
-     * that no method switch pays for the same failed factorisation again */
-    char *msg = st == CX_ENUMERIC ? cx_malloc(strlen(bd.msg) + 1) : NULL;
+    /* a matrix that cannot be factorised stays so: remember the failure
+     * (and a refusal the build turned it into, as dual.c does), so that no
+     * method switch pays for the same failed factorisation again */
+    char *msg = st == CX_ENUMERIC || st == CX_EUNSUPPORTED ? cx_malloc(strlen(bd.msg) + 1) : NULL;
     if (st != CX_OK && !msg)
         return st;
     cx_cache_entry *e = &s->entries[s->nentries++];

@@ -75,6 +75,13 @@ static int ssnc_init(void *state, cx_session *s, const cx_param_values *params, 
     st->wr = CX_NEW(double, p->m + 1);
     int status = st->act && st->prev && st->Nu && st->tmp && st->rhs && st->wr ? CX_OK : CX_ENOMEM;
     const cx_csc *rows = &p->N;
+    /* as the operator cache does: a cancel stops the system's build and
+     * analysis before they start (the explorer screens methods this way,
+     * at no cost) */
+    if (!status && cx_session_interrupted(s)) {
+        ssnc_destroy(st);
+        return cx_diag_set(d, CX_ENUMERIC, "interrupted before building ssn-c's system");
+    }
     if (!status)
         status = cx_csc_aug_build(&st->A, &p->K, &rows, 1);
     if (status)

@@ -98,10 +98,56 @@ static const char *scene_item(const tui_state *st, int k, char *why, size_t len)
 
 /* level */
 
+/* "12.3k" */
+static void level_count(double n, char *buf, size_t len)
+{
+    if (n >= 1e6)
+        snprintf(buf, len, "%.2gM", n / 1e6);
+    else if (n >= 1e4)
+        snprintf(buf, len, "%.0fk", n / 1e3);
+    else if (n >= 1e3)
+        snprintf(buf, len, "%.1fk", n / 1e3);
+    else
+        snprintf(buf, len, "%.0f", n);
+}
+
+/* "<0.1 s", "2.3 s", "40 s", "12 min" */
+static void level_time(double t, char *buf, size_t len)
+{
+    if (t < 0.1)
+        snprintf(buf, len, "<0.1 s");
+    else if (t < 100)
+        snprintf(buf, len, "%.2g s", t);
+    else
+        snprintf(buf, len, "%.0f min", t / 60);
+}
+
+/* The level and its dofs: the session's, or about so many for another. */
 static void level_format(const tui_state *st, int i, char *buf, size_t len)
 {
     (void)i;
-    snprintf(buf, len, "%d", st->sel_level);
+    double n, b, t;
+    char c[32];
+    if (!tui_state_level_estimate(st, st->sel_level, &n, &b, &t)) {
+        snprintf(buf, len, "%d", st->sel_level);
+        return;
+    }
+    level_count(n, c, sizeof c);
+    /* 11 columns at 80: the word goes first when they are short */
+    int w = snprintf(buf, len, "%d %s%s dofs", st->sel_level, st->sel_level == st->level ? "" : "~", c);
+    if (w > 11)
+        snprintf(buf, len, "%d %s%s", st->sel_level, st->sel_level == st->level ? "" : "~", c);
+}
+
+/* A level whose estimate exceeds the free memory is refused with the
+ * figures, before anything is built. */
+static int level_refused(tui_state *st, int level)
+{
+    char msg[CX_DIAG_LEN];
+    if (!tui_state_level_refused(st, level, tui_mem_available(), msg, sizeof msg))
+        return 0;
+    tui_msg(st, 1, "%s (/proc/meminfo MemAvailable)", msg);
+    return 1;
 }
 
 /* The row of cx_solve_opts a typed or stepped value is checked against:
@@ -129,7 +175,7 @@ static int level_step(tui_state *st, int i, int dir)
     (void)i;
     int l = dir > 0 ? st->sel_level * 2 : st->sel_level / 2;
     l = l < 1 ? 1 : l > st->scene.level_max ? st->scene.level_max : l;
-    if (l == st->sel_level)
+    if (l == st->sel_level || level_refused(st, l))
         return TUI_REDRAW;
     st->sel_level = l;
     return TUI_REDRAW | TUI_REASSEMBLE;
@@ -145,14 +191,37 @@ static int level_enter(tui_state *st, int i, const char *text)
         tui_msg(st, 1, "level '%s': scene '%s' allows levels 1 to %d", text, st->scene.id, st->scene.level_max);
         return TUI_REDRAW;
     }
+    if (level_refused(st, (int)x))
+        return TUI_REDRAW;
     st->sel_level = (int)x;
     return TUI_REDRAW | TUI_REASSEMBLE;
 }
 
+/* The range, then what the next levels up and down would take. */
 static void level_describe(const tui_state *st, int i, char *buf, size_t len)
 {
     (void)i;
-    snprintf(buf, len, "1 to %d; rebuilds", st->scene.level_max);
+    size_t at = (size_t)snprintf(buf, len, "1 to %d; rebuilds\nEsc abandons a build.", st->scene.level_max);
+    double avail = tui_mem_available();
+    const int next[2] = {st->sel_level * 2, st->sel_level / 2};
+    const char key[2] = {']', '['};
+    for (int k = 0; k < 2 && at < len; k++) {
+        int l = next[k];
+        double n, b, t;
+        if (l < 1 || l > st->scene.level_max || !tui_state_level_estimate(st, l, &n, &b, &t))
+            continue;
+        char c[32], mem[32], tm[32];
+        level_count(n, c, sizeof c);
+        tui_size_text(b, mem, sizeof mem);
+        level_time(t, tm, sizeof tm);
+        at += (size_t)snprintf(buf + at, len - at, " %c level %d: ~%s dofs, ~%s, ~%s%s.", key[k], l, c, mem, tm,
+                               avail > 0 && b > avail ? ", refused: more than the free memory" : "");
+    }
+    if (avail > 0 && at < len) {
+        char have[32];
+        tui_size_text(avail, have, sizeof have);
+        snprintf(buf + at, len - at, " %s free.", have);
+    }
 }
 
 /* friction law */
@@ -595,7 +664,8 @@ static int act_run(tui_state *st)
 /* Esc: stop what is going on. A step in progress is cancelled through the
  * session's cancel flag (the method stops at its next check; the UI does
  * not wait); a paced or running run pauses; queued steps are dropped. A
- * build cannot be stopped inside the assembly: said so, q still quits. */
+ * build is abandoned: the UI goes back to the level it had at once, the
+ * build finishes on its own thread and frees its memory when it ends. */
 static int act_cancel(tui_state *st)
 {
     int had = st->running || st->queued_steps;
@@ -604,8 +674,10 @@ static int act_cancel(tui_state *st)
     if (tui_state_busy(st) && st->job.kind == TUI_JOB_STEP && st->session) {
         cx_session_cancel(st->session);
         tui_msg(st, 0, "cancelling the step in progress");
+    } else if (tui_state_busy(st) && st->job.kind == TUI_JOB_BUILD && st->job.box) {
+        tui_state_abandon_build(st);
     } else if (tui_state_busy(st))
-        tui_msg(st, 2, "a build cannot be cancelled before it ends; q quits");
+        tui_msg(st, 2, "a switch cannot be cancelled before it ends; q quits");
     else if (had)
         tui_msg(st, 0, "paused (r runs on)");
     return TUI_REDRAW;
@@ -638,6 +710,7 @@ static int act_edit(tui_state *st)
     st->editing = 1;
     char v[64];
     tui_field_value(st, st->field, v, sizeof v);
+    v[strcspn(v, " ")] = '\0';   /* the value, not what follows it (the level's dofs) */
     if (strcmp(v, "-") == 0)
         v[0] = '\0';
     st->edit_len = snprintf(st->edit, sizeof st->edit, "%s", v);
@@ -850,6 +923,32 @@ const tui_binding *tui_bindings(void)
             shown[n++] = tui_keys[k];
     shown[n] = (tui_binding){0, NULL, NULL, NULL};
     return shown;
+}
+
+int tui_mouse(tui_state *st, int kind, int index, int what)
+{
+    if (st->editing || st->help)
+        return 0;
+    if (kind == TUI_HIT_FIELD && index >= 0 && index < tui_state_nfields(st)) {
+        st->field = index;
+        if (what == TUI_MOUSE_CLICK)
+            return TUI_REDRAW;
+        int i;
+        const tui_row *row = tui_row_at(st, index, &i);
+        return row->step ? TUI_REDRAW | row->step(st, i, what == TUI_MOUSE_WHEEL_UP ? +1 : -1) : TUI_REDRAW;
+    }
+    if (kind == TUI_HIT_RUN && what == TUI_MOUSE_CLICK && index >= 0 && index < tui_state_nruns(st)) {
+        const tui_run *run = tui_state_run_at(st, index);
+        st->highlight = st->highlight == run->serial + 1 ? 0 : run->serial + 1;
+        char leg[96];
+        tui_run_legend(run, leg, sizeof leg);
+        if (st->highlight)
+            tui_msg(st, 0, "run %d highlighted: %s (click again: none)", run->serial + 1, leg);
+        else
+            st->msg[0] = '\0';
+        return TUI_REDRAW;
+    }
+    return 0;
 }
 
 int tui_key(tui_state *st, int key)

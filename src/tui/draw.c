@@ -100,6 +100,15 @@ static void draw_header(const tui_state *st, int cols)
         if (st->running)
             n += snprintf(line + n, sizeof line - (size_t)n, " %.3g steps/s %s", st->pace, bar);
         snprintf(line + n, sizeof line - (size_t)n, " %s", st->scene.title[0] ? st->scene.title : st->scene.id);
+        /* too long: the title cut at a word, with an ellipsis */
+        if (draw_columns(line) > cols) {
+            const char *ell = tui_sym("…", "~");
+            char *sp;
+            while (draw_columns(line) + 1 > cols && (sp = strrchr(line + n, ' ')) && sp > line + n)
+                *sp = '\0';
+            size_t l = strlen(line);
+            snprintf(line + l, sizeof line - l, "%s", ell);
+        }
         tui_put(1, 0, TUI_C_LABEL, cols, "%s", line);
     }
 }
@@ -162,7 +171,7 @@ static void draw_status(const tui_state *st, int rows, int cols)
     double t = cx_clock_now() - st->job.t0;
     /* a step shows progress only when it is slow */
     if (tui_state_busy(st) && (st->job.kind != TUI_JOB_STEP || t > 0.25)) {
-        int ph = atomic_load(&((tui_state *)st)->job.phase);
+        int ph = tui_job_phase(st);
         const char *what = ph == TUI_PHASE_ASSEMBLE ? "assembling K and the contact rows"
                            : ph == TUI_PHASE_FACTORISE ? "factorising (method setup)"
                            : ph == TUI_PHASE_STEP      ? "one iteration"
@@ -176,7 +185,7 @@ static void draw_status(const tui_state *st, int rows, int cols)
         tui_put(y, 0, TUI_C_WARN, cols, "%s %s level %d: %s... %.1f s (keys still work)%s%s", spin,
             st->job.kind == TUI_JOB_BUILD ? st->scene.id : st->job.kind == TUI_JOB_STEP ? "stepping" : "switching",
             st->job.kind == TUI_JOB_STEP ? st->level : st->job.level, what, t, q,
-            st->job.kind == TUI_JOB_STEP ? ", Esc cancels" : "");
+            st->job.kind == TUI_JOB_STEP || st->job.box ? ", Esc cancels" : "");
         return;
     }
     if (st->editing) {
@@ -234,6 +243,7 @@ static void draw_pickers(const tui_state *st, tui_box b)
         int pad = lw - (int)strlen(full) > 0 ? lw - (int)strlen(full) : 1;
         snprintf(line, sizeof line, "%s%*s%s%-*s", label, pad, "", sel ? tui_sym("◂", "<") : " ", b.w, val);
         tui_term_put(y, b.x, role, line, b.w);
+        tui_hit_add(y, b.x, b.x + b.w, TUI_HIT_FIELD, f);
     }
     y++;
     if (y >= b.y + b.h)
@@ -299,7 +309,9 @@ static void draw_pickers(const tui_state *st, tui_box b)
     /* the run's setup apart from its iterations; the explorer's own work
      * for drawing apart from the run's */
     const tui_run *run = tui_state_run(st);
-    if (run)
+    if (run && tui_run_cached(run))
+        tui_put(y++, b.x, TUI_C_OK, b.w, "cached: 0 fact., %.1fms", 1e3 * run->setup);
+    else if (run)
         tui_put(y++, b.x, TUI_C_NORMAL, b.w, "setup %.1fms draw %ldK", 1e3 * run->setup,
             run->draw.solves);
 }
@@ -376,9 +388,34 @@ static void draw_help(int rows, int cols)
 
 /* ---- the screen --------------------------------------------------------------------- */
 
+/* ---- what is where, for the mouse ---------------------------------------- */
+
+typedef struct draw_hit {
+    int y, x0, x1, kind, index;
+} draw_hit;
+static draw_hit draw_hits[128];
+static int draw_nhits;
+
+void tui_hit_add(int y, int x0, int x1, int kind, int index)
+{
+    if (draw_nhits < (int)(sizeof draw_hits / sizeof draw_hits[0]))
+        draw_hits[draw_nhits++] = (draw_hit){y, x0, x1, kind, index};
+}
+
+int tui_draw_hit(int y, int x, int *index)
+{
+    for (int k = 0; k < draw_nhits; k++)
+        if (draw_hits[k].y == y && x >= draw_hits[k].x0 && x < draw_hits[k].x1) {
+            *index = draw_hits[k].index;
+            return draw_hits[k].kind;
+        }
+    return 0;
+}
+
 void tui_draw(const tui_state *st, int rows, int cols, int utf8)
 {
     draw_utf8 = utf8;
+    draw_nhits = 0;
     tui_term_scheme(st->present);
     tui_term_clear();
     if (cols < DRAW_MIN_COLS || rows < DRAW_MIN_ROWS) {

@@ -129,3 +129,8 @@ void tui_run_legend(const tui_run *r, char *buf, size_t len)
 {
     snprintf(buf, len, "%s%s%s", r->method, r->changed[0] ? " " : "", r->changed);
 }
+
+int tui_run_cached(const tui_run *r)
+{
+    return r->nsteps > 0 && r->factorizations == 0;
+}

@@ -38,8 +38,24 @@ typedef struct tui_job {
     cx_counters counters, draw;
     /* output of a build */
     cx_session *session;
+    /* ... and the methods its problem refuses before any factorisation
+     * (per registry entry and law, "" if not known to refuse): the
+     * state's refused table for the new level */
+    char (*refused)[3][CX_DIAG_LEN];
     void *worker;          /* pthread_t *, when a worker thread runs */
+    void *box;             /* a build on a worker: its own copy (job.c), so that it can be abandoned */
 } tui_job;
+
+/* The phase of the job in progress (TUI_PHASE_*), for the progress line. */
+int tui_job_phase(const tui_state *st);
+/* Esc on a build: drop it at once. The worker finishes on its own (a
+ * factorisation cannot be interrupted) and frees what it built when it
+ * ends; the state's job is none. 0 if there was no such build (inline,
+ * or not a build). */
+int tui_job_abandon(tui_state *st);
+/* 1 once a build has been abandoned in this process (the program then
+ * ends with _exit: see job.c). */
+int tui_job_abandoned_any(void);
 
 /* Start a job of kind on the selections (a worker thread, or inline when
  * the state is sync or no thread can start; inline, the result is taken
@@ -48,8 +64,8 @@ void tui_job_start(tui_state *st, int kind);
 /* If the job has ended: join its worker and return 1 (the result is in
  * st->job). */
 int tui_job_ended(tui_state *st);
-/* Wait for the worker (a build cannot be interrupted) and drop a built
- * session nobody took. */
+/* Abandon a build, wait for a step's or a switch's worker, and drop a
+ * built session nobody took. */
 void tui_job_clear(tui_state *st);
 
 #endif

@@ -185,6 +185,15 @@ int tui_main(int argc, char **argv)
             dirty = 1;
             continue;
         }
+        if (key == TUI_KEY_MOUSE) {
+            /* on what the last frame drew there */
+            int y, x, index;
+            int what = tui_term_mouse(&y, &x);
+            int kind = tui_draw_hit(y, x, &index);
+            tui_state_apply(st, kind ? tui_mouse(st, kind, index, what) : 0);
+            dirty = 1;
+            continue;
+        }
         if (key != TUI_KEY_NONE) {
             int react = tui_key(st, key);
             if (react & TUI_QUIT) {
@@ -214,9 +223,10 @@ int tui_main(int argc, char **argv)
     if (a.stats)
         fprintf(stderr, "explorer: %d redraws, median %.3f ms; %d steps, median %.3f ms\n", ndraw,
                1e3 * median(draw_t, ndraw), nstep, 1e3 * median(step_t, nstep));
-    if (tui_state_busy(st)) {
-        /* a build cannot be interrupted: leave it to the exit (after
-         * --stats, which quitting mid-build still prints) */
+    if (tui_state_busy(st) || tui_job_abandoned_any()) {
+        /* a build cannot be interrupted: leave it (or one abandoned
+         * earlier, whose libraries' exit handlers could wait for it) to
+         * the exit, after --stats, which quitting mid-build still prints */
         fflush(stdout);
         fflush(stderr);
         _exit(status);

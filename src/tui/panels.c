@@ -270,10 +270,13 @@ void tui_panel_plot(const tui_state *st, tui_box b)
             tui_canvas_dot(&c, xd, (int)lround(PY(lt)), TUI_C_FAINT);
     /* each run in its own colour; the current one on its own canvas, laid
      * over the others so that it wins every shared cell */
-    int nr = tui_state_nruns(st);
+    int nr = tui_state_nruns(st), top = nr - 1;
+    for (int r = 0; r < nr; r++)
+        if (st->highlight && tui_state_run_at(st, r)->serial + 1 == st->highlight)
+            top = r;   /* a run clicked in the runs table is drawn on top instead */
     for (int r = 0; r < nr; r++) {
         const tui_run *run = tui_state_run_at(st, r);
-        tui_canvas *on = r == nr - 1 ? &cur : &c;
+        tui_canvas *on = r == top ? &cur : &c;
         int role = TUI_C_SERIES0 + tui_run_colour(run);
         double px = NAN, py = NAN;
         for (int k = 0; k < run->nsteps; k++) {
@@ -327,11 +330,22 @@ void tui_panel_plot(const tui_state *st, tui_box b)
     /* the legend, top right (where converging curves do not go): the
      * newest runs, each in its colour, method and changed parameters */
     int nleg = nr < h - 1 ? nr : h - 1;
-    int lgw = 0;
+    int lgw = 0, laws = 0;
     char leg[TUI_MAX_RUNS][64];
+    /* the law too, when the runs shown differ in it (ssn-tresca under
+     * none and under tresca would read the same) */
+    for (int k = 0; k < nleg; k++)
+        laws |= 1 << tui_state_run_at(st, nr - nleg + k)->law;
     for (int k = 0; k < nleg; k++) {
         const tui_run *run = tui_state_run_at(st, nr - nleg + k);
-        tui_run_legend(run, leg[k], sizeof leg[k]);
+        char one[64];
+        tui_run_legend(run, one, sizeof one);
+        if (laws & (laws - 1)) {
+            size_t at = strcspn(one, " ");
+            snprintf(leg[k], sizeof leg[k], "%.*s %s%s", (int)at, one, cx_friction_name(run->law), one + at);
+        } else {
+            snprintf(leg[k], sizeof leg[k], "%s", one);
+        }
         int l = (int)strlen(leg[k]) + 3;
         lgw = l > lgw ? l : lgw;
     }
@@ -340,6 +354,10 @@ void tui_panel_plot(const tui_state *st, tui_box b)
         const tui_run *run = tui_state_run_at(st, nr - nleg + k);
         int x = b.x + b.w - lgw;
         tui_put(b.y + 1 + k, x, TUI_C_SERIES0 + tui_run_colour(run), 3, "%s ", tui_sym("━━", "--"));
+        /* short of room: cut with an ellipsis (a click on the run in the
+         * runs table shows the whole legend) */
+        if ((int)strlen(leg[k]) > lgw - 3)
+            snprintf(leg[k] + lgw - 4, sizeof leg[k] - (size_t)(lgw - 4), "%s", tui_sym("…", "~"));
         tui_put(b.y + 1 + k, x + 3, TUI_C_SERIES0 + tui_run_colour(run), lgw - 3, "%-*s", lgw - 3, leg[k]);
     }
 }
@@ -358,6 +376,109 @@ static void project(int dim, const double *x, double *px, double *py)
     }
 }
 
+/* The side of the body the obstacle is on, as a unit vector: a plane's
+ * inside (-normal), a disc's or a sphere's centre seen from the body. */
+static void obstacle_side(const cx_obstacle *ob, const double *centre, int dim, double v[3])
+{
+    double l = 0;
+    for (int c = 0; c < 3; c++) {
+        v[c] = ob->kind == CX_OBST_PLANE ? -ob->normal[c] : c < dim ? ob->point[c] - centre[c] : 0;
+        l += v[c] * v[c];
+    }
+    l = sqrt(l);
+    for (int c = 0; c < 3; c++)
+        v[c] = l > 0 ? v[c] / l : 0;
+}
+
+/* The obstacle on the canvas (clipped by it): a plane as its line (2D) or
+ * a quadrilateral under the body (3D), with short hatching on the
+ * obstacle's side; a disc or a sphere as its circle. to(x, px, py) maps a
+ * point to dots. */
+typedef struct mesh_map {
+    int dim;
+    double x0, y1, s;
+} mesh_map;
+
+static void map_point(const mesh_map *m, const double *x, double *px, double *py)
+{
+    double q[3] = {x[0], x[1], m->dim == 3 ? x[2] : 0}, a, b;
+    project(m->dim, q, &a, &b);
+    *px = (a - m->x0) * m->s;
+    *py = (m->y1 - b) * m->s;
+}
+
+static void draw_obstacle(tui_canvas *c, const mesh_map *m, const cx_obstacle *ob, const double lo[3],
+                          const double hi[3])
+{
+    int dim = m->dim, role = TUI_C_LABEL;
+    if (ob->kind == CX_OBST_PLANE) {
+        /* two directions in the plane, spanning the body's extent and a
+         * margin */
+        const double *n = ob->normal;
+        double t1[3], t2[3] = {0, 0, 0};
+        if (dim == 2) {
+            t1[0] = -n[1], t1[1] = n[0], t1[2] = 0;
+        } else {
+            double a[3] = {fabs(n[0]) < 0.9 ? 1 : 0, fabs(n[0]) < 0.9 ? 0 : 1, 0};
+            t1[0] = a[1] * n[2] - a[2] * n[1], t1[1] = a[2] * n[0] - a[0] * n[2], t1[2] = a[0] * n[1] - a[1] * n[0];
+            double l = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+            for (int k = 0; k < 3; k++)
+                t1[k] /= l;
+            t2[0] = n[1] * t1[2] - n[2] * t1[1], t2[1] = n[2] * t1[0] - n[0] * t1[2], t2[2] = n[0] * t1[1] - n[1] * t1[0];
+        }
+        /* the body's centre put on the plane, and its half extents along t1, t2 */
+        double ctr[3], e1 = 0, e2 = 0, dn = 0;
+        for (int k = 0; k < 3; k++)
+            ctr[k] = 0.5 * (lo[k] + hi[k]);
+        for (int k = 0; k < dim; k++)
+            dn += (ctr[k] - ob->point[k]) * n[k];
+        for (int k = 0; k < 3; k++) {
+            ctr[k] -= dn * n[k];
+            e1 += 0.5 * (hi[k] - lo[k]) * fabs(t1[k]);
+            e2 += 0.5 * (hi[k] - lo[k]) * fabs(t2[k]);
+        }
+        e1 = 1.15 * e1 + 1e-12;
+        e2 = 1.15 * e2;
+        double P[4][3], px[4], py[4];
+        for (int k = 0; k < 4; k++) {
+            double s1 = k == 0 || k == 3 ? -e1 : e1, s2 = k < 2 ? -e2 : e2;
+            for (int d = 0; d < 3; d++)
+                P[k][d] = ctr[d] + s1 * t1[d] + s2 * t2[d];
+            map_point(m, P[k], &px[k], &py[k]);
+        }
+        int nedge = dim == 2 ? 1 : 4;
+        for (int k = 0; k < nedge; k++)
+            tui_canvas_line(c, px[k], py[k], px[(k + 1) % 4], py[(k + 1) % 4], role);
+        /* hatching along the front edge, into the obstacle */
+        double in[3], ipx, ipy, opx, opy, h = 3 / m->s;
+        for (int d = 0; d < 3; d++)
+            in[d] = P[0][d] - h * n[d];
+        map_point(m, P[0], &opx, &opy);
+        map_point(m, in, &ipx, &ipy);
+        double dx = ipx - opx + 1.5, dy = ipy - opy;
+        double len = hypot(px[1] - px[0], py[1] - py[0]);
+        for (double a = 0; a <= len; a += 4) {
+            double x = px[0] + (px[1] - px[0]) * a / fmax(len, 1e-12), y = py[0] + (py[1] - py[0]) * a / fmax(len, 1e-12);
+            tui_canvas_line(c, x, y, x + dx, y + dy, role);
+        }
+        return;
+    }
+    if (ob->kind == CX_OBST_DISC || ob->kind == CX_OBST_SPHERE) {
+        /* the circle in the view's plane through the centre (a sphere seen
+         * from the front) */
+        double px0 = NAN, py0 = NAN;
+        for (int k = 0; k <= 96; k++) {
+            double a = 2 * 3.14159265358979323846 * k / 96, q[3] = {ob->point[0], ob->point[1], ob->point[2]}, px, py;
+            q[0] += ob->radius * cos(a);
+            q[dim == 2 ? 1 : 2] += ob->radius * sin(a);
+            map_point(m, q, &px, &py);
+            if (k)
+                tui_canvas_line(c, px0, py0, px, py, role);
+            px0 = px, py0 = py;
+        }
+    }
+}
+
 void tui_panel_mesh(const tui_state *st, tui_box b)
 {
     const cx_mesh *mesh = st->info->mesh;
@@ -371,22 +492,55 @@ void tui_panel_mesh(const tui_state *st, tui_box b)
     int dim = mesh->dim, nn = mesh->nnodes;
     double *P = tui_xalloc(NULL, sizeof(double) * 2 * (size_t)nn);
     double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int c = 0; c < dim; c++)
+        lo[c] = INFINITY, hi[c] = -INFINITY;
     for (int k = 0; k < nn; k++) {
         double q[3];
-        for (int c = 0; c < dim; c++)
+        for (int c = 0; c < dim; c++) {
             q[c] = mesh->x[dim * k + c] + scale * st->uall[dim * k + c];
+            lo[c] = fmin(lo[c], q[c]);
+            hi[c] = fmax(hi[c], q[c]);
+        }
         project(dim, q, &P[2 * k], &P[2 * k + 1]);
         x0 = fmin(x0, P[2 * k]);
         x1 = fmax(x1, P[2 * k]);
         y0 = fmin(y0, P[2 * k + 1]);
         y1 = fmax(y1, P[2 * k + 1]);
     }
+    /* the view fits the deformed body whatever the scale (refitted every
+     * frame, so a larger scale shrinks the picture instead of leaving it),
+     * with room on the obstacle's side to show it */
+    const tui_meshview *mv = &st->mesh_view;
+    if (mv->has_obstacle) {
+        double ctr[3], v[3], pv[2], o[3] = {0, 0, 0}, po[2];
+        for (int c = 0; c < 3; c++)
+            ctr[c] = 0.5 * (lo[c] + hi[c]);
+        obstacle_side(&mv->obstacle, ctr, dim, v);
+        project(dim, v, &pv[0], &pv[1]);
+        project(dim, o, &po[0], &po[1]);
+        double ext = 0.12 * fmax(x1 - x0, y1 - y0);
+        double vx = pv[0] - po[0], vy = pv[1] - po[1];
+        if (vx < 0)
+            x0 += ext * vx;
+        else
+            x1 += ext * vx;
+        if (vy < 0)
+            y0 += ext * vy;
+        else
+            y1 += ext * vy;
+    }
     /* dots are about square: one scale for both axes */
     double s = fmin((2.0 * w - 2) / fmax(x1 - x0, 1e-300), (4.0 * h - 2) / fmax(y1 - y0, 1e-300));
     tui_canvas c;
     tui_canvas_init(&c, w, h);
+    mesh_map map = {dim, x0, y1, s};
+    if (mv->has_obstacle)
+        draw_obstacle(&c, &map, &mv->obstacle, lo, hi);
     /* 2D: every edge while they are at least 3 dots long on average, else
-     * the outline (the edges of the surface facets); 3D: the surface */
+     * the outline (the edges of the surface facets); 3D: the surface's
+     * feature edges (its folds), which read where every surface edge
+     * would fill the panel */
     double len = 0;
     int sampled = 0, seg[6][2];
     for (int e = 0; dim == 2 && e < mesh->nelems && sampled < 4000; e += 1 + mesh->nelems / 2000) {
@@ -408,6 +562,10 @@ void tui_panel_mesh(const tui_state *st, tui_box b)
     } else {
         int nout;
         const int *out = tui_state_outline(st, &nout);
+        if (dim == 3) {
+            out = mv->features;
+            nout = mv->nfeatures;
+        }
         for (int k = 0; k < nout; k++) {
             int a = out[2 * k], bb = out[2 * k + 1];
             tui_canvas_line(&c, (P[2 * a] - x0) * s, (y1 - P[2 * a + 1]) * s, (P[2 * bb] - x0) * s,
@@ -462,10 +620,17 @@ void tui_panel_runs(const tui_state *st, tui_box b)
         else
             snprintf(outcome, sizeof outcome, "%s",
                      run->reason ? cx_reason_str(run->reason) : r == tui_state_nruns(st) - 1 ? "current" : "stopped");
+        /* a run the operator cache served says so */
+        if (tui_run_cached(run))
+            snprintf(outcome + strlen(outcome), sizeof outcome - strlen(outcome), ", cached");
         int role = run->reason > 0 ? TUI_C_OK : run->reason < 0 ? TUI_C_ERROR : TUI_C_NORMAL;
         if (r == tui_state_nruns(st) - 1 && run->reason == 0)
             role = TUI_C_CURRENT;
+        /* the run clicked: its row in the selection's colours, its curve on top */
+        if (st->highlight && run->serial + 1 == st->highlight)
+            role = TUI_C_SELECT;
         tui_put(y, b.x - 2, TUI_C_SERIES0 + tui_run_colour(run), 2, "%s", tui_sym("■", "#"));
+        tui_hit_add(y, b.x - 2, b.x + b.w, TUI_HIT_RUN, r);
         if (wide)
             tui_put(y, b.x, role, b.w, "%-11.11s %-7s %-7.7s %4d %s %7.1f %4ld  %s%s%s", run->method,
                 cx_friction_name(run->law), coef, s ? s->iter : 0, kkt, s ? 1e3 * s->time : 0, s ? s->solves : 0,
@@ -475,12 +640,16 @@ void tui_panel_runs(const tui_state *st, tui_box b)
              * iterations are in their column), cut with an ellipsis only
              * when even that is too long */
             int avail = b.w - 40;
-            if ((int)strlen(outcome) > avail && run->reason)
-                snprintf(outcome, sizeof outcome, "%s", cx_reason_str(run->reason));
-            if ((int)strlen(outcome) > avail && avail > 1)
-                snprintf(outcome + avail - 1, sizeof outcome - (size_t)avail + 1, "%s", tui_sym("…", "~"));
-            tui_put(y, b.x, role, b.w, "%-10.10s %-7s %-6.6s %4d %s  %s%s%s", run->method, cx_friction_name(run->law),
-                coef, s ? s->iter : 0, kkt, outcome, run->changed[0] ? "; " : "", run->changed);
+            char tail[CX_DIAG_LEN + 200];
+            snprintf(tail, sizeof tail, "%s%s%s", outcome, run->changed[0] ? "; " : "", run->changed);
+            if ((int)strlen(tail) > avail && run->reason)
+                snprintf(tail, sizeof tail, "%s%s%s%s", cx_reason_str(run->reason),
+                         tui_run_cached(run) ? ", cached" : "", run->changed[0] ? "; " : "", run->changed);
+            /* the full legend is in the status line when the run is clicked */
+            if ((int)strlen(tail) > avail && avail > 1)
+                snprintf(tail + avail - 1, sizeof tail - (size_t)avail + 1, "%s", tui_sym("…", "~"));
+            tui_put(y, b.x, role, b.w, "%-10.10s %-7s %-6.6s %4d %s  %s", run->method, cx_friction_name(run->law),
+                coef, s ? s->iter : 0, kkt, tail);
         }
     }
 }

@@ -116,6 +116,103 @@ static double state_sel_coef(const tui_state *st)
     return st->sel_law == CX_FRICTION_COULOMB ? st->sel_F : st->sel_slip;
 }
 
+/* ---- the size of a level -------------------------------------------------- */
+
+/* What a build at another level will take, scaled from the level built:
+ * dofs go with the cells (r^dim, r the growth of a cell row; a masonry's
+ * bodies with the courses squared), the contact dofs with the contact
+ * boundary (r^(dim-1); a masonry's interfaces with its bodies). Memory and
+ * time follow the operators the default methods build: the sparse
+ * Cholesky factor of K (fill about n log2 n in 2D, n^(4/3) in 3D) and the
+ * dense Schur complement onto the contact dofs (nc^2, kept with its
+ * factor), which is built with nc solves with that factor and factorised
+ * in nc^3. The constants are fitted to peak RSS and wall time of
+ * 'signorini solve --max-iter 1' at hertz 64-512, block3d 8-16, laminae
+ * 10-20 and halfball 12 (the README's explorer section has the table). A
+ * build long enough to time (0.5 s) scales the time to this machine and
+ * its load. */
+static double state_fill(int dim, double n)
+{
+    return dim == 2 ? n * log2(n > 2 ? n : 2) : n * cbrt(n);
+}
+
+static void state_level_model(int dim, double n, double nc, double *bytes, double *secs)
+{
+    double fill = state_fill(dim, n);
+    *bytes = (dim == 2 ? 90.0 : 160.0) * fill + 24.0 * nc * nc;
+    *secs = (dim == 2 ? 9e-10 : 6e-10) * fill * nc + 3.5e-11 * nc * nc * nc;
+}
+
+int tui_state_level_estimate(const tui_state *st, int level, double *dofs, double *bytes, double *secs)
+{
+    const cx_problem *p = st->info;
+    if (!st->session || !st->have_info || p->n <= 0 || tui_state_busy(st) || level < 1)
+        return 0;
+    const cx_scene *sc = &st->scene;
+    int dim = p->dim;
+    double r, rn, rc;
+    if (sc->generator == CX_GEN_MASONRY) {
+        r = (double)level / st->level;
+        rn = rc = r * r;
+    } else {
+        int c0[3], c1[3];
+        cx_scene_cells(sc, st->level, c0);
+        cx_scene_cells(sc, level, c1);
+        r = c0[0] > 0 ? (double)c1[0] / c0[0] : (double)level / st->level;
+        rn = pow(r, dim);
+        rc = pow(r, dim - 1);
+    }
+    double n = p->n * rn, nc = (p->nc > 0 ? p->nc : 2 * p->m) * rc;
+    state_level_model(dim, n, nc, bytes, secs);
+    if (st->build_time >= 0.5) {
+        double b0, t0;
+        state_level_model(dim, p->n, p->nc > 0 ? p->nc : 2 * p->m, &b0, &t0);
+        double k = t0 > 0 ? st->build_time / t0 : 1;
+        *secs *= k < 0.5 ? 0.5 : k > 4 ? 4 : k;
+    }
+    if (level == st->level)
+        n = p->n;
+    *dofs = n;
+    return 1;
+}
+
+double tui_mem_available(void)
+{
+    FILE *f = fopen("/proc/meminfo", "r");
+    if (!f)
+        return -1;
+    char line[128];
+    double kb = -1;
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "MemAvailable: %lf kB", &kb) == 1)
+            break;
+    fclose(f);
+    return kb >= 0 ? kb * 1024 : -1;
+}
+
+void tui_size_text(double bytes, char *buf, size_t len)
+{
+    if (bytes >= 1e9)
+        snprintf(buf, len, "%.1f GB", bytes / 1e9);
+    else if (bytes >= 1e6)
+        snprintf(buf, len, "%.0f MB", bytes / 1e6);
+    else
+        snprintf(buf, len, "%.0f kB", bytes / 1e3);
+}
+
+int tui_state_level_refused(const tui_state *st, int level, double avail, char *msg, size_t len)
+{
+    double dofs, bytes, secs;
+    if (avail <= 0 || !tui_state_level_estimate(st, level, &dofs, &bytes, &secs) || bytes <= avail)
+        return 0;
+    char need[32], have[32];
+    tui_size_text(bytes, need, sizeof need);
+    tui_size_text(avail, have, sizeof have);
+    snprintf(msg, len, "level %d refused: about %.3g dofs need about %s, and %s of memory is available", level,
+             dofs, need, have);
+    return 1;
+}
+
 /* ---- runs ---------------------------------------------------------------- */
 
 /* A new run for the session's current method (history.c keeps the runs). */
@@ -255,10 +352,16 @@ int tui_state_poll(tui_state *st)
             st->level = j->level;
             st->build_time = cx_clock_now() - j->t0;
             tui_history_clear(st->history);
-            memset(st->refused, 0, sizeof st->refused[0] * (size_t)cx_method_count());
+            st->highlight = 0;
+            /* what the new problem refuses up front (job.c), greyed before
+             * anyone tries it */
+            if (j->refused)
+                memcpy(st->refused, j->refused, sizeof st->refused[0] * (size_t)cx_method_count());
+            else
+                memset(st->refused, 0, sizeof st->refused[0] * (size_t)cx_method_count());
             st->m = -1;
             st->info = cx_session_problem(st->session);
-            tui_meshview_update(&st->mesh_view, st->info->mesh);
+            tui_meshview_update(&st->mesh_view, st->info->mesh, &st->scene, st->level);
         } else if (st->session) {
             /* the build failed: the old session stays, and so does its scene */
             st->scene = st->prev_scene;
@@ -480,7 +583,36 @@ void tui_state_after_step(tui_state *st, int status, const cx_diag *d)
         snprintf(run->reason_msg, sizeof run->reason_msg, "%s", why);
         cx_session_outcome(st->session, run->outcome, sizeof run->outcome);
         char outcome[CX_DIAG_LEN + 128];
-        tui_msg(st, it->reason < 0, "%s", cx_session_outcome(st->session, outcome, sizeof outcome));
+        cx_session_outcome(st->session, outcome, sizeof outcome);
+        if (tui_run_cached(run))
+            tui_msg(st, it->reason < 0, "cached (0 fact.): %s", outcome);
+        else
+            tui_msg(st, it->reason < 0, "%s", outcome);
+    }
+}
+
+void tui_state_abandon_build(tui_state *st)
+{
+    int level = st->job.level;
+    char id[CX_SCENE_NAMELEN];
+    snprintf(id, sizeof id, "%s", st->scene.id);
+    if (!tui_job_abandon(st))
+        return;
+    st->pending = 0;
+    st->queued_steps = 0;
+    st->running = 0;
+    if (st->session) {
+        /* back to the scene and level of the session, as after a failed build */
+        st->scene = st->prev_scene;
+        for (int i = 0; i < st->nscenes; i++)
+            if (strcmp(st->scene_ids[i], st->scene.id) == 0)
+                st->sel_scene = i;
+        st->sel_level = st->level;
+        tui_msg(st, 2, "build of %s level %d abandoned (it ends on its own and frees its memory); %s level %d kept",
+                id, level, st->scene.id, st->level);
+    } else {
+        tui_msg(st, 2, "build of %s level %d abandoned (it ends on its own and frees its memory); "
+                "choose a smaller level", id, level);
     }
 }
 

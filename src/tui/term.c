@@ -13,6 +13,7 @@
 #include <string.h>
 
 static int term_on;
+static int term_mouse_y, term_mouse_x, term_mouse_what;
 static int term_utf8;
 static attr_t term_attr[TUI_C_COUNT];
 
@@ -116,6 +117,14 @@ int tui_term_open(int mono, int ascii)
     keypad(stdscr, TRUE);
     curs_set(0);
     set_escdelay(25);
+    /* the mouse: curses turns the terminal's reports on (button events);
+     * SGR reports (1006) are asked for as well, which read the same at any
+     * width, and are decoded here when the terminfo entry does not know
+     * them (tmux's and screen's kmous is the old \E[M) */
+    mousemask(BUTTON1_PRESSED | BUTTON4_PRESSED | BUTTON5_PRESSED, NULL);
+    mouseinterval(0);
+    fputs("\033[?1000h\033[?1006h", stdout);
+    fflush(stdout);
     if (getenv("NO_COLOR") && getenv("NO_COLOR")[0])
         mono = 1;
     term_color = !mono && has_colors() && start_color() == OK;
@@ -139,6 +148,8 @@ void tui_term_suspend(void)
     raise(SIGTSTP);
     signal(SIGTSTP, old);
     reset_prog_mode();
+    fputs("\033[?1000h\033[?1006h", stdout);
+    fflush(stdout);
     clearok(curscr, TRUE);
     refresh();
 }
@@ -149,6 +160,8 @@ void tui_term_close(void)
         return;
     term_on = 0;
     curs_set(1);
+    fputs("\033[?1006l\033[?1000l", stdout);
+    fflush(stdout);
     endwin();
 }
 
@@ -162,10 +175,68 @@ void tui_term_size(int *rows, int *cols)
     getmaxyx(stdscr, *rows, *cols);
 }
 
+int tui_term_mouse(int *y, int *x)
+{
+    *y = term_mouse_y;
+    *x = term_mouse_x;
+    return term_mouse_what;
+}
+
+/* An SGR mouse report after its ESC [ <: "b;x;y" then M (press) or m
+ * (release). Button 0 is the left one, 64 and 65 the wheel; the bits 4,
+ * 8, 16 (shift, alt, ctrl) are ignored, motion (32) and releases too. */
+static int term_sgr_mouse(void)
+{
+    int v[3] = {0, 0, 0}, n = 0, c;
+    timeout(50);
+    while ((c = getch()) != ERR) {
+        if (c >= '0' && c <= '9' && v[n] < 100000)
+            v[n] = 10 * v[n] + (c - '0');
+        else if (c == ';' && n < 2)
+            n++;
+        else
+            break;
+    }
+    if ((c != 'M' && c != 'm') || n != 2 || c == 'm' || (v[0] & 32))
+        return TUI_KEY_NONE;
+    int b = v[0] & ~(4 | 8 | 16);
+    term_mouse_what = b == 0 ? TUI_MOUSE_CLICK : b == 64 ? TUI_MOUSE_WHEEL_UP : b == 65 ? TUI_MOUSE_WHEEL_DOWN : 0;
+    term_mouse_x = v[1] - 1;
+    term_mouse_y = v[2] - 1;
+    return term_mouse_what ? TUI_KEY_MOUSE : TUI_KEY_NONE;
+}
+
 int tui_term_key(int timeout_ms)
 {
     timeout(timeout_ms);
     int k = getch();
+    if (k == 27) {
+        /* Esc, or the start of a report curses did not decode */
+        timeout(5);
+        int c1 = getch();
+        if (c1 == '[') {
+            int c2 = getch();
+            if (c2 == '<')
+                return term_sgr_mouse();
+            if (c2 != ERR)
+                ungetch(c2);
+        }
+        if (c1 != ERR)
+            ungetch(c1);
+        return TUI_KEY_ESC;
+    }
+    if (k == KEY_MOUSE) {
+        MEVENT ev;
+        if (getmouse(&ev) != OK)
+            return TUI_KEY_NONE;
+        term_mouse_y = ev.y;
+        term_mouse_x = ev.x;
+        term_mouse_what = ev.bstate & BUTTON1_PRESSED ? TUI_MOUSE_CLICK
+                          : ev.bstate & BUTTON4_PRESSED ? TUI_MOUSE_WHEEL_UP
+                          : ev.bstate & BUTTON5_PRESSED ? TUI_MOUSE_WHEEL_DOWN
+                                                        : 0;
+        return term_mouse_what ? TUI_KEY_MOUSE : TUI_KEY_NONE;
+    }
     switch (k) {
     case ERR: return TUI_KEY_NONE;
     case KEY_UP: return TUI_KEY_UP;

@@ -47,7 +47,8 @@ enum {
     TUI_KEY_BACKSPACE,
     TUI_KEY_PGUP,
     TUI_KEY_PGDN,
-    TUI_KEY_RESIZE
+    TUI_KEY_RESIZE,
+    TUI_KEY_MOUSE        /* a click or a wheel turn: tui_term_mouse says where */
 };
 
 typedef struct tui_state tui_state;   /* tui_impl.h */

@@ -130,6 +130,7 @@ struct tui_state {
     double disp_scale;        /* mesh view displacement scale, 0 = auto */
     int help;                 /* help overlay shown */
     int present;              /* presentation mode: paced runs, high contrast, big plot */
+    int highlight;            /* serial + 1 of the run clicked in the runs table, 0 none */
     double pace;              /* presentation: steps per second */
     int editing;              /* text entry for the field under the cursor */
     char edit[64];
@@ -157,6 +158,21 @@ void tui_msg(tui_state *st, int error, const char *fmt, ...)
 #endif
     ;
 
+/* What a build at level would take, scaled from the level built (state.c):
+ * dofs, bytes and seconds, each within about a factor of 2. 0 if not known
+ * (nothing built yet, or a job in progress). */
+int tui_state_level_estimate(const tui_state *st, int level, double *dofs, double *bytes, double *secs);
+/* 1, with the message, if level's memory estimate exceeds avail bytes. */
+int tui_state_level_refused(const tui_state *st, int level, double avail, char *msg, size_t len);
+/* /proc/meminfo's MemAvailable in bytes, -1 if unknown. */
+double tui_mem_available(void);
+/* "1.2 GB", "48 MB", "300 kB". */
+void tui_size_text(double bytes, char *buf, size_t len);
+
+/* Esc during a build on a worker: abandon it (job.c) and go back to the
+ * session's scene and level at once, saying so. */
+void tui_state_abandon_build(tui_state *st);
+
 /* After a step ends (state.c, called by tui_state_poll). */
 void tui_state_after_step(tui_state *st, int status, const cx_diag *d);
 
@@ -176,6 +192,12 @@ typedef struct tui_binding {
     tui_action action;
     const char *help;
 } tui_binding;
+
+/* A mouse event on what the screen shows there (kind TUI_HIT_*, index,
+ * what TUI_MOUSE_*): a click selects a setup row or highlights a run
+ * (again: no highlight), the wheel steps the row under it as the arrow
+ * keys do. Returns reactions. */
+int tui_mouse(tui_state *st, int kind, int index, int what);
 
 /* The key table (terminated by key 0), for the help overlay. */
 const tui_binding *tui_bindings(void);
@@ -230,6 +252,10 @@ int tui_run_colour(const tui_run *r);
 /* The legend of a run: the method and the parameters that differ from
  * their defaults ("pdas rho=0.01"). */
 void tui_run_legend(const tui_run *r, char *buf, size_t len);
+/* 1 if the run has stepped without a factorisation of its own: the
+ * operator cache served it (every method factorises at least once on a
+ * fresh session, as solve shows). */
+int tui_run_cached(const tui_run *r);
 /* Seconds the loop waits between the steps of a run: 0 (as fast as the
  * steps go) outside presentation mode, 1 / pace in it. */
 double tui_state_step_interval(const tui_state *st);
@@ -287,6 +313,10 @@ void tui_term_size(int *rows, int *cols);
 /* A key within timeout_ms (< 0: wait), TUI_KEY_NONE if none. */
 int tui_term_key(int timeout_ms);
 void tui_term_clear(void);
+/* The mouse event behind the last TUI_KEY_MOUSE: its cell (0-based) and
+ * what it was (TUI_MOUSE_*). */
+enum { TUI_MOUSE_CLICK = 1, TUI_MOUSE_WHEEL_UP, TUI_MOUSE_WHEEL_DOWN };
+int tui_term_mouse(int *y, int *x);
 /* Text at (y, x) in a role, at most maxw columns (< 0: to the edge). */
 void tui_term_put(int y, int x, int role, const char *s, int maxw);
 void tui_term_show(void);
@@ -314,6 +344,13 @@ void tui_put(int y, int x, int role, int maxw, const char *fmt, ...)
     ;
 void tui_rule(int y, int x, int w, const char *name);
 void tui_put_canvas(const tui_canvas *c, int y, int x);
+
+/* What the last frame drew where, for the mouse: a setup row (index: the
+ * row) or a run of the runs table (index: the run). Registered while
+ * drawing; tui_draw_hit finds the thing under a cell (0 if none). */
+enum { TUI_HIT_FIELD = 1, TUI_HIT_RUN };
+void tui_hit_add(int y, int x0, int x1, int kind, int index);
+int tui_draw_hit(int y, int x, int *index);
 
 /* The panels (panels.c), each within its box. */
 void tui_panel_steps(const tui_state *st, tui_box b);

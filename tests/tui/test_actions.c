@@ -147,10 +147,12 @@ static void test_hertz(void)
     n = run_to_end(&st, 60);
     CX_CHECK(st.cache.factorizations == 1);
 
-    /* a switch refused at init (the dual methods need K positive definite;
-     * hertz's body is held by contact only) changes nothing: not the
-     * iterate, not the run and its steps, not the snapshot; the status
-     * line says why, and the method is greyed and skipped from then on */
+    /* a switch refused (the dual methods need K positive definite;
+     * hertz's body is held by contact only, which the supports tell
+     * before anything is factorised) changes nothing: not the iterate, not
+     * the run and its steps, not the snapshot; the status line says why.
+     * The method is greyed from the build on, before anyone tried it, and
+     * the screening factorised nothing (one factorisation: ssn-tresca's) */
     {
         const cx_iterate *it0 = cx_session_iterate(st.session);
         int iter0 = it0->iter, nruns0 = tui_state_nruns(&st), nsteps0 = tui_state_run(&st)->nsteps;
@@ -159,14 +161,17 @@ static void test_hertz(void)
         unsigned char status0[4096];
         memcpy(status0, st.status, (size_t)st.m);
         int mi = tui_method_index("mprgp");
-        CX_CHECK(mi >= 0 && !tui_state_method_reason(&st, mi, reason, sizeof reason)[0]);
+        CX_CHECK(mi >= 0 && strstr(tui_state_method_reason(&st, mi, reason, sizeof reason),
+                                    "no support in y (held only by contact)") != NULL);
+        CX_CHECK(st.cache.factorizations == 1);
         st.field = TUI_F_METHOD;
         tui_key(&st, TUI_KEY_ENTER);
         for (int k = 0; k < 20; k++)
             tui_key(&st, TUI_KEY_BACKSPACE);
         r = type(&st, "mprgp\n");
-        CX_CHECK(r & TUI_RESOLVE);
+        CX_CHECK(!(r & TUI_RESOLVE));
         tui_state_apply(&st, r);
+        CX_CHECK(st.cache.factorizations == 1);
         CX_CHECK(st.msg_error && strstr(st.msg, "positive definite") != NULL);
         CX_CHECK(strcmp(st.cur_method->id, "ssn-tresca") == 0 && st.sel_method == tui_method_index("ssn-tresca"));
         const cx_iterate *it1 = cx_session_iterate(st.session);
@@ -567,8 +572,62 @@ static void test_colours_and_pace(void)
     tui_state_clear(&st);
 }
 
+/* The level row's estimate: the dofs of the next level within 20% of the
+ * build's, memory and time positive and growing with the level; a level
+ * whose memory estimate exceeds what is available is refused with the
+ * figures, and nothing is built (the selection stays). */
+static void test_level_estimate(void)
+{
+    static tui_state st;
+    cx_diag d;
+    const char *scenes[] = {"hertz", "block3d"};
+    const int levels[] = {16, 4};
+    for (int k = 0; k < 2; k++) {
+        CX_CHECK_OK(tui_state_init(&st, scenes[k], levels[k], NULL, -1, 1, &d));
+        double n, b, t, n2, b2, t2;
+        CX_CHECK(tui_state_level_estimate(&st, levels[k], &n, &b, &t) && n == st.info->n);
+        CX_CHECK(tui_state_level_estimate(&st, 2 * levels[k], &n2, &b2, &t2));
+        CX_CHECK(b > 0 && t > 0 && b2 > b && t2 > t);
+        char msg[CX_DIAG_LEN];
+        CX_CHECK(!tui_state_level_refused(&st, 2 * levels[k], 1e12, msg, sizeof msg));
+        CX_CHECK(tui_state_level_refused(&st, 2 * levels[k], b2 / 2, msg, sizeof msg));
+        CX_CHECK(strstr(msg, "refused") != NULL && strstr(msg, "available") != NULL);
+        /* the level row: its dofs; ']' builds the next level (sync) */
+        st.field = TUI_F_LEVEL;
+        char val[64];
+        tui_field_value(&st, TUI_F_LEVEL, val, sizeof val);
+        CX_CHECK(strstr(val, "dofs") != NULL || strchr(val, 'k') != NULL);
+        tui_state_apply(&st, tui_key(&st, ']'));
+        CX_CHECK(st.level == 2 * levels[k]);
+        CX_CHECK(fabs(n2 - st.info->n) <= 0.25 * st.info->n);
+        printf("%s level %d: %d dofs, estimated %.0f\n", scenes[k], st.level, st.info->n, n2);
+        tui_state_clear(&st);
+    }
+}
+
+/* The mesh view in 3D draws the surface's folds, not every surface edge:
+ * block3d at level 4 is an 8 x 8 x 4 brick, whose 12 box edges are 4 x 8 +
+ * 4 x 8 + 4 x 4 = 80 mesh edges; its plane obstacle is drawn, twoblocks'
+ * second body is no obstacle. */
+static void test_mesh_view(void)
+{
+    static tui_state st;
+    cx_diag d;
+    CX_CHECK_OK(tui_state_init(&st, "block3d", 4, NULL, -1, 1, &d));
+    int nout;
+    tui_state_outline(&st, &nout);
+    CX_CHECK(st.mesh_view.nfeatures == 80 && nout > 3 * st.mesh_view.nfeatures);
+    CX_CHECK(st.mesh_view.has_obstacle && st.mesh_view.obstacle.kind == CX_OBST_PLANE);
+    tui_state_clear(&st);
+    CX_CHECK_OK(tui_state_init(&st, "twoblocks", 0, NULL, -1, 1, &d));
+    CX_CHECK(!st.mesh_view.has_obstacle && st.mesh_view.nfeatures == 0);
+    tui_state_clear(&st);
+}
+
 int main(void)
 {
+    test_level_estimate();
+    test_mesh_view();
     test_pieces();
     test_hertz();
     test_colours_and_pace();

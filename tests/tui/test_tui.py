@@ -218,9 +218,16 @@ try:
         return [l for l in text.splitlines() if "pts" in l and "dofs" not in l]
 
     before = screen()
-    keys("m")   # ssn-tresca-dual: hertz's K is singular, refused at init
-    wait_for(lambda t: "positive definite (a body held only by contact); use ssn-tresca" in status_block(),
+    # the dual methods are greyed from the build on (hertz's body has no
+    # support in y: K is singular, known before any factorisation); 'm'
+    # skips them, and typing one is refused at once with the reason
+    check("factorised: 1" in before, "the screening of the methods factorised nothing (ssn-tresca's one)")
+    keys("Enter", *["BSpace"] * 20)
+    keys("-l", "ssn-tresca-dual")
+    keys("Enter")
+    wait_for(lambda t: "no support in y (held only by contact); use ssn-tresca" in status_block(),
              "the refusal in the status line, wrapped at whole words")
+    check("factorised: 1" in screen(), "the refused switch factorised nothing")
     check(all(k in keybar() for k in ("m method", "f friction", "n scene", "v view", "e export", "p png")),
           f"the key bar stays and lists m f n v e p: {keybar()!r}")
     keys("r", "s", "p")
@@ -238,7 +245,10 @@ try:
         h = header()
         laws.append(h[1] if h else None)
         keys("r")
-        wait_for(lambda t: "converged" in status() and header() is not None, f"a run under {laws[-1]} to converge")
+        # the status message, not a runs table row ("converged in N
+        # iterations: kkt ..." only there; it may wrap, behind a 'cached' label)
+        wait_for(lambda t: re.search(r"converged in \d+ iterations: kkt", status_block()) and header() is not None,
+                 f"a run under {laws[-1]} to converge")
     check(laws == ["tresca", "coulomb", "none", "tresca"], f"'f' x4 visits the three laws and comes back: {laws}")
     keys("q")
     exited_cleanly("q after the laws")
@@ -397,6 +407,54 @@ try:
     with open(statsfile) as f:
         st = f.read()
     check("explorer:" in st and "redraws" in st, f"--stats printed when quitting mid-build: {st!r}")
+
+    # ---- the mouse (SGR 1006 reports): click a row, wheel a value, click a run ----
+    start(f"{exe} tui hertz --method ssn-tresca")
+    wait_for(lambda t: "hertz L32" in t and "built in" in t, "hertz to be built")
+    keys("r")
+    wait_for(lambda t: re.search(r"converged in \d+ iterations: kkt", status_block()), "the first run to converge")
+
+    def sgr(button, x, y):
+        """A press at column x, row y (1-based), as a terminal reports it."""
+        keys("-l", f"\x1b[<{button};{x};{y}M")
+
+    def row_of(text, what):
+        return next((i for i, l in enumerate(text.splitlines()) if what in l), None)
+
+    sgr(0, 3, row_of(screen(), "tol ") + 1)
+    wait_for(lambda t: re.search(r"tol\s+.1e-10", t) and "◂1e-10" in t, "a click on the tol row selects it")
+    sgr(64, 3, row_of(screen(), "friction") + 1)   # the wheel up: the next law
+    wait_for(lambda t: header() and header()[1] == "tresca", "the wheel on the friction row to choose tresca")
+    keys("r")
+    wait_for(lambda t: re.search(r"cached \(0 fact\.\): converged in \d+ iterations: kkt", status_block()),
+             "the second run to converge, said to be served by the cache")
+    t = screen()
+    check(any("■ ssn-tresca tresca" in l and "cached" in l for l in t.splitlines()),
+          "the runs table labels the later run cached")
+    check("cached: 0 fact." in t, "the session block says the run factorised nothing")
+    check(header()[2] == 1, f"factorised stays 1: {header()}")
+    y = row_of(t, "■ ssn-tresca none")
+    sgr(0, t.splitlines()[y].index("■ ssn-tresca none") + 4, y + 1)
+    wait_for(lambda t: "run 1 highlighted: ssn-tresca" in status_block(), "a click on the first run highlights it")
+    keys("q")
+    exited_cleanly("q after the mouse")
+
+    # ---- Esc abandons a build: the UI is back at once, on the level it had -------
+    start(f"{exe} tui block3d --stats 2>{statsfile}", x=100, y=30)
+    wait_for(lambda t: "block3d L4" in t and "built in" in t, "block3d to be built")
+    keys("]")
+    wait_for(lambda t: "block3d L8" in t and "built in" in t, "block3d level 8 to be built")
+    check(re.search(r"level\s+.8 7\.5k dofs", screen()) is not None, "the level row shows the dofs")
+    keys("]", "Escape")
+    wait_for(lambda t: "abandoned" in status_block(), "Esc to abandon the build of level 16", timeout=5)
+    check("block3d level 8 kept" in status_block() and "block3d L8" in screen(),
+          f"the level built before is kept: {status_block()!r}")
+    keys("s")
+    wait_for(lambda t: steps(t), "a step on level 8 after the abandoned build")
+    keys("q")
+    exited_cleanly("q after an abandoned build")
+    with open(statsfile) as f:
+        check("explorer:" in f.read(), "--stats printed after an abandoned build")
 
     # ---- scripted sessions end by themselves ------------------------------------
     start(f"{exe} tui slider --keys rq")
