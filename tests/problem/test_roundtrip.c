@@ -1,0 +1,142 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* The discrete problem out and back in: export a scene's problem
+ * (MatrixMarket, FCLIB), read it back, and solve both with every method
+ * that takes the law: the same iterations, outcome and kkt error, and the
+ * solutions equal in the energy norm to 1e-12 relative. */
+#include "out/export.h"
+#include "scene/problem_file.h"
+#include "scene/scene.h"
+#include "cx_config.h"
+#include "check.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* ||a - b||_K / ||a||_K */
+static double energy_diff(const cx_problem *p, const double *a, const double *b)
+{
+    double *e = calloc((size_t)p->n, sizeof *e), *Ke = calloc((size_t)p->n, sizeof *Ke);
+    double *Ka = calloc((size_t)p->n, sizeof *Ka);
+    for (int i = 0; i < p->n; i++)
+        e[i] = a[i] - b[i];
+    cx_csc_gemv(&p->K, 1, e, 0, Ke);
+    cx_csc_gemv(&p->K, 1, a, 0, Ka);
+    double num = 0, den = 0;
+    for (int i = 0; i < p->n; i++) {
+        num += e[i] * Ke[i];
+        den += a[i] * Ka[i];
+    }
+    free(e);
+    free(Ke);
+    free(Ka);
+    return den > 0 ? sqrt(fabs(num) / den) : sqrt(fabs(num));
+}
+
+static int solve(cx_session *s, const cx_method *m)
+{
+    cx_diag d;
+    cx_options opt;
+    cx_options_default(&opt);
+    int st = cx_session_set_method(s, m, NULL, &opt, &d);
+    if (!st)
+        st = cx_solver_solve(s, NULL, NULL, &d);
+    return st;
+}
+
+/* Methods whose run depends on what FCLIB does not carry (the points'
+ * weights and the material's E): compared only through MatrixMarket. */
+static int uses_geometry(const cx_method *m)
+{
+    return !strcmp(m->id, "ubr-c") || !strcmp(m->id, "ubr-tf") || !strcmp(m->id, "ssn-c");
+}
+
+static void roundtrip(const char *scene, cx_friction law, int fclib, const char *tmp)
+{
+    cx_diag d;
+    cx_scene sc;
+    CX_CHECK_OK(cx_scene_open(scene, &sc, &d));
+    cx_problem *p = NULL;
+    cx_friction_state fr0;
+    if (cx_scene_build(&sc, 0, &p, &fr0, &d)) {
+        fprintf(stderr, "%s: %s\n", scene, d.msg);
+        CX_CHECK(0);
+        return;
+    }
+    fr0.law = law;
+    cx_session *a = NULL, *b = NULL;
+    CX_CHECK_OK(cx_session_create(&a, &p, &d));
+    CX_CHECK_OK(cx_session_set_friction(a, &fr0, &d));
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s-%s%s", tmp, scene, cx_friction_name(law), fclib ? ".hdf5" : "");
+    int st = fclib ? cx_export_fclib(cx_session_problem(a), cx_session_friction(a), path, scene, 0, &d)
+                   : cx_export_mm(cx_session_problem(a), cx_session_friction(a), path, scene, 0, &d);
+    if (st)
+        fprintf(stderr, "export: %s\n", d.msg);
+    CX_CHECK_OK(st);
+    cx_problem_file pf;
+    st = cx_problem_read(path, &pf, &d);
+    if (st)
+        fprintf(stderr, "read: %s\n", d.msg);
+    CX_CHECK_OK(st);
+    if (st) {
+        cx_session_destroy(&a);
+        return;
+    }
+    CX_CHECK(pf.fr.law == law);
+    CX_CHECK_OK(cx_session_create(&b, &pf.p, &d));
+    CX_CHECK_OK(cx_session_set_friction(b, &pf.fr, &d));
+    const cx_problem *pa = cx_session_problem(a), *pb = cx_session_problem(b);
+    CX_CHECK(pa->n == pb->n && pa->m == pb->m && pa->nc == pb->nc);
+    CX_CHECK(cx_csc_nnz(&pa->K) == cx_csc_nnz(&pb->K));
+    int nmethods = 0;
+    for (int k = 0; k < cx_method_count(); k++) {
+        const cx_method *m = cx_method_at(k);
+        if (cx_method_check(m, pa, law, NULL) || (fclib && uses_geometry(m)))
+            continue;
+        int sa = solve(a, m), sb = solve(b, m);
+        CX_CHECK(sa == sb);
+        if (sa || sb)
+            continue;
+        const cx_iterate *ia = cx_session_iterate(a), *ib = cx_session_iterate(b);
+        double e = energy_diff(pa, ia->u, ib->u);
+        fprintf(stderr, "%-8s %-7s %-5s %-16s iter %3d/%3d  kkt %.6e/%.6e  energy diff %.1e  %s\n", scene,
+                cx_friction_name(law), fclib ? "fclib" : "mm", m->id, ia->iter, ib->iter, ia->kkt, ib->kkt, e,
+                cx_reason_id(ib->reason));
+        CX_CHECK(ia->iter == ib->iter);
+        CX_CHECK(ia->reason == ib->reason);
+        CX_CHECK_NEAR(ib->kkt, ia->kkt, 1e-6, 1e-16);
+        CX_CHECK_LE(e, 1e-12);
+        nmethods++;
+    }
+    CX_CHECK(nmethods >= (pa->dim == 3 && law == CX_FRICTION_COULOMB ? 1 : 2));
+    cx_session_destroy(&a);
+    cx_session_destroy(&b);
+    cx_problem_file_clear(&pf);
+}
+
+int main(void)
+{
+    char tmp[] = "/tmp/cx_roundtrip_XXXXXX";
+    if (!mkdtemp(tmp))
+        return 1;
+    roundtrip("hertz", CX_FRICTION_NONE, 0, tmp);
+    roundtrip("hertz", CX_FRICTION_COULOMB, 0, tmp);
+    roundtrip("slider", CX_FRICTION_TRESCA, 0, tmp);
+    roundtrip("slider", CX_FRICTION_COULOMB, 0, tmp);
+    roundtrip("block3d", CX_FRICTION_NONE, 0, tmp);
+    roundtrip("block3d", CX_FRICTION_TRESCA, 0, tmp);
+    roundtrip("block3d", CX_FRICTION_COULOMB, 0, tmp);
+#if CX_HAVE_FCLIB
+    roundtrip("hertz", CX_FRICTION_COULOMB, 1, tmp);
+    roundtrip("hertz", CX_FRICTION_NONE, 1, tmp);
+    roundtrip("block3d", CX_FRICTION_NONE, 1, tmp);
+    roundtrip("block3d", CX_FRICTION_COULOMB, 1, tmp);
+#endif
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp);
+    if (system(cmd) != 0)
+        fprintf(stderr, "could not remove %s\n", tmp);
+    return check_finish("problem_roundtrip");
+}
