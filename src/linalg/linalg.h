@@ -268,12 +268,13 @@ int cx_pcg_stop(int n, cx_apply_fn apply, void *ctx, const double *inv_diag,
 
 /* ---- MatrixMarket files (CHOLMOD's reader and writer; mm.c) --------- */
 
-/* A coordinate file of A: "symmetric" with A's lower triangle (A in full
- * storage), else "general". Values written so that they read back exactly.
- * CX_EIO with the path. */
-int cx_mm_write_csc(const char *path, const cx_csc *A, int symmetric, cx_diag *d);
+/* Into f (opened by the caller: files are written through out/), named
+ * name in messages: a coordinate file of A, "symmetric" with A's lower
+ * triangle (A in full storage) or "general"; values written so that they
+ * read back exactly. CX_EIO with name. */
+int cx_mm_write_csc(FILE *f, const char *name, const cx_csc *A, int symmetric, cx_diag *d);
 /* An array file ("array real general") of the nrow x ncol column-major x. */
-int cx_mm_write_dense(const char *path, const double *x, int nrow, int ncol, cx_diag *d);
+int cx_mm_write_dense(FILE *f, const char *name, const double *x, int nrow, int ncol, cx_diag *d);
 
 /* What a MatrixMarket file holds: a coordinate file as A (full storage: a
  * symmetric file's off-diagonal entries mirrored, duplicates summed), an

@@ -8,32 +8,19 @@
 #include <math.h>
 #include <string.h>
 
-static int mm_open(FILE **f, const char *path, const char *mode, cx_diag *d)
+int cx_mm_write_csc(FILE *f, const char *name, const cx_csc *A, int symmetric, cx_diag *d)
 {
-    *f = fopen(path, mode);
-    return *f ? CX_OK : cx_diag_set(d, CX_EIO, "%s: %s", path, strerror(errno));
-}
-
-static int mm_close(FILE *f, int st, const char *path, cx_diag *d);
-
-int cx_mm_write_csc(const char *path, const cx_csc *A, int symmetric, cx_diag *d)
-{
-    FILE *f;
-    CX_TRY(mm_open(&f, path, "w", d));
     cholmod_common c;
     cx_cholmod_start(&c);
     /* stype -1: CHOLMOD reads (and writes) only the lower triangle */
     cholmod_sparse v = cx_cholmod_view(A, symmetric ? -1 : 0);
     int ok = cholmod_write_sparse(f, &v, NULL, NULL, &c) >= 0;
-    int st = ok ? CX_OK : cx_cholmod_check(&c, NULL, path, d);
     cholmod_finish(&c);
-    return mm_close(f, st, path, d);
+    return ok ? CX_OK : cx_diag_set(d, CX_EIO, "%s: CHOLMOD could not write the matrix", name);
 }
 
-int cx_mm_write_dense(const char *path, const double *x, int nrow, int ncol, cx_diag *d)
+int cx_mm_write_dense(FILE *f, const char *name, const double *x, int nrow, int ncol, cx_diag *d)
 {
-    FILE *f;
-    CX_TRY(mm_open(&f, path, "w", d));
     cholmod_common c;
     cx_cholmod_start(&c);
     cholmod_dense v;
@@ -46,17 +33,8 @@ int cx_mm_write_dense(const char *path, const double *x, int nrow, int ncol, cx_
     v.xtype = CHOLMOD_REAL;
     v.dtype = CHOLMOD_DOUBLE;
     int ok = cholmod_write_dense(f, &v, NULL, &c) >= 0;
-    int st = ok ? CX_OK : cx_cholmod_check(&c, NULL, path, d);
     cholmod_finish(&c);
-    return mm_close(f, st, path, d);
-}
-
-static int mm_close(FILE *f, int st, const char *path, cx_diag *d)
-{
-    int bad = ferror(f);
-    if ((fclose(f) != 0 || bad) && !st)
-        st = cx_diag_set(d, CX_EIO, "%s: write error", path);
-    return st;
+    return ok ? CX_OK : cx_diag_set(d, CX_EIO, "%s: CHOLMOD could not write the matrix", name);
 }
 
 void cx_mm_clear(cx_mm *mm)
@@ -156,8 +134,9 @@ int cx_mm_read_file(FILE *f, const char *name, cx_mm *mm, cx_diag *d)
 int cx_mm_read(const char *path, cx_mm *mm, cx_diag *d)
 {
     memset(mm, 0, sizeof *mm);
-    FILE *f;
-    CX_TRY(mm_open(&f, path, "r", d));
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return cx_diag_set(d, CX_EIO, "%s: %s", path, strerror(errno));
     int st = cx_mm_read_file(f, path, mm, d);
     fclose(f);
     return st;

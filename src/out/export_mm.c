@@ -19,18 +19,28 @@ static int mm_path(char *buf, size_t len, const char *dir, const char *name, cx_
     return CX_OK;
 }
 
-static int mm_csc(const char *dir, const char *name, const cx_csc *A, int sym, cx_diag *d)
+/* One file of the directory, through out/outfile.h (a temporary renamed
+ * onto it when complete): the sparse A, or the dense x when A is NULL. */
+static int mm_write(const char *dir, const char *name, const cx_csc *A, int sym, const double *x, int nrow,
+                    int ncol, cx_diag *d)
 {
     char path[4096];
     CX_TRY(mm_path(path, sizeof path, dir, name, d));
-    return cx_mm_write_csc(path, A, sym, d);
+    cx_outfile o;
+    CX_TRY(cx_outfile_open(&o, path, d));
+    int st = A ? cx_mm_write_csc(o.f, path, A, sym, d) : cx_mm_write_dense(o.f, path, x, nrow, ncol, d);
+    int cst = cx_outfile_close(&o, st == CX_OK, d);
+    return st ? st : cst;
+}
+
+static int mm_csc(const char *dir, const char *name, const cx_csc *A, int sym, cx_diag *d)
+{
+    return mm_write(dir, name, A, sym, NULL, 0, 0, d);
 }
 
 static int mm_dense(const char *dir, const char *name, const double *x, int nrow, int ncol, cx_diag *d)
 {
-    char path[4096];
-    CX_TRY(mm_path(path, sizeof path, dir, name, d));
-    return cx_mm_write_dense(path, x, nrow, ncol, d);
+    return mm_write(dir, name, NULL, 0, x, nrow, ncol, d);
 }
 
 /* An nrow x ncol column-major copy of the row-major a (stride ncol). */
