@@ -72,7 +72,9 @@ int cx_export_fclib(const cx_problem *p, const cx_friction_state *fr, const char
         return cx_diag_set(d, CX_EIO, "%s: %s", path, strerror(errno));
     int n = p->n, m = p->m, dim = p->dim;
     struct fclib_matrix M = {0}, H = {0};
-    struct fclib_matrix_info Minfo = {0};
+    /* every matrix with its info: FCLIB's reader leaves a missing one
+     * unset, and its fclib_delete_global would free that */
+    struct fclib_matrix_info Minfo = {0}, Hinfo = {0};
     M.m = M.n = n;
     M.nz = -1;
     M.nzmax = (int)(cx_csc_nnz(&p->K) > 0 ? cx_csc_nnz(&p->K) : 1);
@@ -83,9 +85,13 @@ int cx_export_fclib(const cx_problem *p, const cx_friction_state *fr, const char
     Minfo.conditioning = Minfo.determinant = -1;
     Minfo.rank = -1;
     M.info = &Minfo;
+    Hinfo.comment = (char *)"H = -[N; T]': per contact point the normal column, then the tangents";
+    Hinfo.conditioning = Hinfo.determinant = -1;
+    Hinfo.rank = -1;
     double *w = cx_calloc((size_t)dim * m + 1, sizeof(double));
     double *mu = cx_calloc((size_t)m + 1, sizeof(double));
     int st = fclib_H(p, &H);
+    H.info = &Hinfo;
     if (!st && (!w || !mu))
         st = CX_ENOMEM;
     for (int i = 0; !st && i < m; i++) {

@@ -13,6 +13,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#if CX_HAVE_FCLIB
+#include <fclib.h>
+#endif
 
 /* ||a - b||_K / ||a||_K */
 static double energy_diff(const cx_problem *p, const double *a, const double *b)
@@ -51,6 +54,98 @@ static int uses_geometry(const cx_method *m)
 {
     return !strcmp(m->id, "ubr-c") || !strcmp(m->id, "ubr-tf") || !strcmp(m->id, "ssn-c");
 }
+
+#if CX_HAVE_FCLIB
+/* y = A x (+ y if acc) for an FCLIB CSC matrix; At: y = A' x. */
+static void fc_gemv(const struct fclib_matrix *A, int trans, const double *x, double *y)
+{
+    memset(y, 0, sizeof(double) * (size_t)(trans ? A->n : A->m));
+    for (int j = 0; j < A->n; j++)
+        for (int q = A->p[j]; q < A->p[j + 1]; q++) {
+            if (trans)
+                y[j] += A->x[q] * x[A->i[q]];
+            else
+                y[A->i[q]] += A->x[q] * x[j];
+        }
+}
+
+/* Our solution read in FCLIB's own terms, from the file FCLIB reads:
+ * v = u, r = (lN_i, lT_i) per point must solve M v = H r + f,
+ * û = H' v + w + (mu |u_T|, 0) in the dual cone, r in the cone
+ * |r_T| <= mu r_N, û' r = 0 per point; a slipping point's r_T opposes
+ * u_T. This checks the signs of H and w against FCLIB's definition. */
+static void fclib_semantics(const char *path, const cx_session *s)
+{
+    struct fclib_global *g = fclib_read_global(path);
+    CX_CHECK(g != NULL);
+    if (!g)
+        return;
+    const cx_iterate *it = cx_session_iterate(s);
+    const cx_problem *p = cx_session_problem(s);
+    int n = g->M->n, nc = g->H->n, dim = g->spacedim, m = nc / dim;
+    CX_CHECK(n == p->n && m == p->m && dim == p->dim && g->M->nz == -1 && g->H->nz == -1);
+    double *r = calloc((size_t)nc, sizeof *r), *Mv = calloc((size_t)n, sizeof *Mv),
+           *Hr = calloc((size_t)n, sizeof *Hr), *uloc = calloc((size_t)nc, sizeof *uloc);
+    for (int i = 0; i < m; i++) {
+        r[dim * i] = it->lN[i];
+        for (int k = 1; k < dim; k++)
+            r[dim * i + k] = it->lT[(dim - 1) * i + k - 1];
+    }
+    fc_gemv(g->M, 0, it->u, Mv);
+    fc_gemv(g->H, 0, r, Hr);
+    double res = 0, fmax_ = 0;
+    for (int j = 0; j < n; j++) {
+        res = fmax(res, fabs(Mv[j] - Hr[j] - g->f[j]));
+        fmax_ = fmax(fmax_, fabs(g->f[j]));
+    }
+    CX_CHECK_LE(res, 1e-8 * fmax_);
+    fc_gemv(g->H, 1, it->u, uloc);
+    int slipping = 0, touching = 0;
+    double rmax = 0;
+    for (int i = 0; i < m; i++)
+        rmax = fmax(rmax, it->lN[i]);
+    for (int i = 0; i < m; i++) {
+        double *ul = uloc + dim * i, *ri = r + dim * i, mu = g->mu[i];
+        for (int k = 0; k < dim; k++)
+            ul[k] += g->w[dim * i + k];
+        double ut = 0, rt = 0, dot = 0;
+        for (int k = 1; k < dim; k++) {
+            ut += ul[k] * ul[k];
+            rt += ri[k] * ri[k];
+            dot += ul[k] * ri[k];
+        }
+        ut = sqrt(ut), rt = sqrt(rt);
+        double uhat = ul[0] + mu * ut;   /* FCLIB's û_N */
+        CX_CHECK(ri[0] >= 0);
+        CX_CHECK_LE(rt, mu * ri[0] + 1e-9 * rmax);
+        CX_CHECK(uhat >= -1e-12);
+        CX_CHECK_LE(fabs(uhat * ri[0] + dot), 1e-8 * rmax * (fabs(ul[0]) + ut + 1e-12));
+        touching += ri[0] > 0;
+        if (ri[0] > 0 && ut > 1e-12 && mu > 0) {   /* slipping: r_T = -mu r_N u_T / |u_T| */
+            slipping++;
+            CX_CHECK_NEAR(dot, -mu * ri[0] * ut, 1e-6, 1e-9 * rmax * ut);
+        }
+    }
+    fprintf(stderr, "%s in FCLIB's terms: |M v - H r - f| %.1e (|f| %.1e), %d points touching, %d slipping\n",
+            path, res, fmax_, touching, slipping);
+    CX_CHECK(touching > 0);
+    free(r), free(Mv), free(Hr), free(uloc);
+    /* freed by hand, as src/scene/problem_fclib.c does: fclib_delete_global
+     * differs between FCLIB versions in what it frees (and a double free
+     * inside it was seen under ASan with this file) */
+    struct fclib_matrix *mats[2] = {g->M, g->H};
+    for (int k = 0; k < 2; k++) {
+        free(mats[k]->p), free(mats[k]->i), free(mats[k]->x);
+        if (mats[k]->info)
+            free(mats[k]->info->comment);
+        free(mats[k]->info), free(mats[k]);
+    }
+    free(g->mu), free(g->f), free(g->w);
+    if (g->info)
+        free(g->info->title), free(g->info->description), free(g->info->math_info);
+    free(g->info), free(g);
+}
+#endif
 
 static void roundtrip(const char *scene, cx_friction law, int fclib, const char *tmp)
 {
@@ -109,6 +204,11 @@ static void roundtrip(const char *scene, cx_friction law, int fclib, const char 
         CX_CHECK_NEAR(ib->kkt, ia->kkt, 1e-6, 1e-16);
         CX_CHECK_LE(e, 1e-12);
         nmethods++;
+#if CX_HAVE_FCLIB
+        if (fclib && ia->reason == CX_CONVERGED_KKT && !strcmp(m->id, law == CX_FRICTION_COULOMB && pa->dim == 2
+                                                                        ? "ssn-coulomb" : "ssn-tresca"))
+            fclib_semantics(path, b);
+#endif
     }
     CX_CHECK(nmethods >= (pa->dim == 3 && law == CX_FRICTION_COULOMB ? 1 : 2));
     cx_session_destroy(&a);
