@@ -4,6 +4,7 @@
  * through and we cannot use: NaN and Inf values, complex entries. */
 #include "linalg/linalg_impl.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -73,10 +74,49 @@ static int mm_from_triplet(cx_mm *mm, const cholmod_triplet *T, const char *name
     return st;
 }
 
-/* The entries of a coordinate file inside its declared size, checked
- * before CHOLMOD reads it: its reader names no entry, and (SuiteSparse
- * 5.12) leaks its work on that error. Anything else malformed is left to
- * CHOLMOD. f is rewound; a stream that cannot be is not checked. */
+/* The syntax of the file, checked before CHOLMOD reads it: CHOLMOD's
+ * reader names no line or entry in its errors, and (SuiteSparse 5.12)
+ * leaks its work on several of them (seen under LeakSanitizer and
+ * libFuzzer). Accepted: "%%MatrixMarket matrix coordinate|array
+ * real|integer general|symmetric" (any case; coordinate files also
+ * "pattern", all values 1, as CHOLMOD writes a matrix of ones), comments,
+ * the size line, then exactly the declared entries, each "row column
+ * value" (coordinate, inside the size) or "value" (array). f is rewound; a stream that
+ * cannot be rewound is left to CHOLMOD alone. */
+static int mm_word(char **p, char *w, size_t len)
+{
+    while (**p == ' ' || **p == '\t')
+        (*p)++;
+    size_t k = 0;
+    while (**p && !strchr(" \t\r\n", **p)) {
+        if (k + 1 < len)
+            w[k++] = (char)tolower((unsigned char)**p);
+        (*p)++;
+    }
+    w[k] = 0;
+    return k > 0;
+}
+
+/* The next whitespace-separated number of *p: an integer (is_int) or a
+ * real (strtod's, nan and inf included: the value check names them). */
+static int mm_number(char **p, int is_int, double *v)
+{
+    char w[128];
+    if (!mm_word(p, w, sizeof w) || strlen(w) >= sizeof w - 1)
+        return 0;
+    char *e;
+    if (is_int) {
+        errno = 0;
+        long x = strtol(w, &e, 10);
+        if (*e || errno || x < 0 || x > 2147483647L)
+            return 0;
+        *v = (double)x;
+        return 1;
+    }
+    *v = strtod(w, &e);
+    return *e == 0;
+}
+
 static int mm_prescan(FILE *f, const char *name, cx_diag *d)
 {
     long start = ftell(f);
@@ -84,30 +124,71 @@ static int mm_prescan(FILE *f, const char *name, cx_diag *d)
         return CX_OK;
     char *line = NULL;
     size_t cap = 0;
-    int st = CX_OK, coordinate = 0, have_size = 0;
-    long nrow = 0, ncol = 0;
-    ssize_t len = getline(&line, &cap, f);
-    if (len > 0 && strncmp(line, "%%MatrixMarket", 14) == 0)
-        coordinate = strstr(line, "coordinate") != NULL;
-    while (coordinate && !st && (len = getline(&line, &cap, f)) > 0) {
+    int st = CX_OK, lineno = 0;
+    ssize_t len;
+    char w[5][32] = {"", "", "", "", ""};
+    if ((len = getline(&line, &cap, f)) > 0) {
         char *p = line;
+        lineno = 1;
+        for (int k = 0; k < 5; k++)
+            mm_word(&p, w[k], sizeof w[k]);
+    }
+    int coordinate = !strcmp(w[2], "coordinate"), symmetric = !strcmp(w[4], "symmetric");
+    int pattern = coordinate && !strcmp(w[3], "pattern");   /* CHOLMOD writes all-one matrices so */
+    if (strcmp(w[0], "%%matrixmarket") != 0 || strcmp(w[1], "matrix") != 0 ||
+        (!coordinate && strcmp(w[2], "array") != 0))
+        st = cx_diag_set(d, CX_EINVAL, "%s: not a MatrixMarket file: the first line must be '%%%%MatrixMarket "
+                         "matrix coordinate|array real|integer|pattern general|symmetric'", name);
+    else if (strcmp(w[3], "real") != 0 && strcmp(w[3], "integer") != 0 && !pattern)
+        st = cx_diag_set(d, CX_EINVAL, "%s: a %s matrix: expected real values", name, w[3][0] ? w[3] : "typeless");
+    else if (!symmetric && strcmp(w[4], "general") != 0)
+        st = cx_diag_set(d, CX_EINVAL, "%s: a %s matrix: expected general or symmetric", name,
+                         w[4][0] ? w[4] : "typeless");
+    double size[3] = {0, 0, 0};
+    int have_size = 0;
+    long long want = 0, got = 0;
+    while (!st && (len = getline(&line, &cap, f)) > 0) {
+        lineno++;
+        char *p = line, tail[2];
         while (*p == ' ' || *p == '\t')
             p++;
         if (*p == '%' || *p == '\n' || *p == '\r' || *p == 0)
             continue;
-        long a, b;
-        char *e1, *e2;
-        a = strtol(p, &e1, 10);
-        b = strtol(e1, &e2, 10);
-        if (e1 == p || e2 == e1)
-            break;   /* CHOLMOD's to refuse */
-        if (!have_size) {
-            nrow = a, ncol = b, have_size = 1;
-        } else if (a < 1 || a > nrow || b < 1 || b > ncol) {
-            st = cx_diag_set(d, CX_EINVAL, "%s: entry at row %ld, column %ld is outside the %ld x %ld matrix", name,
-                             a, b, nrow, ncol);
+        if ((size_t)len != strlen(line)) {
+            st = cx_diag_set(d, CX_EINVAL, "%s: line %d: a NUL byte", name, lineno);
+            break;
         }
+        if (!have_size) {
+            int ok = mm_number(&p, 1, &size[0]) && mm_number(&p, 1, &size[1]) &&
+                     (!coordinate || mm_number(&p, 1, &size[2])) && !mm_word(&p, tail, sizeof tail);
+            if (!ok)
+                st = cx_diag_set(d, CX_EINVAL, "%s: line %d: expected the size '%s'", name, lineno,
+                                 coordinate ? "rows columns entries" : "rows columns");
+            else if (symmetric && size[0] != size[1])
+                st = cx_diag_set(d, CX_EINVAL, "%s: line %d: a symmetric matrix of %.0f x %.0f", name, lineno, size[0],
+                                 size[1]);
+            have_size = 1;
+            want = coordinate ? (long long)size[2]
+                   : symmetric ? (long long)size[0] * ((long long)size[0] + 1) / 2
+                               : (long long)size[0] * (long long)size[1];
+            continue;
+        }
+        double i = 0, j = 0, x;
+        int ok = coordinate ? mm_number(&p, 1, &i) && mm_number(&p, 1, &j) && (pattern || mm_number(&p, 0, &x))
+                            : mm_number(&p, 0, &x);
+        if (!ok || mm_word(&p, tail, sizeof tail))
+            st = cx_diag_set(d, CX_EINVAL, "%s: line %d: expected '%s'", name, lineno,
+                             !coordinate ? "value" : pattern ? "row column" : "row column value");
+        else if (++got > want)
+            st = cx_diag_set(d, CX_EINVAL, "%s: line %d: more entries than the %lld declared", name, lineno, want);
+        else if (coordinate && (i < 1 || i > size[0] || j < 1 || j > size[1]))
+            st = cx_diag_set(d, CX_EINVAL, "%s: entry at row %.0f, column %.0f is outside the %.0f x %.0f matrix",
+                             name, i, j, size[0], size[1]);
     }
+    if (!st && !have_size)
+        st = cx_diag_set(d, CX_EINVAL, "%s: no size line", name);
+    else if (!st && got < want)
+        st = cx_diag_set(d, CX_EINVAL, "%s: %lld entries of the %lld declared", name, got, want);
     free(line);
     if (fseek(f, start, SEEK_SET) != 0 && !st)
         st = cx_diag_set(d, CX_EIO, "%s: cannot read it twice", name);
