@@ -9,7 +9,8 @@ Python, over libsignorini.so (cffi, ABI mode).
     s.u, s.lN, s.lT, s.status, s.history["kkt"], s.counters
 
 A problem comes from a scene (Problem.scene), from scipy.sparse matrices
-and numpy arrays (Problem.from_arrays), in the convention of the README's
+and numpy arrays (Problem.from_arrays) or from the files of 'signorini
+export' (Problem.read), in the convention of the README's
 "The discrete problem":
     K u - f + N' lN + T' lT = 0,  N u - g <= 0,  lN >= 0,
     |lT_i| <= s_i (Tresca) or F_i lN_i (Coulomb).
@@ -91,6 +92,28 @@ class Problem:
         _check(lib.cx_problem_from_scene(scene.encode(), level, pp, fr, d), d)
         law = {v: k for k, v in FRICTION.items()}[fr.law]
         return cls(pp, {"law": law, "slip_bound": fr.slip_bound, "F": fr.F})
+
+    @classmethod
+    def read(cls, path):
+        """The problem of 'signorini export': a directory of MatrixMarket
+        files or an FCLIB .hdf5. Its friction law and per-point values are
+        the session's defaults (friction: the law, F, slip, and per point
+        'mu' or 'slip_points' as numpy arrays)."""
+        pf = ffi.new("cx_problem_file *")
+        d = ffi.new("cx_diag *")
+        _check(lib.cx_problem_read(path.encode(), pf, d), d)
+        m = pf.p.m
+        law = {v: k for k, v in FRICTION.items()}[pf.fr.law]
+        fr = {"law": law, "slip_bound": pf.fr.slip_bound, "F": pf.fr.F}
+        if pf.Fi != ffi.NULL:
+            fr["F"] = np.frombuffer(ffi.buffer(pf.Fi, 8 * m), dtype=np.float64).copy()
+        if pf.s != ffi.NULL:
+            fr["slip_bound"] = np.frombuffer(ffi.buffer(pf.s, 8 * m), dtype=np.float64).copy()
+        pp = ffi.new("cx_problem **")
+        pp[0] = pf.p            # the problem moves out of the file record
+        pf.p = ffi.NULL
+        lib.cx_problem_file_clear(pf)
+        return cls(pp, fr)
 
     @classmethod
     def from_arrays(cls, K, f, N, T, g, dim, weight=None, x=None, E=0.0):

@@ -67,6 +67,12 @@ typedef struct cx_iterate {
 
 typedef struct cx_session cx_session;
 
+typedef struct cx_problem_file {
+    cx_problem *p; cx_friction_state fr; double *s, *Fi; char format[8]; char source[256]; int level;
+} cx_problem_file;
+int cx_problem_read(const char *path, cx_problem_file *pf, cx_diag *d);
+void cx_problem_file_clear(cx_problem_file *pf);
+
 int cx_problem_from_data(cx_problem **p, const cx_problem_data *data, cx_diag *d);
 int cx_problem_from_scene(const char *id_or_path, int level, cx_problem **p, cx_friction_state *fr,
                           cx_diag *d);

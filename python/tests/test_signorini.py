@@ -118,3 +118,25 @@ def test_parameters_and_errors():
         signorini.Problem.from_arrays(K.tocsc(), f, N, T, g, dim=2)
     with pytest.raises(signorini.SignoriniError, match="g: entry 1 is -1"):
         signorini.Problem.from_arrays(chain(5)[0], f, N, T, np.array([0, -1, 0, 0, 0.0]), dim=2)
+
+
+def test_read_exported(tmp_path):
+    """A problem exported by the installed program, read back: the same run."""
+    import os
+    import subprocess
+    exe = os.path.join(os.path.dirname(signorini.lib_path), "..", "..", "bin", "signorini")
+    if not os.path.exists(exe):
+        pytest.skip("no installed program beside the library")
+    d = str(tmp_path / "hertz.mm")
+    subprocess.run([exe, "export", "hertz", "--friction", "coulomb", "--F", "0.3", "--format", "mm", d],
+                   check=True, capture_output=True)
+    p = signorini.Problem.read(d)
+    assert p.friction["law"] == "coulomb" and np.allclose(p.friction["F"], 0.3)
+    a = signorini.Session(p)
+    a.set_method("ssn-coulomb")
+    b = signorini.Session(signorini.Problem.scene("hertz"), friction="coulomb", F=0.3)
+    b.set_method("ssn-coulomb")
+    assert a.solve() == b.solve() == "converged"
+    assert a.iterations == b.iterations and np.array_equal(a.u, b.u)
+    with pytest.raises(signorini.SignoriniError, match="problem.json"):
+        signorini.Problem.read(str(tmp_path))
