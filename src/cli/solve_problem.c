@@ -102,13 +102,27 @@ int cli_solve_problem(const char *cmd, const char *path, const cx_solve_args *a,
     }
     const char *id = a->method && strcmp(a->method, "auto") != 0 ? a->method : NULL;
     const char *auto_sets = "";
-    if (!id)
-        id = cx_scene_auto_method(NULL, 0, pf.p, fr.law, &auto_sets);
+    if (!id) {
+        /* --method auto: the choice for the scene it came from, when that
+         * scene is here (the same method and parameters as 'solve SCENE'),
+         * else the rule from the problem's properties */
+        cx_scene sc;
+        cx_diag ignored;
+        int known = pf.source[0] && cx_scene_open(pf.source, &sc, &ignored) == CX_OK;
+        id = cx_scene_auto_method(known ? &sc : NULL, pf.level, pf.p, fr.law, &auto_sets);
+    }
     const cx_method *m = cx_method_find(id);
     cx_param_values pv;
     cx_param_default(&pv, m->params);
     char owner[64];
     snprintf(owner, sizeof owner, "method '%s'", m->id);
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", auto_sets);
+    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok; tok = strtok_r(NULL, " ", &save))
+        if (cx_param_set_pair(&pv, tok, owner, &d)) {
+            cx_problem_file_clear(&pf);
+            return cli_fail(cmd, d.msg);
+        }
     for (int k = 0; k < a->sets.n; k++)
         if (cli_param_set_for(&pv, a->sets.v[k], a->methods.n, owner, &d)) {
             cx_problem_file_clear(&pf);

@@ -173,7 +173,16 @@ int cx_problem_read_fclib(const char *path, cx_problem_file *pf, cx_diag *d)
         pf->fr.Fi = pf->Fi;
         pf->fr.F = m > 0 ? g->mu[0] : 0;
         snprintf(pf->format, sizeof pf->format, "fclib");
-        snprintf(pf->source, sizeof pf->source, "%s", g->info && g->info->title ? g->info->title : "");
+        /* our title is "signorini SCENE level L"; another program's is kept whole */
+        const char *title = g->info && g->info->title ? g->info->title : "";
+        char id[256];
+        int level = 0;
+        if (sscanf(title, "signorini %255s level %d", id, &level) == 2) {
+            snprintf(pf->source, sizeof pf->source, "%s", id);
+            pf->level = level;
+        } else {
+            snprintf(pf->source, sizeof pf->source, "%s", title);
+        }
     }
     cx_csc_clear(&Nc);
     cx_csc_clear(&Tc);

@@ -35,7 +35,7 @@ def same_solve(scene, args, path, method):
 
 # ---- export, then solve the files as the scene ----------------------------
 for scene, args, methods in [("hertz", [], ["ssn-tresca", "pdas", "graves"]),
-                             ("hertz", ["--friction", "coulomb"], ["ssn-coulomb"]),
+                             ("hertz", ["--friction", "coulomb"], ["ssn-coulomb", "auto"]),
                              ("slider", [], ["ssn-tresca", "ssn-tresca-dual"]),
                              ("block3d", ["--friction", "tresca"], ["ssn-tresca", "ssstar"])]:
     d = os.path.join(tmp, scene + "-" + "-".join(args).strip("-"))
@@ -79,9 +79,12 @@ check(not os.path.exists(os.path.join(tmp, "slider.hdf5")), "no file for a refus
 
 # ---- FCLIB --------------------------------------------------------------------
 if HAVE_FCLIB:
+    # auto: the scene's choice with its parameters (block3d Coulomb: cf-fp, tight), the scene
+    # named in the FCLIB title
     for scene, args, method in [("hertz", ["--friction", "coulomb"], "ssn-coulomb"),
-                                ("block3d", [], "ssn-tresca")]:
-        h5 = os.path.join(tmp, scene + ".hdf5")
+                                ("block3d", [], "ssn-tresca"),
+                                ("block3d", ["--friction", "coulomb"], "auto")]:
+        h5 = os.path.join(tmp, scene + "-".join(args) + ".hdf5")
         code, out, err = run("export", scene, "--format", "fclib", h5, *args)
         check(code == 0 and "FCLIB" in out, f"export {scene} fclib: {err}")
         check(open(h5, "rb").read(8) == b"\x89HDF\r\n\x1a\n", "an HDF5 file")
