@@ -64,6 +64,8 @@ int cli_export(int argc, char **argv)
         return cli_usage(cmd, "missing OUT (the directory or .hdf5 file to write)");
     if (a.format < 0)
         return cli_usage(cmd, "missing --format mm|fclib");
+    if (cx_outfile_is_stdout(pos[1]))
+        return cli_usage(cmd, "OUT '-': a directory (mm) or an HDF5 file (fclib), not standard output");
 
     cx_scene sc;
     if (cx_scene_open(pos[0], &sc, &d))
