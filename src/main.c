@@ -19,9 +19,10 @@ static const char usage[] =
     "commands:\n"
     "  tui [SCENE] [options]    the explorer (an ncurses UI; tui --help)\n"
     "  list [--json]            scenes and methods, with what each supports and its parameters\n"
-    "  solve SCENE [options]    solve a scene and print a summary (or --json)\n"
+    "  solve SCENE [options]    solve a scene (or --problem DIR|FILE) and print a summary (or --json)\n"
     "  bench KIND [options]     benchmarks and the papers' tables (bench --help)\n"
     "  render SCENE --png FILE  solve and draw a field, a plot or a VTU file (render --help)\n"
+    "  export SCENE OUT         the discrete problem for other solvers (export --help)\n"
     "  version                  print the version\n"
     "\n"
     "  -h, --help               this help\n"
@@ -71,6 +72,8 @@ int main(int argc, char **argv)
         return tui_main(argc - 1, argv + 1);
     if (strcmp(cmd, "render") == 0)
         return cli_render(argc - 1, argv + 1);
+    if (strcmp(cmd, "export") == 0)
+        return cli_export(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
         return bench_main(argc - 1, argv + 1);
     if (strcmp(cmd, "version") == 0)

@@ -15,6 +15,11 @@ int cli_list(int argc, char **argv);
 int cli_solve(int argc, char **argv);
 
 int cli_render(int argc, char **argv);  /* cli/render.c */
+int cli_export(int argc, char **argv);  /* cli/export.c */
+/* solve --problem PATH (cli/solve_problem.c): the exported problem at
+ * path with a's method, friction and --set, opt's stopping rules. */
+int cli_solve_problem(const char *cmd, const char *path, const cx_solve_args *a, const cx_options *opt, int json,
+                      int quiet);
 /* 'solve' under another command name and usage (render: the same options,
  * and --png required). */
 int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv);

@@ -195,7 +195,7 @@ static void man_summary(const char *top, const char *cmd, char *buf, size_t len)
 
 int cli_man(int argc, char **argv, int (*run)(int, char **))
 {
-    static const char *const cmds[] = {"list", "solve", "render", "bench", "tui", "version", NULL};
+    static const char *const cmds[] = {"list", "solve", "render", "export", "bench", "tui", "version", NULL};
     const char *cmd = argc > 1 ? argv[1] : NULL;
     char prog[] = "signorini", help[] = "--help", paper[] = "paper";
     char *top_args[] = {prog, help, NULL};

@@ -25,6 +25,7 @@ typedef struct {
     cx_solve_args s;          /* the options every solve has (base/opt_solve.h) */
     int json, baseline, quiet;
     const char *vtu_series;   /* --vtu-series DIR */
+    const char *problem;      /* --problem DIR|FILE (cli/solve_problem.c) */
     cli_render_args render;   /* --png, --vtu and the drawing options (cli/render.c) */
 } solve_args;
 
@@ -38,6 +39,9 @@ static const cx_opt solve_own_opts[] = {
      offsetof(solve_args, json), NULL},
     {"baseline", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "also time one factorisation + solve of K alone",
      offsetof(solve_args, baseline), NULL},
+    {"problem", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR|FILE",
+     "solve the discrete problem of 'signorini export' (a directory\n"
+     "of MatrixMarket files or an FCLIB .hdf5) instead of a SCENE", offsetof(solve_args, problem), NULL},
     {"quiet", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no per-iteration lines", offsetof(solve_args, quiet),
      NULL},
     {"vtu-series", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR",
@@ -64,8 +68,10 @@ static int solve_parse(int argc, char **argv, const char **scene, solve_args *a,
     if (r)
         return r;
     cli_render_finish(&a->render);
-    if (npos == 0)
+    if (npos == 0 && !a->problem)
         return cx_diag_set(d, CX_EINVAL, "missing SCENE");
+    if (npos > 0 && a->problem)
+        return cx_diag_set(d, CX_EINVAL, "a SCENE and --problem: give one");
     /* a method id is a word of the registry: known before anything is built */
     for (int k = 0; k < a->s.methods.n; k++) {
         const char *id = a->s.methods.v[k];
@@ -258,6 +264,12 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
 
+    if (a.problem) {   /* no mesh: nothing to draw or write it with */
+        if (a.render.png || a.render.vtu || a.vtu_series || a.baseline || a.render.plot >= 0 || strcmp(cmd, "solve"))
+            return cli_fail(cmd, "--problem: --png, --vtu, --vtu-series, --plot and --baseline need the mesh, "
+                            "which a problem file has not");
+        return cli_solve_problem(cmd, a.problem, &a.s, &opt, a.json, a.quiet);
+    }
     double t0 = cx_clock_now();
     cx_scene sc;
     if (cx_scene_open(scene, &sc, &d))

@@ -14,6 +14,7 @@
 #include "base/base.h"
 
 #include <stddef.h>
+#include <stdio.h>
 
 /* ---- counters ------------------------------------------------------- */
 
@@ -263,5 +264,36 @@ typedef int (*cx_stop_fn)(void *stop_ctx);
 int cx_pcg_stop(int n, cx_apply_fn apply, void *ctx, const double *inv_diag,
                 const double *b, double *x, double rtol, int maxit, cx_stop_fn stop,
                 void *stop_ctx, int *iters, double *work, cx_diag *d);
+
+
+/* ---- MatrixMarket files (CHOLMOD's reader and writer; mm.c) --------- */
+
+/* Into f (opened by the caller: files are written through out/), named
+ * name in messages: a coordinate file of A, "symmetric" with A's lower
+ * triangle (A in full storage) or "general"; values written so that they
+ * read back exactly. CX_EIO with name. */
+int cx_mm_write_csc(FILE *f, const char *name, const cx_csc *A, int symmetric, cx_diag *d);
+/* An array file ("array real general") of the nrow x ncol column-major x. */
+int cx_mm_write_dense(FILE *f, const char *name, const double *x, int nrow, int ncol, cx_diag *d);
+
+/* What a MatrixMarket file holds: a coordinate file as A (full storage: a
+ * symmetric file's off-diagonal entries mirrored, duplicates summed), an
+ * array file as x (column-major, nrow x ncol). */
+typedef struct cx_mm {
+    int dense;          /* 1: an array file (x), 0: a coordinate file (A) */
+    int symmetric;      /* the header said symmetric */
+    int nrow, ncol;
+    cx_csc A;
+    double *x;
+} cx_mm;
+
+/* Read f (named name in messages) with CHOLMOD, then check what CHOLMOD
+ * lets through: every value finite (CHOLMOD reads nan and inf), real
+ * values only. One line "name: ..." naming the first bad entry's row and
+ * column (1-based, as in the file); CX_EINVAL for a malformed file (with
+ * CHOLMOD's reason), CX_ENOMEM. mm is cleared first. */
+int cx_mm_read_file(FILE *f, const char *name, cx_mm *mm, cx_diag *d);
+int cx_mm_read(const char *path, cx_mm *mm, cx_diag *d);
+void cx_mm_clear(cx_mm *mm);
 
 #endif

@@ -61,6 +61,8 @@ typedef struct cx_problem {
     int *cdofs;         /* nc ascending free-dof indices */
 
     double kscale;      /* max diagonal entry of K: the stiffness scale */
+    double E;           /* the material's stiffness scale given with plain data
+                           (cx_problem_from_data; 0: from mats) */
 
     /* geometry, for output */
     cx_mesh *mesh;
@@ -78,6 +80,69 @@ int cx_problem_create(cx_problem **p, cx_mesh **mesh, cx_material **mats,
                       cx_dofmap *map, cx_contact_set *cs,
                       const cx_csc *Kall, const double *fall, cx_diag *d);
 void cx_problem_destroy(cx_problem **p);
+
+/* ---- a problem from plain arrays (problem_arrays.c) ----------------------
+ *
+ * For a system assembled elsewhere (another FE code, a file): the same
+ * problem, sessions, methods, stepping, results and kkt error as a scene's,
+ * without a mesh (p->mesh is NULL: outputs that draw or write the mesh
+ * refuse such a problem). Sign conventions are those at the top of this
+ * header: N u - g <= 0 with g >= 0 the initial gap, lN >= 0 pushes the
+ * body away from the obstacle (its force on the body is -N'lN), T's rows
+ * of point i are (dim-1) i .. (dim-1) i + dim - 2.
+ *
+ * A sparse matrix given as plain arrays, 0-based indices, not changed and
+ * not kept (everything is copied): */
+typedef enum cx_sparse_form {
+    CX_SPARSE_CSC = 0,      /* p (ncol + 1 column starts), i, x; nnz = p[ncol] */
+    CX_SPARSE_TRIPLET = 1   /* i, j, x (nnz each); duplicates are summed */
+} cx_sparse_form;
+
+typedef struct cx_sparse_data {
+    cx_sparse_form form;
+    int nrow, ncol;
+    size_t nnz;             /* triplet: entries (CSC: ignored, p[ncol]) */
+    const int *p;           /* CSC: column starts (ncol + 1) */
+    const int *i;           /* row of each entry */
+    const int *j;           /* triplet: column of each entry */
+    const double *x;        /* value of each entry */
+} cx_sparse_data;
+
+typedef struct cx_problem_data {
+    int dim;                /* 2 or 3 */
+    int n;                  /* unknowns (free dofs) */
+    int m;                  /* contact points */
+    cx_sparse_data K;       /* n x n, symmetric positive semi-definite */
+    int K_lower;            /* 1: only the lower triangle (row >= column) is
+                               given, the upper is its mirror (an upper
+                               entry is an error); 0: both triangles, equal
+                               to 1e-12 of the largest |K_ij| */
+    const double *f;        /* n: the load */
+    cx_sparse_data N;       /* m x n: normal rows, (N u)_i closes gap i */
+    cx_sparse_data T;       /* m (dim - 1) x n: tangential rows */
+    const double *g;        /* m: initial gaps, >= 0 */
+    /* optional (NULL or 0: the default) */
+    const double *weight;   /* m: the contact boundary's measure at each point
+                               (length in 2D, area in 3D; default 1: a
+                               scalar Tresca bound is then a nodal force);
+                               ubr-c, ubr-tf and ssn-c weigh their penalty
+                               by it */
+    const double *x;        /* dim m: the points' positions (default 0;
+                               ubr's r = auto measures the contact zone) */
+    double E;               /* the material's stiffness scale (Young's
+                               modulus; 0: K's largest diagonal entry), by
+                               which penalty methods scale their r */
+} cx_problem_data;
+
+/* Check and copy data into a new problem. CX_EINVAL with one line naming
+ * the first bad array and entry (sizes, an index out of range, a NaN or
+ * Inf, an upper entry with K_lower, an asymmetric K, a negative gap or
+ * weight, dim not 2 or 3), CX_ENOMEM. The friction law and its per-point
+ * values go to the session (cx_session_set_friction with s or Fi). */
+int cx_problem_from_data(cx_problem **p, const cx_problem_data *data, cx_diag *d);
+/* The stiffness scale penalty methods scale their r by: the largest
+ * Young's modulus of the bodies, else p->E, else p->kscale (else 1). */
+double cx_problem_stiffness(const cx_problem *p);
 
 /* doc/design.md §3: the solver-independent, dimensionless error, the largest of
  * the relative equilibrium residual and the natural-map residuals of the

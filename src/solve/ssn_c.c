@@ -60,11 +60,7 @@ static int ssnc_init(void *state, cx_session *s, const cx_param_values *params, 
 {
     ssnc_state *st = state;
     const cx_problem *p = cx_session_problem(s);
-    double E = 0;
-    for (int b = 0; b < (p->mesh ? p->mesh->nbodies : 0); b++)
-        E = fmax(E, p->mats[b].E);
-    if (!(E > 0))
-        E = p->kscale > 0 ? p->kscale : 1;
+    double E = cx_problem_stiffness(p);
     st->r = cx_param_get(params, "r") * E;
     st->u0 = cx_param_get(params, "u0");
     st->act = CX_NEW(unsigned char, p->m);

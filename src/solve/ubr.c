@@ -161,10 +161,7 @@ int ubr_core_init(ubr_core *c, cx_session *s, const cx_param_values *params, int
     c->m = p->m;
     c->dt = tangential ? p->dim - 1 : 0;
     c->w = p->contact.weight;
-    for (int b = 0; b < (p->mesh ? p->mesh->nbodies : 0); b++)
-        c->E = fmax(c->E, p->mats[b].E);
-    if (!(c->E > 0))
-        c->E = p->kscale > 0 ? p->kscale : 1;
+    c->E = cx_problem_stiffness(p);
     for (int i = 0; i < p->m; i++)
         if (!(c->w[i] > 0))
             return cx_diag_set(d, CX_EUNSUPPORTED,

@@ -11,7 +11,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from clicheck import check, finish, run, usage_error  # noqa: E402
 
 SOLVE = {"method", "friction", "F", "slip", "level", "tol", "max-iter", "stop", "time-limit", "set",
-         "json", "baseline", "quiet", "vtu-series",
+         "json", "baseline", "quiet", "vtu-series", "problem",
          "png", "field", "scale", "font-scale", "cmap", "range", "title", "no-title", "size", "view", "edges", "vtu", "vtu-ascii", "plot", "timing"}
 SOLVE |= {"camera", "crop", "mirror"}   # render's camera and framing (issue 22)
 SOLVE |= {"svg", "pdf", "log", "frames", "gif", "every"}   # render/: vector files, log scale, animation
@@ -23,6 +23,7 @@ COMMANDS = [
     (["solve"], SOLVE, ["hertz", "--tol", "1"], "(0, 1)"),
     (["render"], SOLVE, ["hertz", "--png", "x.png", "--max-iter", "0"], "[1, 100000000]"),
     (["list"], {"json"}, None, None),
+    (["export"], {"format", "friction", "F", "slip", "level"}, ["hertz", "--level", "0"], "[1, 1048576]"),
     (["version"], set(), None, None),
     (["tui"], {"level", "method", "friction", "mono", "ascii", "export-dir", "keys", "frames", "stats", "present"},
      ["--frames", "0"], "--frames '0'"),

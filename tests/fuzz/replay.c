@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Without libFuzzer (gcc builds): run the harness over the files of the
  * directories given on the command line (the seed corpus: every scene and
- * scene test file), so that the suite checks its contract too. */
+ * scene test file; the MatrixMarket seeds), so that the suite checks its
+ * contract too. */
 #include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -23,7 +24,7 @@ int main(int argc, char **argv)
         }
         for (struct dirent *e; (e = readdir(dir));) {
             size_t len = strlen(e->d_name);
-            if (len < 4 || strcmp(e->d_name + len - 4, ".ini") != 0)
+            if (len < 4 || (strcmp(e->d_name + len - 4, ".ini") != 0 && strcmp(e->d_name + len - 4, ".mtx") != 0))
                 continue;
             char path[4096];
             snprintf(path, sizeof path, "%s/%s", argv[k], e->d_name);

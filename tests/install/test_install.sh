@@ -90,4 +90,28 @@ kkt=$(awk '/^kkt/ {print $2}' client.txt)
 awk -v k="$kkt" 'BEGIN { exit !(k <= 1e-10) }' || fail "client kkt $kkt above 1e-10"
 # the library it ran is the moved one
 ldd ./client | grep -q "$p" || fail "client does not load the moved libsignorini"
+
+# a problem from plain arrays (examples/arrays.c): no scene, no data files
+for h in solve/problem.h scene/problem_file.h out/export.h; do
+    [ -f "$p/include/signorini/$h" ] || fail "no include/signorini/$h"
+done
+# shellcheck disable=SC2046
+$cc -std=c11 -Wall -Wextra -Werror $san -o arrays "$src/examples/arrays.c" \
+    $(pkg-config --cflags --libs signorini) -Wl,-rpath,"$libdir" || fail "examples/arrays.c does not build"
+./arrays >arrays.txt || { cat arrays.txt >&2; fail "arrays failed"; }
+cat arrays.txt
+grep -q '^kkt [0-9.e+-]* iterations [1-9][0-9]* reason converged' arrays.txt || fail "arrays output"
+grep -q '^contact [1-9][0-9]* stick [1-9][0-9]* slip [1-9][0-9]*' arrays.txt || fail "arrays: expected points that stick and points that slip"
+
+# the discrete problem out and back in with the installed program
+"$p/bin/signorini" export hertz --format mm hertz.mm >/dev/null || fail "export --format mm failed"
+[ -f hertz.mm/problem.json ] && [ -f hertz.mm/K.mtx ] || fail "export: no problem.json or K.mtx"
+"$p/bin/signorini" solve --problem hertz.mm --quiet >problem.txt || { cat problem.txt >&2; fail "solve --problem failed"; }
+grep -q '^converged' problem.txt || fail "solve --problem did not converge"
+if "$p/bin/signorini" export hertz --friction coulomb --format fclib hertz.hdf5 >/dev/null 2>fclib.err; then
+    "$p/bin/signorini" solve --problem hertz.hdf5 --quiet >fclib.txt || { cat fclib.txt >&2; fail "solve --problem FCLIB failed"; }
+    grep -q '^converged' fclib.txt || fail "solve --problem FCLIB did not converge"
+else
+    grep -q 'without FCLIB' fclib.err || { cat fclib.err >&2; fail "export --format fclib failed"; }
+fi
 echo "test_install: ok ($p)"
