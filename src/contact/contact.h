@@ -54,7 +54,21 @@ typedef struct cx_contact_set {
     double *gap;         /* m: initial gap >= 0 */
     cx_triplet N;        /* m x nall */
     cx_triplet T;        /* m(dim-1) x nall */
+    /* several contacts with their own friction values (cx_contact_append,
+     * cx_contact_set_friction): per point, or NULL when one value holds */
+    double *Fpt;         /* m: Coulomb coefficient */
+    double *spt;         /* m: Tresca slip bound, a nodal force (bound x weight) */
 } cx_contact_set;
+
+/* Append the points and rows of src after those of dst (a scene's several
+ * contacts; both over the same nall, dst zeroed or built); src is cleared.
+ * CX_ENOMEM (dst unchanged), CX_EINVAL if the sizes differ. */
+int cx_contact_append(cx_contact_set *dst, cx_contact_set *src);
+
+/* The friction values of points [start, end): coefficient F and slip bound
+ * (a traction, times each point's weight). Allocates Fpt and spt on first
+ * use; call it for every range once all contacts are appended. CX_ENOMEM. */
+int cx_contact_set_friction(cx_contact_set *cs, int start, int end, double F, double slip_bound);
 
 /* Contact points at the nodes of boundary b against obstacle ob, ordered
  * along the boundary (by arc length from the first facet's first node in
