@@ -85,14 +85,16 @@ void cx_contact_clear(cx_contact_set *cs);
  * counted in cs->nclamped; the other points keep their order. CX_ENOMEM. */
 int cx_contact_drop_clamped(cx_contact_set *cs, const cx_dofmap *map);
 
-/* Two-body node-to-segment rows (paper 000 §3, 2D, 2-node edges): one
- * contact point per node of the slave boundary that has a free dof in map
- * (map may be NULL: every node), ordered by x then y, paired with its
- * closest point chi on the master boundary's segments [x_p, x_q]; rows
- * N = (nu, -(1-delta) nu, -delta nu) and T likewise with t over the dofs
- * of (x, x_p, x_q), gap |chi - x|, nu = (chi - x)/gap or the slave's
- * outward normal where the gap is 0. CX_EINVAL if a node penetrates the
- * master; CX_EUNSUPPORTED for 3D or curved (3-node) edges. */
+/* Two-body node-to-segment rows (paper 000 §3, 2D): one contact point
+ * per node of the slave boundary that has a free dof in map (map may be
+ * NULL: every node), in their order along the slave from its end of
+ * smaller x (by x then y if it is not one open chain), paired by
+ * projection with its closest point chi on the master boundary's segments
+ * [x_p, x_q] (a 3-node edge counts as its two straight halves, on either
+ * side); rows N = (nu, -(1-delta) nu,
+ * -delta nu) and T likewise with t over the dofs of (x, x_p, x_q), gap
+ * |chi - x|, nu = (chi - x)/gap or the slave's outward normal where the gap
+ * is 0. CX_EINVAL if a node penetrates the master; CX_EUNSUPPORTED in 3D. */
 int cx_contact_node_to_segment(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *slave,
                                const cx_boundary *master, const cx_dofmap *map, cx_diag *d);
 
