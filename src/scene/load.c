@@ -473,7 +473,8 @@ static int ld_masonry(ld_state *L)
  * folder (to the working directory for a scene read from a pipe), which
  * must be readable now; size h0 (optional); element (optional: the file's
  * type, TRI3/TET4 for a .geo); level and level_max. The generator keys
- * are not used. */
+ * are not used. A build without Gmsh loads the scene (it is listed) and
+ * refuses to build it (cx_mesh_read_gmsh). */
 static int ld_mesh_file(ld_state *L)
 {
     cx_scene *s = L->s;
@@ -496,9 +497,6 @@ static int ld_mesh_file(ld_state *L)
         return ld_bad(L, "file", "path too long");
     if (access(s->mesh_file, R_OK) != 0)
         return ld_bad(L, "file", "cannot read '%s': %s", s->mesh_file, strerror(errno));
-    if (!cx_mesh_have_gmsh())
-        return ld_bad(L, "file", "this build has no Gmsh (meson setup -Dgmsh=enabled, with "
-                      "libgmsh-dev)");
     s->generator = CX_GEN_FILE;
     s->line_file = ld_key_line(L, "file");
     s->file_element = -1;

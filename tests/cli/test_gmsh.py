@@ -170,6 +170,64 @@ if code == 0:
     js = json.loads(out)
     check(js["contact_points"] > 20, "ring: the points of both contacts")
 
+# ---- each contact its own F: a block on two feet, F = 0 on the left one --------
+FEET_GEO = """h = 0.1;
+Point(1) = {0, 0, 0, h}; Point(2) = {0.8, 0, 0, h}; Point(3) = {1.2, 0, 0, h};
+Point(4) = {2, 0, 0, h}; Point(5) = {2, 1, 0, h}; Point(6) = {0, 1, 0, h};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 5}; Line(5) = {5, 6};
+Line(6) = {6, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5, 6}; Plane Surface(1) = {1};
+Physical Curve("left_foot") = {1}; Physical Curve("right_foot") = {3};
+Physical Curve("top") = {5}; Physical Curve("left") = {6}; Physical Surface("block") = {1};
+"""
+FEET = """[scene]
+id = feet
+dim = 2
+
+[mesh]
+file = feet.geo
+
+[material]
+E = 1000
+nu = 0.3
+
+[traction top]
+boundary = top
+t = 0.2 -1
+
+[support left]
+boundary = left
+fix = x
+
+[contact left]
+boundary = left_foot
+obstacle = plane
+point = 0 0
+normal = 0 1
+friction = coulomb
+F = 0
+
+[contact right]
+boundary = right_foot
+obstacle = plane
+point = 0 0
+normal = 0 1
+F = 1
+"""
+with tempfile.TemporaryDirectory() as tmp:
+    open(os.path.join(tmp, "feet.geo"), "w").write(FEET_GEO)
+    feet = os.path.join(tmp, "feet.ini")
+    open(feet, "w").write(FEET)
+    own, all1, all0 = solve_json(feet), solve_json(feet, "--F", "1"), solve_json(feet, "--F", "0")
+    if own and all1 and all0:
+        print(f"feet: own F {own['stick']} stick {own['slip']} slip; --F 1 {all1['stick']}/{all1['slip']}; "
+              f"--F 0 {all0['stick']}/{all0['slip']}")
+        # 9 points a foot; the left foot's corner node is held in x by the support
+        check(own["slip"] == 8 and own["stick"] == 10, "own F: the left foot slips (F = 0), the right sticks")
+        check(all1["slip"] == 0, "--F 1 acts on every contact: all stick")
+        check(all0["slip"] == 17, "--F 0 acts on every contact: all slip but the held corner")
+        check(all0["force"]["contact"][0] == 0, "--F 0: no friction force")
+
 # ---- a render of a .geo scene is not blank -----------------------------------
 with tempfile.TemporaryDirectory() as tmp:
     png = os.path.join(tmp, "sphere.png")
