@@ -1200,7 +1200,10 @@ static int ld_slurp(const char *path, char **text, size_t *len, int *piped, cx_d
         close(fd);
         return st;
     }
-    *piped = S_ISFIFO(sb.st_mode);
+    /* a pipe, or standard input named as a file (/dev/stdin, /dev/fd/0,
+     * /proc/self/fd/0, whatever it is redirected from): no folder of its own */
+    *piped = S_ISFIFO(sb.st_mode) || strncmp(path, "/dev/", 5) == 0 ||
+             strncmp(path, "/proc/", 6) == 0;
     if (S_ISFIFO(sb.st_mode))
         (void)fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
 

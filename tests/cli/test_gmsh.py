@@ -364,6 +364,10 @@ with tempfile.TemporaryDirectory() as tmp:
     r = subprocess.run([os.path.abspath(exe), "solve", "/dev/stdin"], input=open(good).read(), capture_output=True,
                        text=True, cwd=tmp, timeout=300)
     check(r.returncode == 0, f"a piped scene finds m.geo in the working directory ({r.stderr.strip()})")
+    with open(good) as f:   # standard input redirected from a file: the same rule
+        r = subprocess.run([os.path.abspath(exe), "solve", "/dev/stdin"], stdin=f, capture_output=True,
+                           text=True, cwd=tmp, timeout=300)
+    check(r.returncode == 0, f"/dev/stdin from a file: m.geo in the working directory ({r.stderr.strip()})")
     r = subprocess.run([os.path.abspath(exe), "solve", "/dev/stdin"], input=open(good).read(), capture_output=True,
                        text=True, cwd="/", timeout=300)
     one_line_error(r.returncode, r.stderr, "/dev/stdin:6: key 'file'", "cannot read 'm.geo'")
