@@ -141,7 +141,7 @@ static int build_file_loads(const cx_scene *s, const cx_mesh *m, const cx_mesh_g
             for (int c = 0; c < dim; c++)
                 f[dim * grp->items[q] + c] += s->forces[k].F[c] / grp->count;
     }
-    for (int k = 0; k < s->nmaterials; k++) {
+    for (int k = 0; g && k < s->nmaterials; k++) {
         const double *bf = s->materials[k].body_force;
         const cx_mesh_group *grp = g ? cx_mesh_group_find(g, s->materials[k].region) : NULL;
         if (!grp || (bf[0] == 0 && bf[1] == 0 && bf[2] == 0))
@@ -382,8 +382,8 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
             goto fail;
         }
     }
-    if (s->generator == CX_GEN_FILE) {
-        if ((st = build_file_loads(s, m, &groups, f, d)))
+    if (s->generator == CX_GEN_FILE || s->npressures > 0) {
+        if ((st = build_file_loads(s, m, s->generator == CX_GEN_FILE ? &groups : NULL, f, d)))
             goto fail;
         if (!build_finite(f, nall)) {
             st = build_overflow(s, s->line_mesh, d, "the pressures, forces or body forces");

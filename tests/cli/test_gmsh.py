@@ -228,6 +228,19 @@ with tempfile.TemporaryDirectory() as tmp:
         check(all0["slip"] == 17, "--F 0 acts on every contact: all slip but the held corner")
         check(all0["force"]["contact"][0] == 0, "--F 0: no friction force")
 
+# ---- a pressure is a traction along the inward normal (on a generator's mesh too)
+with tempfile.TemporaryDirectory() as tmp:
+    text = open(os.path.join(SCENES, "hertz.ini")).read()
+    check("[traction top]\nboundary = top\nt = 0 -100\n" in text, "hertz.ini loads its top by a traction")
+    text = text.replace("[traction top]\nboundary = top\nt = 0 -100\n", "[pressure top]\nboundary = top\np = 100\n")
+    p = os.path.join(tmp, "hertzp.ini")
+    open(p, "w").write(text.replace("id = hertz", "id = hertzp"))
+    a, b = solve_json("hertz", "--level", "8"), solve_json(p, "--level", "8")
+    if a and b:
+        check(b["force"]["applied"] == a["force"]["applied"], f"pressure 100 = traction (0, -100) ({b['force']})")
+        check(abs(b["force"]["contact"][1] - a["force"]["contact"][1]) <= 1e-9 * 800, "the same contact force")
+        check(b["iterations"] == a["iterations"], "the same run")
+
 # ---- a render of a .geo scene is not blank -----------------------------------
 with tempfile.TemporaryDirectory() as tmp:
     png = os.path.join(tmp, "sphere.png")
