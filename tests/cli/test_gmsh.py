@@ -161,6 +161,19 @@ for scene, levels in (("ring", (1, 2)), ("punch", (1, 2))):
             check(js["stick"] > 0 and js["slip"] > 0,
                   f"punch level {level}: a stick zone and slip ({js['stick']} stick, {js['slip']} slip)")
             check(abs(fc[0]) <= 0.1 * fc[1], "punch: friction within F times the load")
+    if scene == "punch":
+        # the regions' materials count: the block as steel too changes the friction
+        with tempfile.TemporaryDirectory() as tmp:
+            text = open(os.path.join(SCENES, "punch.ini")).read()
+            text = text.replace("E = 70000\nnu = 0.33", "E = 210000\nnu = 0.3")
+            text = text.replace("file = punch.geo", "file = " + os.path.join(SCENES, "punch.geo"))
+            same = os.path.join(tmp, "same.ini")
+            open(same, "w").write(text)
+            a, b = solve_json("punch"), solve_json(same)
+            if a and b:
+                fa, fb = a["force"]["contact"][0], b["force"]["contact"][0]
+                print(f"punch: friction force {fa:.4f} (steel on aluminium), {fb:.4f} (steel on steel)")
+                check(abs(fa - fb) > 0.03 * abs(fa), "the block's own material changes the result")
     # K is singular (held by contact alone): the dual methods refuse it
     code, out, err = run("solve", scene, "--method", "mprgp", "--friction", "none")
     one_line_error(code, err, "need K^-1", "not positive definite")
@@ -384,6 +397,16 @@ with tempfile.TemporaryDirectory() as tmp:
     r = subprocess.run([os.path.abspath(exe), "solve", "/dev/stdin"], input=open(good).read(), capture_output=True,
                        text=True, cwd="/", timeout=300)
     one_line_error(r.returncode, r.stderr, "/dev/stdin:6: key 'file'", "cannot read 'm.geo'")
+
+    # a force on a physical point and a region's body force reach the load
+    p = scene_file(tmp, "loads.ini", extra="\n[force push]\npoint = corner\nF = 0.5 -1\n\n"
+                                           "[material heavy]\nregion = body\nE = 1000\nnu = 0.3\n"
+                                           "body_force = 0 -2\n")
+    js = solve_json(p)
+    if js:
+        fa = js["force"]["applied"]
+        check(abs(fa[0] - 0.5) <= 1e-12 and abs(fa[1] + 3) <= 1e-12,
+              f"point force (0.5, -1) + body force (0, -2) on the unit square = (0.5, -3): {fa}")
 
     p = scene_file(tmp, "missing.ini", file="nothere.geo")
     code, out, err = run("solve", p)
