@@ -149,6 +149,27 @@ static void test_sphere(void)
     CX_CHECK(nn[1] > 4 * nn[0]);   /* size h/2: about 8 times the nodes */
 }
 
+/* the size: the file's h = 0.25 divided by the level, capped by size / level */
+static void test_size(void)
+{
+    int ne[3];
+    const cx_gmsh_options opts[3] = {{1, 0, -1}, {2, 0, -1}, {1, 0.125, -1}};
+    for (int k = 0; k < 3; k++) {
+        cx_mesh *m = NULL;
+        cx_mesh_groups g;
+        cx_diag d = {0};
+        ne[k] = 0;
+        CX_CHECK(cx_mesh_read_gmsh(&m, &g, at("square.geo"), &opts[k], &d) == CX_OK);
+        if (m)
+            ne[k] = m->nelems;
+        cx_mesh_destroy(&m);
+        cx_mesh_groups_clear(&g);
+    }
+    /* h / 2 either way: about 4 times the triangles, the same count twice */
+    CX_CHECK(ne[1] > 3 * ne[0] && ne[1] < 5 * ne[0]);
+    CX_CHECK(ne[2] > 3 * ne[0] && ne[2] < 5 * ne[0]);
+}
+
 static void test_bad(void)
 {
     cx_mesh *m = NULL;
@@ -187,6 +208,7 @@ int main(void)
     test_square("square.geo", CX_EL_QUAD4, CX_EL_QUAD4);
     test_square("square_cw.geo", -1, CX_EL_TRI3);
     test_sphere();
+    test_size();
     test_bad();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
