@@ -122,6 +122,50 @@ static void key_str(uint64_t *h, const char *s, size_t cap)
     key_bytes(h, "", 1);
 }
 
+/* A Gmsh scene, pressures or several contacts (issue 24): the mesh file's
+ * bytes (an edited .geo is another problem) and the sections only such
+ * scenes have; the other scenes keep their keys. */
+static void key_scene_file(uint64_t *h, const cx_scene *s)
+{
+    FILE *f = s->generator == CX_GEN_FILE ? fopen(s->mesh_file, "rb") : NULL;
+    unsigned char buf[4096];
+    size_t n;
+    key_str(h, "mesh file", 16);
+    while (f && (n = fread(buf, 1, sizeof buf, f)) > 0)
+        key_bytes(h, buf, n);
+    if (f)
+        fclose(f);
+    key_double(h, s->mesh_size);
+    key_int(h, s->file_element);
+    for (int k = 0; k < s->nmaterials && k < CX_SCENE_MAX_LOADS; k++) {
+        key_str(h, s->materials[k].region, CX_SCENE_NAMELEN);
+        key_double(h, s->materials[k].mat.E);
+        key_double(h, s->materials[k].mat.nu);
+        key_int(h, s->materials[k].mat.model);
+        key_doubles(h, s->materials[k].body_force, 3);
+    }
+    for (int k = 0; k < s->npressures && k < CX_SCENE_MAX_LOADS; k++) {
+        key_str(h, s->pressures[k].boundary, CX_SCENE_NAMELEN);
+        key_double(h, s->pressures[k].p);
+    }
+    for (int k = 0; k < s->nforces && k < CX_SCENE_MAX_LOADS; k++) {
+        key_str(h, s->forces[k].point, CX_SCENE_NAMELEN);
+        key_doubles(h, s->forces[k].F, 3);
+    }
+    for (int k = 1; k < s->ncontacts && k < CX_SCENE_MAX_LOADS; k++) {
+        const cx_scene_contact *c = &s->contacts[k];
+        key_str(h, c->boundary, CX_SCENE_NAMELEN);
+        key_str(h, c->master, CX_SCENE_NAMELEN);
+        key_int(h, c->obstacle.kind);
+        key_doubles(h, c->obstacle.point, 3);
+        key_doubles(h, c->obstacle.normal, 3);
+        key_double(h, c->obstacle.radius);
+        key_doubles(h, c->obstacle.direction, 3);
+        key_double(h, c->slip_bound);
+        key_double(h, c->F);
+    }
+}
+
 static void key_scene(uint64_t *h, const cx_scene *s)
 {
     key_str(h, "cx_scene 1", 16);   /* the layout below: change it when fields join */
@@ -170,6 +214,8 @@ static void key_scene(uint64_t *h, const cx_scene *s)
     key_int(h, s->friction);
     key_double(h, s->slip_bound);
     key_double(h, s->F);
+    if (s->generator == CX_GEN_FILE || s->npressures > 0 || s->ncontacts > 1)
+        key_scene_file(h, s);
 }
 
 uint64_t bench_scene_hash(const cx_scene *s)

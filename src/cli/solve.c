@@ -180,10 +180,11 @@ static void solve_write_text(const cx_result *r, FILE *out)
         fprintf(out, " %c %s", axes[k], solve_num(b1, sizeof b1, "%.6g", r->f_contact[k]));
     fprintf(out, "\n");
     if (run->has_pressure_error)
-        fprintf(out, "pressure vs Hertz: L2 error %s (%s %%), half-width %s computed, b = %s Hertz\n",
+        fprintf(out, "pressure vs Hertz: L2 error %s (%s %%), %s %s computed, %s = %s Hertz\n",
                 solve_num(b1, sizeof b1, "%.4g", run->pressure_error_abs),
                 solve_num(b2, sizeof b2, "%.2f", 100 * run->pressure_error_rel),
-                solve_num(b4, sizeof b4, "%.4g", run->halfwidth),
+                r->dim == 3 ? "contact radius" : "half-width", 
+                solve_num(b4, sizeof b4, "%.4g", run->halfwidth), r->dim == 3 ? "a" : "b",
                 solve_num(b3, sizeof b3, "%.4g", run->hertz_halfwidth));
     fprintf(out, "time:    assemble %.3f s, setup %.3f s, solve %.3f s, total %.3f s\n", run->time.assemble,
             run->time.setup, run->time.solve, run->time.total);
@@ -313,6 +314,11 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     /* the scene's friction with the command line's law and values: the
      * session's, set once it exists */
     cx_friction_state fr = {(cx_friction)law, slip, F, NULL, NULL};
+    /* a scene's several contacts keep their own values unless --F / --slip set them all */
+    if (isnan(a.s.F))
+        fr.Fi = p->contact.Fpt;
+    if (isnan(a.s.slip))
+        fr.s = p->contact.spt;
     if (cx_friction_check(&fr, 0, &d)) {
         cx_problem_destroy(&p);
         return cli_fail(cmd, d.msg);

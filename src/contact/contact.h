@@ -54,7 +54,21 @@ typedef struct cx_contact_set {
     double *gap;         /* m: initial gap >= 0 */
     cx_triplet N;        /* m x nall */
     cx_triplet T;        /* m(dim-1) x nall */
+    /* several contacts with their own friction values (cx_contact_append,
+     * cx_contact_set_friction): per point, or NULL when one value holds */
+    double *Fpt;         /* m: Coulomb coefficient */
+    double *spt;         /* m: Tresca slip bound, a nodal force (bound x weight) */
 } cx_contact_set;
+
+/* Append the points and rows of src after those of dst (a scene's several
+ * contacts; both over the same nall, dst zeroed or built); src is cleared.
+ * CX_ENOMEM (dst unchanged), CX_EINVAL if the sizes differ. */
+int cx_contact_append(cx_contact_set *dst, cx_contact_set *src);
+
+/* The friction values of points [start, end): coefficient F and slip bound
+ * (a traction, times each point's weight). Allocates Fpt and spt on first
+ * use; call it for every range once all contacts are appended. CX_ENOMEM. */
+int cx_contact_set_friction(cx_contact_set *cs, int start, int end, double F, double slip_bound);
 
 /* Contact points at the nodes of boundary b against obstacle ob, ordered
  * along the boundary (by arc length from the first facet's first node in
@@ -71,14 +85,16 @@ void cx_contact_clear(cx_contact_set *cs);
  * counted in cs->nclamped; the other points keep their order. CX_ENOMEM. */
 int cx_contact_drop_clamped(cx_contact_set *cs, const cx_dofmap *map);
 
-/* Two-body node-to-segment rows (paper 000 §3, 2D, 2-node edges): one
- * contact point per node of the slave boundary that has a free dof in map
- * (map may be NULL: every node), ordered by x then y, paired with its
- * closest point chi on the master boundary's segments [x_p, x_q]; rows
- * N = (nu, -(1-delta) nu, -delta nu) and T likewise with t over the dofs
- * of (x, x_p, x_q), gap |chi - x|, nu = (chi - x)/gap or the slave's
- * outward normal where the gap is 0. CX_EINVAL if a node penetrates the
- * master; CX_EUNSUPPORTED for 3D or curved (3-node) edges. */
+/* Two-body node-to-segment rows (paper 000 §3, 2D): one contact point
+ * per node of the slave boundary that has a free dof in map (map may be
+ * NULL: every node), in their order along the slave from its end of
+ * smaller x (by x then y if it is not one open chain), paired by
+ * projection with its closest point chi on the master boundary's segments
+ * [x_p, x_q] (a 3-node edge counts as its two straight halves, on either
+ * side); rows N = (nu, -(1-delta) nu,
+ * -delta nu) and T likewise with t over the dofs of (x, x_p, x_q), gap
+ * |chi - x|, nu = (chi - x)/gap or the slave's outward normal where the gap
+ * is 0. CX_EINVAL if a node penetrates the master; CX_EUNSUPPORTED in 3D. */
 int cx_contact_node_to_segment(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *slave,
                                const cx_boundary *master, const cx_dofmap *map, cx_diag *d);
 

@@ -16,4 +16,12 @@ int contact_alloc(cx_contact_set *cs, int dim, int m, int nall, size_t capN, siz
  * facet of b at its node k; nodes with pos[k] < 0 are not points. */
 void contact_weights(double *weight, const cx_mesh *m, const cx_boundary *b, const int *pos);
 
+/* The boundary nodes in their order along a 2D chain of facets, walked from
+ * the facet whose first node ends no other facet, so that the contact strip
+ * shows the points in boundary order (rigid.c; node-to-segment pairing too).
+ * Returns the count placed: less than the node count when the boundary is
+ * not one open chain (the caller then keeps its own order). facet_of and
+ * seen: nnodes ints of workspace. */
+int contact_order_2d_chain(const cx_boundary *b, int nnodes, int *order, int *facet_of, int *seen);
+
 #endif

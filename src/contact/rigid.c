@@ -7,12 +7,8 @@
 #include <math.h>
 #include <string.h>
 
-/* The boundary nodes in their order along a 2D chain of facets, walked from
- * the facet whose first node ends no other facet, so that the contact strip
- * shows the points in boundary order. Returns the count placed: less than
- * the node count when the boundary is not one open chain (the caller then
- * keeps ascending ids). facet_of and seen: nnodes ints of workspace. */
-static int order_2d_chain(const cx_boundary *b, int nnodes, int *order, int *facet_of, int *seen)
+/* contact_impl.h */
+int contact_order_2d_chain(const cx_boundary *b, int nnodes, int *order, int *facet_of, int *seen)
 {
     int npf = b->npf, placed = 0, start = -1;
     for (int k = 0; k < nnodes; k++)
@@ -85,7 +81,7 @@ int cx_contact_from_obstacle(cx_contact_set *cs, const cx_mesh *m, const cx_boun
         status = CX_ENOMEM;
         goto fail;
     }
-    if (dim == 2 && order_2d_chain(b, m->nnodes, order, facet_of, seen) == count) {
+    if (dim == 2 && contact_order_2d_chain(b, m->nnodes, order, facet_of, seen) == count) {
         /* order[] holds the chain */
     } else {
         memcpy(order, nodes, sizeof(int) * (size_t)count);

@@ -11,14 +11,22 @@
  *     N row:  nu at x's dofs, -(1 - delta) nu at x_p's, -delta nu at x_q's,
  *     T row:  the same with t,
  * at most 2 + 4 non-zeros (exact zeros, e.g. delta = 0 on matching meshes,
- * stay out of the pattern). Closing the gap is positive: N u - d <= 0. */
+ * stay out of the pattern). Closing the gap is positive: N u - d <= 0.
+ *
+ * The pairing is a projection onto the master's segments, so a curved
+ * slave (a punch's rounded corner) or a curved master pairs each node with
+ * the nearest point of the master, wherever it lies; the points are listed
+ * in their order along the slave boundary (the chain of its facets, walked
+ * from the end with the smaller x; by x then y only when the boundary is
+ * not one open chain). A P2 (3-node) edge
+ * is taken as its two straight halves, end-mid and mid-end, on both sides. */
 #include "contact/contact_impl.h"
 #include "fem/fem.h"
 
 #include <math.h>
 #include <string.h>
 
-/* Slave nodes by x, then y: along a straight or gently curved interface. */
+/* Slave nodes by x, then y: the order when the slave is not one chain. */
 static int seg_sort(int *nodes, int count, const double *x)
 {
     cx_sort_key *ks = CX_NEW(cx_sort_key, count);
@@ -33,13 +41,36 @@ static int seg_sort(int *nodes, int count, const double *x)
     return CX_OK;
 }
 
-/* The outward unit normal of the slave boundary at node k: the mean of the
- * normals of its facets (each to the right of the facet's direction). */
-static void seg_slave_normal(const cx_mesh *m, const cx_boundary *b, int k, double *n)
+/* The straight segments of a boundary, 2 node ids each in the facet's
+ * direction: a 2-node edge as it is, a 3-node edge (ends, then mid) as
+ * its two halves. *segs (cx_free), *count. */
+static int seg_segments(const cx_boundary *b, int **segs, int *count)
 {
-    n[0] = n[1] = 0;
+    int per = b->npf == 3 ? 2 : 1;
+    int *s = CX_NEW(int, 2 * per * (b->nfacets > 0 ? b->nfacets : 1));
+    if (!s)
+        return CX_ENOMEM;
     for (int f = 0; f < b->nfacets; f++) {
         const int *fn = b->facets + b->npf * f;
+        if (per == 1) {
+            s[2 * f] = fn[0], s[2 * f + 1] = fn[1];
+        } else {
+            s[4 * f] = fn[0], s[4 * f + 1] = fn[2];
+            s[4 * f + 2] = fn[2], s[4 * f + 3] = fn[1];
+        }
+    }
+    *segs = s;
+    *count = per * b->nfacets;
+    return CX_OK;
+}
+
+/* The outward unit normal of the slave boundary at node k: the mean of the
+ * normals of its segments (each to the right of the segment's direction). */
+static void seg_slave_normal(const cx_mesh *m, const int *segs, int nsegs, int k, double *n)
+{
+    n[0] = n[1] = 0;
+    for (int f = 0; f < nsegs; f++) {
+        const int *fn = segs + 2 * f;
         if (fn[0] != k && fn[1] != k)
             continue;
         double tx = m->x[2 * fn[1]] - m->x[2 * fn[0]], ty = m->x[2 * fn[1] + 1] - m->x[2 * fn[0] + 1];
@@ -52,15 +83,15 @@ static void seg_slave_normal(const cx_mesh *m, const cx_boundary *b, int k, doub
     n[1] /= l;
 }
 
-/* The closest point of the master segments to x: facet index, delta and
- * the squared distance. */
-static int seg_closest(const cx_mesh *m, const cx_boundary *b, const double *x, double *delta,
-                       double *chi)
+/* The closest point of the master segments to x: segment index, delta and
+ * the point. */
+static int seg_closest(const cx_mesh *m, const int *segs, int nsegs, const double *x,
+                       double *delta, double *chi)
 {
     int best = -1;
     double bd = INFINITY;
-    for (int f = 0; f < b->nfacets; f++) {
-        const double *a = m->x + 2 * b->facets[b->npf * f], *e = m->x + 2 * b->facets[b->npf * f + 1];
+    for (int f = 0; f < nsegs; f++) {
+        const double *a = m->x + 2 * segs[2 * f], *e = m->x + 2 * segs[2 * f + 1];
         double tx = e[0] - a[0], ty = e[1] - a[1], l2 = tx * tx + ty * ty;
         double s = ((x[0] - a[0]) * tx + (x[1] - a[1]) * ty) / l2;
         s = s < 0 ? 0 : (s > 1 ? 1 : s);
@@ -82,26 +113,45 @@ static int seg_add(cx_triplet *R, int row, int col, double v)
 int cx_contact_node_to_segment(cx_contact_set *cs, const cx_mesh *m, const cx_boundary *slave,
                                const cx_boundary *master, const cx_dofmap *map, cx_diag *d)
 {
-    int *nodes = NULL, count = 0, status = CX_OK, *pos = NULL;
+    int *nodes = NULL, count = 0, status = CX_OK, *pos = NULL, *seen = NULL;
+    int *ssegs = NULL, *msegs = NULL, nss = 0, nms = 0;
     memset(cs, 0, sizeof *cs);
-    if (m->dim != 2 || slave->npf != 2 || master->npf != 2 || master->nfacets < 1)
+    if (m->dim != 2 || slave->npf < 2 || slave->npf > 3 || master->npf < 2 || master->npf > 3 ||
+        master->nfacets < 1)
         return cx_diag_set(d, CX_EUNSUPPORTED,
-                           "node-to-segment contact needs a 2D mesh with straight 2-node edges");
+                           "node-to-segment contact needs a 2D mesh with 2- or 3-node edges");
     CX_TRY(cx_boundary_nodes(slave, &nodes, &count));
-    /* the contact nodes: slave nodes with a free dof, ordered along x */
+    pos = CX_NEW(int, m->nnodes);
+    seen = CX_NEW(int, m->nnodes);
+    if (!pos || !seen || (status = seg_segments(slave, &ssegs, &nss)) ||
+        (status = seg_segments(master, &msegs, &nms))) {
+        status = CX_ENOMEM;
+        goto fail;
+    }
+    /* the slave nodes along the boundary (pos: workspace here), else by x */
+    int *chain = CX_NEW(int, count > 0 ? count : 1);
+    if (!chain) {
+        status = CX_ENOMEM;
+        goto fail;
+    }
+    if (contact_order_2d_chain(slave, m->nnodes, chain, pos, seen) == count) {
+        /* walked with x growing from end to end, so that a straight interface
+         * lists its points by x whichever body it belongs to */
+        int rev = count > 1 && m->x[2 * chain[0]] > m->x[2 * chain[count - 1]];
+        for (int i = 0; i < count; i++)
+            nodes[i] = chain[rev ? count - 1 - i : i];
+        cx_free(chain);
+    } else {
+        cx_free(chain);
+        if ((status = seg_sort(nodes, count, m->x)))
+            goto fail;
+    }
+    /* the contact nodes: slave nodes with a free dof */
     int mc = 0;
     for (int i = 0; i < count; i++) {
         int k = nodes[i];
         if (!map || map->free_of[2 * k] >= 0 || map->free_of[2 * k + 1] >= 0)
             nodes[mc++] = k;
-    }
-    if ((status = seg_sort(nodes, mc, m->x)))
-        goto fail;
-
-    pos = CX_NEW(int, m->nnodes);
-    if (!pos) {
-        status = CX_ENOMEM;
-        goto fail;
     }
     if ((status = contact_alloc(cs, 2, mc, 2 * m->nnodes, (size_t)(6 * mc), (size_t)(6 * mc))))
         goto fail;
@@ -124,10 +174,10 @@ int cx_contact_node_to_segment(cx_contact_set *cs, const cx_mesh *m, const cx_bo
         int k = nodes[i];
         const double *x = m->x + 2 * k;
         double delta = 0, chi[2] = {0, 0}, *nu = cs->normal + 2 * i, *t = cs->tangent + 2 * i, n1[2];
-        int f = seg_closest(m, master, x, &delta, chi);
-        int p = master->facets[2 * f], q = master->facets[2 * f + 1];
+        int f = seg_closest(m, msegs, nms, x, &delta, chi);
+        int p = msegs[2 * f], q = msegs[2 * f + 1];
         double gap = hypot(chi[0] - x[0], chi[1] - x[1]);
-        seg_slave_normal(m, slave, k, n1);
+        seg_slave_normal(m, ssegs, nss, k, n1);
         if (gap > tol) {
             nu[0] = (chi[0] - x[0]) / gap, nu[1] = (chi[1] - x[1]) / gap;
             /* nu against the slave's outward normal: x is inside body 2 */
@@ -155,11 +205,17 @@ int cx_contact_node_to_segment(cx_contact_set *cs, const cx_mesh *m, const cx_bo
     }
     cx_free(nodes);
     cx_free(pos);
+    cx_free(seen);
+    cx_free(ssegs);
+    cx_free(msegs);
     return CX_OK;
 
 fail:
     cx_free(nodes);
     cx_free(pos);
+    cx_free(seen);
+    cx_free(ssegs);
+    cx_free(msegs);
     cx_contact_clear(cs);
     if (status == CX_ENOMEM)
         cx_diag_set(d, CX_ENOMEM, "out of memory building contact rows");

@@ -17,6 +17,8 @@ void cx_contact_clear(cx_contact_set *cs)
     cx_free(cs->gap);
     cx_triplet_clear(&cs->N);
     cx_triplet_clear(&cs->T);
+    cx_free(cs->Fpt);
+    cx_free(cs->spt);
     memset(cs, 0, sizeof *cs);
 }
 
@@ -88,6 +90,10 @@ int cx_contact_drop_clamped(cx_contact_set *cs, const cx_dofmap *map)
         cs->node[kept] = cs->node[i];
         cs->weight[kept] = cs->weight[i];
         cs->gap[kept] = cs->gap[i];
+        if (cs->Fpt)
+            cs->Fpt[kept] = cs->Fpt[i];
+        if (cs->spt)
+            cs->spt[kept] = cs->spt[i];
         memmove(cs->x + dim * kept, cs->x + dim * i, sizeof(double) * (size_t)dim);
         memmove(cs->normal + dim * kept, cs->normal + dim * i, sizeof(double) * (size_t)dim);
         memmove(cs->tangent + dim * dt * kept, cs->tangent + dim * dt * i,

@@ -70,6 +70,14 @@ int cx_fem_add_traction(const cx_mesh *m, const cx_boundary *b, const cx_tractio
 /* f += body force b (dim values) over all elements. CX_ENUMERIC for a
  * degenerate element. */
 int cx_fem_add_body_force(const cx_mesh *m, const double *b, double *f);
+/* f += pressure p normal to the facets of b (positive pushes into the body:
+ * the traction -p n, n the outward normal of the straight facet through
+ * its corners) (loads.c). CX_EINVAL for unknown facets, CX_ENUMERIC for a
+ * facet of no length or area. */
+int cx_fem_add_pressure(const cx_mesh *m, const cx_boundary *b, double p, double *f);
+/* f += body force b over the elements elems[0..count) (a region). */
+int cx_fem_add_body_force_on(const cx_mesh *m, const int *elems, int count, const double *b,
+                             double *f);
 
 /* ---- Dirichlet elimination --------------------------------------------- */
 

@@ -146,4 +146,49 @@ void cx_facets_clear(cx_facets *f);
  * *pairs (2 count ints) is allocated (cx_free). CX_ENOMEM. */
 int cx_mesh_outline(const cx_mesh *m, int **pairs, int *count);
 
+/* ---- meshes from Gmsh files (gmsh.c) ------------------------------------- */
+
+/* A physical group of a Gmsh file: dim == mesh dim a region (items: its
+ * elements), dim 0 a point (items: its nodes), dim == mesh dim - 1 a
+ * boundary (in the mesh's bounds under the same name; items NULL). */
+typedef struct cx_mesh_group {
+    char name[24];
+    int dim;
+    int count;
+    int *items;
+} cx_mesh_group;
+
+typedef struct cx_mesh_groups {
+    int n;
+    cx_mesh_group *g;
+} cx_mesh_groups;
+
+typedef struct cx_gmsh_options {
+    int level;        /* a .geo is meshed at size h / level (h: its own sizes) */
+    double size;      /* > 0: and at most size / level */
+    int element;      /* the cx_elem_type asked for (TRI6: second order, QUAD4 and
+                         HEX8: recombined), -1 for the file's (a .geo: TRI3/TET4) */
+} cx_gmsh_options;
+
+/* Is Gmsh built in (meson feature 'gmsh')? */
+int cx_mesh_have_gmsh(void);
+
+/* Read a .msh (format 4, ASCII or binary) or mesh a .geo with Gmsh, in a
+ * helper process (signorini-mesh; $SIGNORINI_MESHER names another): the
+ * elements of the model's dimension, which must be of one type (TRI3,
+ * TRI6, QUAD4, TET4, HEX8), the nodes they use, bodies (the connected
+ * parts), boundaries from the physical groups one dimension down (facets
+ * oriented as in their elements), regions and points in *groups
+ * (cx_mesh_groups_clear). Elements of an entity all turning the wrong way
+ * are turned over; one turning against the rest, or flat, is an inverted
+ * element. CX_EINVAL with "PATH: ..." for a file Gmsh cannot read or mesh,
+ * an element type we do not have (naming the group and the type), an
+ * inverted element; CX_EIO for an unreadable file; CX_EUNSUPPORTED in a
+ * build without Gmsh. */
+int cx_mesh_read_gmsh(cx_mesh **m, cx_mesh_groups *groups, const char *path,
+                      const cx_gmsh_options *opt, cx_diag *d);
+void cx_mesh_groups_clear(cx_mesh_groups *g);
+/* The group called name, or NULL. */
+const cx_mesh_group *cx_mesh_group_find(const cx_mesh_groups *g, const char *name);
+
 #endif

@@ -205,7 +205,8 @@ int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *s
             run->pressure_error_abs = pa;
             run->pressure_error_rel = pr;
             run->hertz_halfwidth = cx_scene_hertz_halfwidth(sc);
-            run->halfwidth = result_halfwidth(p, x->lN);
+            run->halfwidth = p->dim == 3 ? cx_scene_contact_radius(sc, p, x->lN)
+                                         : result_halfwidth(p, x->lN);
         }
     }
     run->level = level > 0 ? level : sc ? sc->level : 0;

@@ -47,10 +47,21 @@ static const auto_choice auto_table[] = {
     {"prism", CX_FRICTION_NONE, "ssn-tresca", ""},
     {"prism", CX_FRICTION_TRESCA, "ssstar", ""},
     {"prism", CX_FRICTION_COULOMB, "cf-fp", AUTO_CFFP_TIGHT},
+    /* punch, ring, sphere (Gmsh scenes): setup + solve, median of 3 runs of
+     * `solve SCENE --friction LAW --method M --json` at the default level */
+    {"punch", CX_FRICTION_NONE, "pdas", ""},           /* 15 ms; graves 27, ssn-tresca 31 */
+    {"punch", CX_FRICTION_TRESCA, "ssn-tresca", ""},
+    {"punch", CX_FRICTION_COULOMB, "ssn-coulomb", ""}, /* cf-fp: one body only */
+    {"ring", CX_FRICTION_NONE, "pdas", ""},            /* 30 ms; graves 39, ssn-tresca 45 */
+    {"ring", CX_FRICTION_TRESCA, "ssn-tresca", ""},
+    {"ring", CX_FRICTION_COULOMB, "ssn-coulomb", ""},  /* cf-fp stops short */
     {"runningbond", CX_FRICTION_NONE, "graves", ""},
     {"slider", CX_FRICTION_NONE, "ssn-tresca", ""},
     {"slider", CX_FRICTION_TRESCA, "ssn-tresca", ""},
     {"slider", CX_FRICTION_COULOMB, "ssn-coulomb", ""},  /* since its condensation */
+    {"sphere", CX_FRICTION_NONE, "ssn-tresca", ""},    /* 0.11 s; graves 0.16, pdas 0.34 */
+    {"sphere", CX_FRICTION_TRESCA, "ssn-tresca", ""},
+    {"sphere", CX_FRICTION_COULOMB, "cf-fp", AUTO_CFFP_TIGHT},
     {"stackbond", CX_FRICTION_NONE, "graves", ""},
     {"twoblocks", CX_FRICTION_NONE, "ssn-tresca", ""},
     {"twoblocks", CX_FRICTION_TRESCA, "ssn-tresca", ""},

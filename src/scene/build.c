@@ -33,6 +33,216 @@ static int build_overflow(const cx_scene *s, int line, cx_diag *d, const char *f
                        s->path, line, what);
 }
 
+/* ---- Gmsh meshes: the groups the scene names, materials per region,
+ * pressure, point forces and body force per region ---- */
+
+static const char *build_ref_what(cx_scene_ref_kind k)
+{
+    return k == CX_REF_BOUNDARY ? "a boundary" : k == CX_REF_REGION ? "a region" : "a point";
+}
+
+static int build_ref_dim(const cx_scene *s, cx_scene_ref_kind k)
+{
+    return k == CX_REF_BOUNDARY ? s->dim - 1 : k == CX_REF_REGION ? s->dim : 0;
+}
+
+/* Every group the scene names exists in the file with the right dimension. */
+static int build_file_refs(const cx_scene *s, const cx_mesh *m, const cx_mesh_groups *g,
+                           cx_diag *d)
+{
+    for (int r = 0; r < s->nrefs; r++) {
+        const cx_scene_ref *ref = &s->refs[r];
+        const cx_mesh_group *grp = cx_mesh_group_find(g, ref->name);
+        int want = build_ref_dim(s, ref->kind);
+        if (!grp) {
+            char have[256] = "";
+            for (int k = 0; k < g->n && strlen(have) < 200; k++)
+                snprintf(have + strlen(have), sizeof have - strlen(have), "%s%s (%dD)",
+                         k ? ", " : "", g->g[k].name, g->g[k].dim);
+            return cx_diag_set(d, CX_EINVAL, "%s:%d: key '%s': no physical group '%s' in %s "
+                               "(it has: %s)", s->path, ref->line, ref->key, ref->name,
+                               s->mesh_file_key, have[0] ? have : "no named groups");
+        }
+        if (grp->dim != want)
+            return cx_diag_set(d, CX_EINVAL, "%s:%d: key '%s': physical group '%s' of %s has "
+                               "dimension %d; %s needs dimension %d", s->path, ref->line,
+                               ref->key, ref->name, s->mesh_file_key, grp->dim,
+                               build_ref_what(ref->kind), want);
+        if (ref->kind == CX_REF_BOUNDARY && !cx_mesh_boundary(m, ref->name))
+            return cx_diag_set(d, CX_EINVAL, "%s:%d: key '%s': physical group '%s' of %s holds "
+                               "no facets of the mesh", s->path, ref->line, ref->key, ref->name,
+                               s->mesh_file_key);
+    }
+    return CX_OK;
+}
+
+/* The material of each body: a region's [material NAME] where the region
+ * covers the body, else [material]; a body split between two regions of
+ * different materials is refused (a body is one material: the methods
+ * that treat bodies apart take it so). */
+static int build_file_materials(const cx_scene *s, const cx_mesh *m, const cx_mesh_groups *g,
+                                cx_material *mats, cx_diag *d)
+{
+    int nb = m->nbodies;
+    int *owner = CX_NEW(int, nb);
+    if (!owner)
+        return CX_ENOMEM;
+    for (int b = 0; b < nb; b++)
+        owner[b] = -1, mats[b] = s->mat;
+    int st = CX_OK;
+    for (int k = 0; k < s->nmaterials && st == CX_OK; k++) {
+        const cx_mesh_group *grp = cx_mesh_group_find(g, s->materials[k].region);
+        for (int q = 0; grp && q < grp->count; q++) {
+            int e = grp->items[q], b = m->body ? m->body[e] : 0;
+            if (owner[b] >= 0 && owner[b] != k) {
+                st = cx_diag_set(d, CX_EINVAL, "%s:%d: section [material %s]: region '%s' and "
+                                 "region '%s' ([material %s]) share a body (a body has one "
+                                 "material)", s->path, s->materials[k].line, s->materials[k].name,
+                                 s->materials[k].region, s->materials[owner[b]].region,
+                                 s->materials[owner[b]].name);
+                break;
+            }
+            owner[b] = k;
+            mats[b] = s->materials[k].mat;
+        }
+    }
+    for (int b = 0; b < nb && st == CX_OK; b++)
+        if (owner[b] < 0 && !s->line_material)
+            st = cx_diag_set(d, CX_EINVAL, "%s:%d: body %d of %s is in no region of a [material "
+                             "NAME] and there is no [material]", s->path, s->line_mesh, b + 1,
+                             s->mesh_file_key);
+    /* a region's elements all in bodies it owns: also the elements of one
+     * body split among regions where the body has another's material */
+    cx_free(owner);
+    return st;
+}
+
+static int build_file_loads(const cx_scene *s, const cx_mesh *m, const cx_mesh_groups *g,
+                            double *f, cx_diag *d)
+{
+    int dim = m->dim;
+    for (int k = 0; k < s->npressures; k++) {
+        const cx_boundary *b = cx_mesh_boundary(m, s->pressures[k].boundary);
+        if (!b)
+            return cx_diag_set(d, CX_EINVAL, "%s:%d: section [pressure %s]: the mesh has no "
+                               "boundary '%s'", s->path, s->pressures[k].line,
+                               s->pressures[k].name, s->pressures[k].boundary);
+        if (cx_fem_add_pressure(m, b, s->pressures[k].p, f))
+            return cx_diag_set(d, CX_EINVAL, "%s:%d: section [pressure %s]: a facet of '%s' has "
+                               "no length or area", s->path, s->pressures[k].line,
+                               s->pressures[k].name, s->pressures[k].boundary);
+    }
+    for (int k = 0; k < s->nforces; k++) {
+        const cx_mesh_group *grp = g ? cx_mesh_group_find(g, s->forces[k].point) : NULL;
+        if (!grp || grp->count < 1)
+            return cx_diag_set(d, CX_EINVAL, "%s:%d: section [force %s]: no nodes in point '%s'",
+                               s->path, s->forces[k].line, s->forces[k].name, s->forces[k].point);
+        for (int q = 0; q < grp->count; q++)
+            for (int c = 0; c < dim; c++)
+                f[dim * grp->items[q] + c] += s->forces[k].F[c] / grp->count;
+    }
+    for (int k = 0; g && k < s->nmaterials; k++) {
+        const double *bf = s->materials[k].body_force;
+        const cx_mesh_group *grp = g ? cx_mesh_group_find(g, s->materials[k].region) : NULL;
+        if (!grp || (bf[0] == 0 && bf[1] == 0 && bf[2] == 0))
+            continue;
+        if (cx_fem_add_body_force_on(m, grp->items, grp->count, bf, f))
+            return cx_diag_set(d, CX_EINVAL, "%s:%d: section [material %s]: key 'body_force': a "
+                               "degenerate element", s->path, s->materials[k].line,
+                               s->materials[k].name);
+    }
+    return CX_OK;
+}
+
+/* A node is a point of one contact only: two rows on one node (the end
+ * of two boundaries meeting at a corner) leave the methods that pair
+ * rows with nodes nothing to stand on. */
+static int build_contacts_distinct(const cx_scene *s, const cx_mesh *m, const cx_contact_set *cs,
+                                   const int *start, cx_diag *d)
+{
+    if (s->ncontacts < 2)
+        return CX_OK;
+    int *owner = CX_NEW(int, m->nnodes);
+    if (!owner)
+        return CX_ENOMEM;
+    for (int k = 0; k < m->nnodes; k++)
+        owner[k] = -1;
+    int st = CX_OK;
+    for (int k = 0; k < s->ncontacts && st == CX_OK; k++)
+        for (int i = start[k]; i < start[k + 1]; i++) {
+            int node = cs->node[i];
+            if (owner[node] >= 0 && owner[node] != k) {
+                const cx_scene_contact *a = &s->contacts[owner[node]], *b = &s->contacts[k];
+                char at[96];
+                const double *x = m->x + m->dim * node;
+                if (m->dim == 3)
+                    snprintf(at, sizeof at, "(%g, %g, %g)", x[0], x[1], x[2]);
+                else
+                    snprintf(at, sizeof at, "(%g, %g)", x[0], x[1]);
+                st = cx_diag_set(d, CX_EINVAL, "%s:%d: [contact %s]: node %d at %s is also a point "
+                                 "of [contact %s] (boundaries '%s' and '%s' meet): a node may be "
+                                 "a point of one contact only", s->path, b->line, b->name,
+                                 node + 1, at, a->name, a->boundary, b->boundary);
+                break;
+            }
+            owner[node] = k;
+        }
+    cx_free(owner);
+    return st;
+}
+
+/* The scene's contacts one by one, appended in their order, each with its
+ * friction values when they differ. */
+static int build_contacts(const cx_scene *s, const cx_mesh *m, const cx_dofmap *map,
+                          cx_contact_set *cs, cx_diag *d)
+{
+    int start[CX_SCENE_MAX_LOADS + 1], differ = 0, st;
+    memset(cs, 0, sizeof *cs);
+    int ncontacts = s->ncontacts > 0 ? s->ncontacts : 1;
+    for (int k = 0; k < ncontacts; k++) {
+        /* the first contact from the scalars, which a caller may have edited */
+        cx_scene_contact first = {0};
+        if (k == 0) {
+            if (s->ncontacts > 0)
+                first = s->contacts[0];
+            memcpy(first.boundary, s->contact_boundary, sizeof first.boundary);
+            memcpy(first.master, s->contact_master, sizeof first.master);
+            first.obstacle = s->obstacle;
+            first.F = s->F;
+            first.slip_bound = s->slip_bound;
+            first.line = s->line_contact;
+        }
+        const cx_scene_contact *c = k == 0 ? &first : &s->contacts[k];
+        const cx_boundary *b, *master;
+        cx_contact_set one = {0};
+        start[k] = cs->m;
+        differ |= c->F != s->F || c->slip_bound != s->slip_bound;
+        b = cx_mesh_boundary(m, c->boundary);
+        master = c->master[0] ? cx_mesh_boundary(m, c->master) : NULL;
+        if (!b || (c->master[0] && !master))
+            return cx_diag_set(d, CX_EINVAL, "%s:%d: the mesh has no boundary '%s'", s->path,
+                               c->line, !b ? c->boundary : c->master);
+        st = master ? cx_contact_node_to_segment(&one, m, b, master, map, d)
+                    : cx_contact_from_obstacle(&one, m, b, &c->obstacle, d);
+        if (st == CX_OK && (st = cx_contact_append(cs, &one)) == CX_EINVAL)
+            st = cx_diag_set(d, CX_EINVAL, "%s:%d: contact sets of different sizes", s->path,
+                             c->line);
+        cx_contact_clear(&one);
+        if (st) {
+            if (st != CX_ENOMEM && s->ncontacts > 1)
+                cx_diag_prefix(d, "%s:%d: [contact%s%s]", s->path, c->line, c->name[0] ? " " : "",
+                               c->name);
+            return st;
+        }
+    }
+    start[ncontacts] = cs->m;
+    CX_TRY(build_contacts_distinct(s, m, cs, start, d));
+    for (int k = 0; differ && k < ncontacts; k++)
+        CX_TRY(cx_contact_set_friction(cs, start[k], start[k + 1], k ? s->contacts[k].F : s->F,
+                                       k ? s->contacts[k].slip_bound : s->slip_bound));
+    return CX_OK;
+}
+
 static int build_mesh(const cx_scene *s, int level, cx_mesh **m, cx_diag *d)
 {
     int cells[3];
@@ -53,8 +263,34 @@ static int build_mesh(const cx_scene *s, int level, cx_mesh **m, cx_diag *d)
     }
     case CX_GEN_MASONRY:
         return cx_mesh_masonry(m, s->bond, cells[0], d);
+    case CX_GEN_FILE:
+        break;   /* build_file_mesh */
     }
     return cx_diag_set(d, CX_EINVAL, "%s: unknown generator", s->path);
+}
+
+/* A Gmsh mesh at a level (size h0 / level) and its groups, checked
+ * against the names the scene gives. */
+static int build_file_mesh(const cx_scene *s, int level, cx_mesh **m, cx_mesh_groups *g,
+                           cx_diag *d)
+{
+    cx_gmsh_options opt = {level, s->mesh_size, s->file_element};
+    int st = cx_mesh_read_gmsh(m, g, s->mesh_file, &opt, d);
+    if (st == CX_ENOMEM)
+        return st;
+    if (st)
+        return cx_diag_prefix(d, "%s:%d: key 'file'", s->path, s->line_file);
+    if ((*m)->dim != s->dim) {
+        st = cx_diag_set(d, CX_EINVAL, "%s:%d: key 'file': %s is a %dD mesh (the scene has dim %d)",
+                         s->path, s->line_file, s->mesh_file_key, (*m)->dim, s->dim);
+    } else {
+        st = build_file_refs(s, *m, g, d);
+    }
+    if (st) {
+        cx_mesh_destroy(m);
+        cx_mesh_groups_clear(g);
+    }
+    return st;
 }
 
 static int build_boundary(const cx_scene *s, const cx_mesh *m, const char *name,
@@ -96,6 +332,7 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
                    cx_diag *d)
 {
     cx_mesh *m = NULL;
+    cx_mesh_groups groups = {0};
     cx_material *mats = NULL;
     cx_dofmap map = {0};
     cx_contact_set cs = {0};
@@ -109,7 +346,8 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     if (level > s->level_max)
         return cx_diag_set(d, CX_EINVAL, "level %d: scene '%s' allows levels 1 to %d",
                            level, s->id, s->level_max);
-    if ((st = build_mesh(s, level, &m, d)))
+    if ((st = s->generator == CX_GEN_FILE ? build_file_mesh(s, level, &m, &groups, d)
+                                          : build_mesh(s, level, &m, d)))
         goto fail;
     if (!build_finite(m->x, (size_t)m->dim * (size_t)m->nnodes)) {
         st = build_overflow(s, s->line_mesh, d, "section [mesh]: the node coordinates");
@@ -123,6 +361,8 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     }
     for (int k = 0; k < m->nbodies; k++)
         mats[k] = s->mat;
+    if (s->generator == CX_GEN_FILE && (st = build_file_materials(s, m, &groups, mats, d)))
+        goto fail;
     if ((st = cx_fem_assemble_stiffness(m, mats, &K, d)))
         goto fail;
     if (!build_finite(K.x, cx_csc_nnz(&K))) {
@@ -139,6 +379,14 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
         if (!build_finite(f, nall)) {
             st = build_overflow(s, s->tractions[k].line, d, "section [traction %s]: the loads",
                                 s->tractions[k].name);
+            goto fail;
+        }
+    }
+    if (s->generator == CX_GEN_FILE || s->npressures > 0) {
+        if ((st = build_file_loads(s, m, s->generator == CX_GEN_FILE ? &groups : NULL, f, d)))
+            goto fail;
+        if (!build_finite(f, nall)) {
+            st = build_overflow(s, s->line_mesh, d, "the pressures, forces or body forces");
             goto fail;
         }
     }
@@ -168,14 +416,7 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     if (s->generator == CX_GEN_MASONRY) {
         if ((st = build_masonry_contact(s, level, m, &cs, d)))
             goto fail;
-    } else if ((st = build_boundary(s, m, s->contact_boundary, &b, d))) {
-        goto fail;
-    } else if (s->contact_master[0]) {
-        const cx_boundary *master;
-        if ((st = build_boundary(s, m, s->contact_master, &master, d)) ||
-            (st = cx_contact_node_to_segment(&cs, m, b, master, &map, d)))
-            goto fail;
-    } else if ((st = cx_contact_from_obstacle(&cs, m, b, &s->obstacle, d))) {
+    } else if ((st = build_contacts(s, m, &map, &cs, d))) {
         goto fail;
     }
     if (!build_finite(cs.gap, (size_t)cs.m) || !build_finite(cs.N.x, cs.N.nnz) ||
@@ -194,6 +435,8 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     if ((st = cx_problem_create(pp, &m, &mats, &map, &cs, &K, f, d)))
         goto fail;
     cx_problem *p = *pp;
+    defaults.Fi = p->contact.Fpt;   /* several contacts: their own values */
+    defaults.s = p->contact.spt;
     /* the prescribed displacements fold into f and g */
     if (!build_finite(p->f, (size_t)p->n) || !build_finite(p->g, (size_t)p->m)) {
         st = build_overflow(s, s->nsupports ? s->supports[0].line : s->line_contact, d,
@@ -210,11 +453,13 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
         *fr = defaults;
     cx_csc_clear(&K);
     cx_free(f);
+    cx_mesh_groups_clear(&groups);
     return CX_OK;
 
 fail:
     if (st == CX_ENOMEM)
         cx_diag_set(d, CX_ENOMEM, "out of memory building scene '%s' at level %d", s->id, level);
+    cx_mesh_groups_clear(&groups);
     cx_mesh_destroy(&m);
     cx_free(mats);
     cx_dofmap_clear(&map);

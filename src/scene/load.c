@@ -41,7 +41,7 @@
 
 #define LD_MAXFILE (1 << 20)     /* 1 MiB: a scene is a page or two of text */
 #define LD_MAXLINE 4096          /* ini_max_line: longest line + 3 */
-#define LD_MAXKEYS 14            /* keys of the largest section */
+#define LD_MAXKEYS 16            /* keys of the largest section */
 #define LD_VALLEN 1024           /* longest value + 1 */
 #define LD_COUNT_MAX 1000000     /* largest level or cell count */
 #define LD_LEVEL_MAX_DEFAULT 4096
@@ -64,17 +64,18 @@ _Static_assert(CX_FRICTION_NONE == 0 && CX_FRICTION_TRESCA == 1 && CX_FRICTION_C
                "ld_frictions follows cx_friction");
 _Static_assert(CX_LEVEL_LINEAR == 0 && CX_LEVEL_SQRT2 == 1, "ld_level_rules follows cx_level_rule");
 _Static_assert(CX_GEN_RECTANGLE == 0 && CX_GEN_HERTZ == 1 && CX_GEN_BRICK == 2 &&
-               CX_GEN_TWOBLOCKS == 3 && CX_GEN_MASONRY == 4,
+               CX_GEN_TWOBLOCKS == 3 && CX_GEN_MASONRY == 4 && CX_GEN_FILE == 5,
                "ld_generators follows cx_scene_generator");
 
 static const char ld_generators[] = "rectangle|hertz|brick|twoblocks|masonry";
-static const char *const ld_generator_name[] = {"rectangle", "hertz", "brick", "twoblocks", "masonry"};
-static const int ld_generator_dim[] = {2, 2, 3, 2, 2};
+static const char *const ld_generator_name[] = {"rectangle", "hertz", "brick", "twoblocks", "masonry",
+                                               "file"};
+static const int ld_generator_dim[] = {2, 2, 3, 2, 2, 0};
 /* the boundary names of each generator's mesh (mesh.h) */
 static const char *const ld_boundaries[] = {
     "left|right|bottom|top", "top|axis|arc|side", "xmin|xmax|ymin|ymax|zmin|zmax",
     "left1|right1|bottom1|top1|left2|right2|bottom2|top2",
-    "left|right|top|settle|base|joints"};
+    "left|right|top|settle|base|joints", ""};
 static const char ld_bonds[] = "stack|running|laminae";
 _Static_assert(CX_BOND_STACK == 0 && CX_BOND_RUNNING == 1 && CX_BOND_LAMINAE == 2,
                "ld_bonds follows cx_bond");
@@ -82,6 +83,11 @@ static const char ld_elements[] = "tri3|tri6|quad4|hex8|tet4";
 static const char ld_models[] = "plane_strain|plane_stress|solid";
 static const char ld_obstacles[] = "plane|disc|cylinder|sphere";
 static const char ld_frictions[] = "none|tresca|coulomb";
+static const char *ld_frictions_name(int k)
+{
+    static const char *const names[] = {"none", "tresca", "coulomb"};
+    return k >= 0 && k < 3 ? names[k] : "?";
+}
 static const char ld_level_rules[] = "linear|sqrt2";
 static const char ld_fixes[] = "x|y|z|xy|xz|yz|xyz|all";
 static const unsigned ld_fix_comps[] = {1, 2, 4, 3, 5, 6, 7, 7};
@@ -95,7 +101,8 @@ typedef struct ld_key {
 
 typedef struct ld_secdef {
     const char *name;
-    int named;                  /* [traction NAME]: several, each named */
+    int named;                  /* [traction NAME]: several, each named (2: the name is
+                                   optional, [contact] and [contact NAME]) */
     int required;               /* every scene has it */
     const ld_key *keys;         /* terminated by a NULL name */
     int (*finish)(ld_state *L); /* check the values, fill the scene */
@@ -114,10 +121,12 @@ typedef struct ld_section {
 typedef struct ld_bname {
     const char *name;           /* in the scene */
     int line;
+    const char *key;
+    cx_scene_ref_kind kind;     /* for a Gmsh mesh: what the group must be */
 } ld_bname;
 
-#define LD_NSECDEFS 9
-#define LD_NBNAMES (2 * CX_SCENE_MAX_LOADS + 2)
+#define LD_NSECDEFS 11
+#define LD_NBNAMES CX_SCENE_MAX_REFS
 
 struct ld_state {
     cx_scene *s;
@@ -134,6 +143,8 @@ struct ld_state {
     char seen_name[LD_NSECDEFS][CX_SCENE_MAX_LOADS][CX_SCENE_NAMELEN];
     int seen_line[LD_NSECDEFS][CX_SCENE_MAX_LOADS];
     int has_generator;          /* [mesh] read: boundary names can be checked */
+    int piped;                  /* read from a pipe: a mesh file is relative to the working
+                                   directory, not to the scene's folder */
     int nbnames, nbchecked;
     ld_bname bnames[LD_NBNAMES];
 };
@@ -358,24 +369,46 @@ static int ld_is_word(const char *t, int lower_only)
     return n > 0 && n < CX_SCENE_NAMELEN;
 }
 
-/* A boundary name, checked against the generator later (ld_check_boundaries). */
-static int ld_boundary(ld_state *L, char *dst)
+/* A name of a boundary (region, point) given by key, checked against the
+ * generator later (ld_check_boundaries), or for a Gmsh mesh when it is
+ * built (the scene's refs). */
+static int ld_group(ld_state *L, const char *key, cx_scene_ref_kind kind, char *dst)
 {
-    const char *v = ld_value(L, "boundary");
+    const char *v = ld_value(L, key);
     if (strlen(v) >= CX_SCENE_NAMELEN)
-        return ld_bad(L, "boundary", "unknown boundary '%.40s...'", v);
+        return ld_bad(L, key, "unknown %s '%.40s...'", kind == CX_REF_BOUNDARY ? "boundary"
+                      : kind == CX_REF_REGION ? "region" : "point", v);
+    if (L->nbnames == LD_NBNAMES)
+        return ld_bad(L, key, "too many names of boundaries, regions and points (at most %d)",
+                      LD_NBNAMES);
     strcpy(dst, v);
-    L->bnames[L->nbnames].name = dst;
-    L->bnames[L->nbnames].line = ld_key_line(L, "boundary");
+    L->bnames[L->nbnames] = (ld_bname){dst, ld_key_line(L, key), key, kind};
     L->nbnames++;
     return CX_OK;
+}
+
+static int ld_boundary(ld_state *L, char *dst)
+{
+    return ld_group(L, "boundary", CX_REF_BOUNDARY, dst);
 }
 
 static int ld_check_boundaries(ld_state *L)
 {
     int g = L->s->generator;
+    cx_scene *s = L->s;
     for (; L->nbchecked < L->nbnames; L->nbchecked++) {
         const ld_bname *b = &L->bnames[L->nbchecked];
+        if (g == CX_GEN_FILE) {
+            cx_scene_ref *r = &s->refs[s->nrefs++];
+            snprintf(r->name, sizeof r->name, "%s", b->name);
+            snprintf(r->key, sizeof r->key, "%s", b->key);
+            r->line = b->line;
+            r->kind = b->kind;
+            continue;
+        }
+        if (b->kind != CX_REF_BOUNDARY)
+            return ld_error(L, b->line, b->line, "key '%s': regions and points are physical "
+                            "groups of a Gmsh mesh ([mesh] file = NAME.geo or NAME.msh)", b->key);
         if (cx_parse_choice(b->name, ld_boundaries[g]) < 0)
             return ld_error(L, b->line, b->line,
                             "key 'boundary': unknown boundary '%s' of generator %s (expected %s)",
@@ -467,12 +500,67 @@ static int ld_masonry(ld_state *L)
     return ld_unused(L, "radius", "by generator 'masonry' (the unit square)");
 }
 
+/* [mesh] file = NAME.geo | NAME.msh: the path relative to the scene's
+ * folder (to the working directory for a scene read from a pipe), which
+ * must be readable now; size h0 (optional); element (optional: the file's
+ * type, TRI3/TET4 for a .geo); level and level_max. The generator keys
+ * are not used. A build without Gmsh loads the scene (it is listed) and
+ * refuses to build it (cx_mesh_read_gmsh). */
+static int ld_mesh_file(ld_state *L)
+{
+    cx_scene *s = L->s;
+    const char *v = ld_value(L, "file");
+    static const char *const unused[] = {"generator", "lo", "hi", "radius", "cells", "interface",
+                                         "cells_lower", "level_rule", "bond", "gap"};
+    for (size_t k = 0; k < sizeof unused / sizeof unused[0]; k++)
+        CX_TRY(ld_unused(L, unused[k], "with 'file' (the geometry is the file's)"));
+    size_t n = strlen(v);
+    if (n < 5 || (strcmp(v + n - 4, ".geo") != 0 && strcmp(v + n - 4, ".msh") != 0))
+        return ld_bad(L, "file", "expected NAME.geo or NAME.msh");
+    if (n >= sizeof s->mesh_file_key)
+        return ld_bad(L, "file", "path too long");
+    strcpy(s->mesh_file_key, v);
+    const char *slash = strrchr(L->path, '/');
+    if (v[0] == '/' || L->piped || !slash)
+        snprintf(s->mesh_file, sizeof s->mesh_file, "%s", v);
+    else if ((size_t)snprintf(s->mesh_file, sizeof s->mesh_file, "%.*s/%s", (int)(slash - L->path),
+                              L->path, v) >= sizeof s->mesh_file)
+        return ld_bad(L, "file", "path too long");
+    if (access(s->mesh_file, R_OK) != 0)
+        return ld_bad(L, "file", "cannot read '%s': %s", s->mesh_file, strerror(errno));
+    s->generator = CX_GEN_FILE;
+    s->line_file = ld_key_line(L, "file");
+    s->file_element = -1;
+    int dim = s->dim, el = -1;
+    CX_TRY(ld_choice(L, "element", ld_elements, dim == 2 ? 0 : 3, dim == 2 ? 2 : 4,
+                     dim == 2 ? "tri3|tri6|quad4 (dim 2)" : "hex8|tet4 (dim 3)", &el));
+    s->file_element = el;
+    s->element = el >= 0 ? (cx_elem_type)el : dim == 2 ? CX_EL_TRI3 : CX_EL_TET4;
+    CX_TRY(ld_positive(L, "size", &s->mesh_size));
+    CX_TRY(ld_int(L, "level", 1, LD_COUNT_MAX, "a positive integer", &s->level));
+    if (ld_value(L, "level_max")) {
+        char expect[64];
+        snprintf(expect, sizeof expect, "an integer >= level (%d)", s->level);
+        CX_TRY(ld_int(L, "level_max", s->level, LD_COUNT_MAX, expect, &s->level_max));
+    } else if (s->level > s->level_max) {
+        return ld_bad(L, "level", "expected a positive integer <= level_max (%d)", s->level_max);
+    }
+    L->has_generator = 1;
+    return CX_OK;
+}
+
 static int ld_finish_mesh(ld_state *L)
 {
     cx_scene *s = L->s;
     int dim = s->dim, g = 0, el = dim == 2 ? CX_EL_TRI3 : CX_EL_HEX8;
 
     s->line_mesh = L->sec.line;
+    if (ld_value(L, "file"))
+        return ld_mesh_file(L);
+    CX_TRY(ld_unused(L, "size", "by a generator (only with 'file')"));
+    if (!ld_value(L, "generator"))
+        return ld_error(L, L->sec.line, L->line + 1, "section [mesh]: missing key 'generator' "
+                        "(or 'file')");
     CX_TRY(ld_choice(L, "generator", ld_generators, 0, 4, ld_generators, &g));
     if (ld_generator_dim[g] != dim)
         return ld_bad(L, "generator", "generator '%s' needs dim %d (the scene has dim %d)",
@@ -527,17 +615,65 @@ static int ld_finish_mesh(ld_state *L)
     return CX_OK;
 }
 
+/* [material]: the scene's material; [material NAME] with region = GROUP:
+ * a region's (Gmsh meshes). */
 static int ld_finish_material(ld_state *L)
 {
     cx_scene *s = L->s;
     int dim = s->dim, model = dim == 2 ? CX_PLANE_STRAIN : CX_SOLID;
-    s->line_material = L->sec.line;
+    cx_material mat = {0};
+    double bf[3] = {0, 0, 0};
     CX_TRY(ld_choice(L, "model", ld_models, dim == 2 ? 0 : 2, dim == 2 ? 1 : 2,
                      dim == 2 ? "plane_strain|plane_stress (dim 2)" : "solid (dim 3)", &model));
-    s->mat.model = (cx_model)model;
-    CX_TRY(ld_positive(L, "E", &s->mat.E));
-    CX_TRY(ld_real(L, "nu", -1, 0.5, 1, "a number in (-1, 0.5)", &s->mat.nu));
-    return ld_vector(L, "body_force", dim, NULL, s->body_force);
+    mat.model = (cx_model)model;
+    CX_TRY(ld_positive(L, "E", &mat.E));
+    CX_TRY(ld_real(L, "nu", -1, 0.5, 1, "a number in (-1, 0.5)", &mat.nu));
+    CX_TRY(ld_vector(L, "body_force", dim, NULL, bf));
+    if (!L->sec.name[0]) {
+        CX_TRY(ld_unused(L, "region", "by [material] (a region's material is [material NAME])"));
+        s->line_material = L->sec.line;
+        s->mat = mat;
+        memcpy(s->body_force, bf, sizeof bf);
+        return CX_OK;
+    }
+    cx_scene_material *r = &s->materials[s->nmaterials];
+    memset(r, 0, sizeof *r);
+    CX_TRY(ld_require(L, "region"));
+    CX_TRY(ld_group(L, "region", CX_REF_REGION, r->region));
+    strcpy(r->name, L->sec.name);
+    r->line = L->sec.line;
+    r->mat = mat;
+    memcpy(r->body_force, bf, sizeof bf);
+    s->nmaterials++;
+    return CX_OK;
+}
+
+/* [pressure NAME]: p normal to a boundary. */
+static int ld_finish_pressure(ld_state *L)
+{
+    cx_scene *s = L->s;
+    cx_scene_pressure *q = &s->pressures[s->npressures];
+    memset(q, 0, sizeof *q);
+    strcpy(q->name, L->sec.name);
+    q->line = L->sec.line;
+    CX_TRY(ld_boundary(L, q->boundary));
+    CX_TRY(ld_real(L, "p", -LD_BIG, LD_BIG, 0, "a number (positive pushes into the body)", &q->p));
+    s->npressures++;
+    return CX_OK;
+}
+
+/* [force NAME]: a force on a physical point. */
+static int ld_finish_force(ld_state *L)
+{
+    cx_scene *s = L->s;
+    cx_scene_force *f = &s->forces[s->nforces];
+    memset(f, 0, sizeof *f);
+    strcpy(f->name, L->sec.name);
+    f->line = L->sec.line;
+    CX_TRY(ld_group(L, "point", CX_REF_POINT, f->point));
+    CX_TRY(ld_vector(L, "F", s->dim, NULL, f->F));
+    s->nforces++;
+    return CX_OK;
 }
 
 static int ld_finish_traction(ld_state *L)
@@ -612,79 +748,101 @@ static int ld_laws(ld_state *L)
     return CX_OK;
 }
 
-static int ld_friction(ld_state *L)
+/* friction, slip_bound, F and laws of a contact: the law is the scene's
+ * (one per scene: a later contact may repeat it, not change it), the
+ * values the contact's own (absent: those of the first contact). */
+static int ld_friction(ld_state *L, cx_scene_contact *c, int first)
 {
     cx_scene *s = L->s;
-    int friction = CX_FRICTION_NONE;
+    int friction = first ? CX_FRICTION_NONE : (int)s->friction;
     CX_TRY(ld_choice(L, "friction", ld_frictions, 0, 2, ld_frictions, &friction));
+    if (!first && friction != (int)s->friction)
+        return ld_bad(L, "friction", "one friction law per scene: '%s' here, '%s' in the first "
+                      "contact", ld_frictions_name(friction), cx_friction_name(s->friction));
+    c->slip_bound = first ? 0 : s->contacts[0].slip_bound;
+    c->F = first ? 0.3 : s->contacts[0].F;
+    CX_TRY(ld_nonnegative(L, "slip_bound", &c->slip_bound));
+    CX_TRY(ld_nonnegative(L, "F", &c->F));
+    if (!first) {
+        if (ld_value(L, "laws"))
+            return ld_bad(L, "laws", "given in the first contact section only");
+        return CX_OK;
+    }
     s->friction = (cx_friction)friction;
-    CX_TRY(ld_nonnegative(L, "slip_bound", &s->slip_bound));
-    CX_TRY(ld_nonnegative(L, "F", &s->F));
     return ld_laws(L);
 }
 
 /* Contact between two bodies (paper 000): boundary is the slave, master
  * the master boundary; no obstacle keys. */
-static int ld_finish_contact_bodies(ld_state *L)
+static int ld_finish_contact_bodies(ld_state *L, cx_scene_contact *c, int first)
 {
     cx_scene *s = L->s;
     static const char *const obstacle_keys[] = {"obstacle", "point", "normal", "radius", "direction"};
     for (int k = 0; k < 5; k++)
         CX_TRY(ld_unused(L, obstacle_keys[k], "with 'master' (contact between two bodies)"));
     if (s->dim != 2)
-        return ld_bad(L, "master", "contact between two bodies needs dim 2");
-    const char *v = ld_value(L, "master");
-    if (strlen(v) >= CX_SCENE_NAMELEN)
-        return ld_bad(L, "master", "unknown boundary '%.40s...'", v);
-    strcpy(s->contact_master, v);
-    L->bnames[L->nbnames].name = s->contact_master;
-    L->bnames[L->nbnames].line = ld_key_line(L, "master");
-    L->nbnames++;
-    if (strcmp(s->contact_master, s->contact_boundary) == 0)
-        return ld_bad(L, "master", "expected a boundary other than the slave '%s'", s->contact_boundary);
-    return ld_friction(L);
+        return ld_bad(L, "master", "contact between two bodies needs dim 2 (3D two-body contact "
+                      "is not supported: use a rigid obstacle)");
+    CX_TRY(ld_group(L, "master", CX_REF_BOUNDARY, c->master));
+    if (strcmp(c->master, c->boundary) == 0)
+        return ld_bad(L, "master", "expected a boundary other than the slave '%s'", c->boundary);
+    return ld_friction(L, c, first);
 }
 
 static int ld_finish_contact(ld_state *L)
 {
     cx_scene *s = L->s;
-    cx_obstacle *ob = &s->obstacle;
+    int first = s->ncontacts == 0;
+    cx_scene_contact *c = &s->contacts[s->ncontacts];
+    cx_obstacle *ob = &c->obstacle;
     int dim = s->dim, kind = 0;
 
-    s->line_contact = L->sec.line;
-    CX_TRY(ld_boundary(L, s->contact_boundary));
-    if (ld_value(L, "master"))
-        return ld_finish_contact_bodies(L);
-    CX_TRY(ld_require(L, "obstacle"));
-    CX_TRY(ld_choice(L, "obstacle", ld_obstacles, 0, 3,
-                     dim == 2 ? "plane|disc (dim 2)" : "plane|cylinder|sphere (dim 3)", &kind));
-    if (kind != CX_OBST_PLANE && (kind == CX_OBST_DISC) != (dim == 2))
-        return ld_bad(L, "obstacle", "expected %s",
-                      dim == 2 ? "plane|disc (dim 2)" : "plane|cylinder|sphere (dim 3)");
-    ob->kind = (cx_obstacle_kind)kind;
-    CX_TRY(ld_vector(L, "point", dim, NULL, ob->point));
-    if (kind == CX_OBST_PLANE || kind == CX_OBST_CYLINDER) {
-        CX_TRY(ld_require(L, "normal"));
-        CX_TRY(ld_direction(L, "normal", ob->normal));
+    memset(c, 0, sizeof *c);
+    strcpy(c->name, L->sec.name);
+    c->line = L->sec.line;
+    if (first)
+        s->line_contact = L->sec.line;
+    CX_TRY(ld_boundary(L, c->boundary));
+    if (ld_value(L, "master")) {
+        CX_TRY(ld_finish_contact_bodies(L, c, first));
     } else {
-        CX_TRY(ld_unused(L, "normal", "by this obstacle"));
+        CX_TRY(ld_require(L, "obstacle"));
+        CX_TRY(ld_choice(L, "obstacle", ld_obstacles, 0, 3,
+                         dim == 2 ? "plane|disc (dim 2)" : "plane|cylinder|sphere (dim 3)", &kind));
+        if (kind != CX_OBST_PLANE && (kind == CX_OBST_DISC) != (dim == 2))
+            return ld_bad(L, "obstacle", "expected %s",
+                          dim == 2 ? "plane|disc (dim 2)" : "plane|cylinder|sphere (dim 3)");
+        ob->kind = (cx_obstacle_kind)kind;
+        CX_TRY(ld_vector(L, "point", dim, NULL, ob->point));
+        if (kind == CX_OBST_PLANE || kind == CX_OBST_CYLINDER) {
+            CX_TRY(ld_require(L, "normal"));
+            CX_TRY(ld_direction(L, "normal", ob->normal));
+        } else {
+            CX_TRY(ld_unused(L, "normal", "by this obstacle"));
+        }
+        if (kind == CX_OBST_PLANE) {
+            CX_TRY(ld_unused(L, "radius", "by obstacle plane"));
+        } else {
+            CX_TRY(ld_require(L, "radius"));
+            CX_TRY(ld_positive(L, "radius", &ob->radius));
+        }
+        CX_TRY(ld_direction(L, "direction", ob->direction));
+        CX_TRY(ld_friction(L, c, first));
     }
-    if (kind == CX_OBST_PLANE) {
-        CX_TRY(ld_unused(L, "radius", "by obstacle plane"));
-    } else {
-        CX_TRY(ld_require(L, "radius"));
-        CX_TRY(ld_positive(L, "radius", &ob->radius));
+    s->ncontacts++;
+    if (first) {   /* the scalars every other layer reads: the first contact's */
+        strcpy(s->contact_boundary, c->boundary);
+        strcpy(s->contact_master, c->master);
+        s->obstacle = c->obstacle;
+        s->slip_bound = c->slip_bound;
+        s->F = c->F;
     }
-    CX_TRY(ld_direction(L, "direction", ob->direction));
-    return ld_friction(L);
+    return CX_OK;
 }
 
 static int ld_finish_hertz(ld_state *L)
 {
     cx_scene *s = L->s;
-    if (s->dim != 2)
-        return ld_error(L, L->sec.line, L->sec.line,
-                        "section [hertz] needs dim 2 (the reference is the 2D cylinder)");
     CX_TRY(ld_positive(L, "P", &s->hertz_P));
     CX_TRY(ld_positive(L, "R", &s->hertz_R));
     s->has_hertz = 1;
@@ -749,11 +907,13 @@ static int ld_finish_methods(ld_state *L)
 
 static const ld_key ld_scene_keys[] = {{"id", 1}, {"title", 0}, {"dim", 1}, {"symmetry", 0}, {NULL, 0}};
 static const ld_key ld_mesh_keys[] = {
-    {"generator", 1}, {"element", 0}, {"lo", 0}, {"hi", 0}, {"radius", 0},
+    {"generator", 0}, {"file", 0}, {"size", 0}, {"element", 0}, {"lo", 0}, {"hi", 0}, {"radius", 0},
     {"cells", 0}, {"level", 0}, {"level_max", 0}, {"interface", 0}, {"cells_lower", 0},
     {"level_rule", 0}, {"bond", 0}, {"gap", 0}, {NULL, 0}};
 static const ld_key ld_material_keys[] = {
-    {"model", 0}, {"E", 1}, {"nu", 1}, {"body_force", 0}, {NULL, 0}};
+    {"model", 0}, {"E", 1}, {"nu", 1}, {"body_force", 0}, {"region", 0}, {NULL, 0}};
+static const ld_key ld_pressure_keys[] = {{"boundary", 1}, {"p", 1}, {NULL, 0}};
+static const ld_key ld_force_keys[] = {{"point", 1}, {"F", 1}, {NULL, 0}};
 static const ld_key ld_traction_keys[] = {
     {"boundary", 1}, {"t", 1}, {"gradient", 0}, {NULL, 0}};
 static const ld_key ld_support_keys[] = {
@@ -772,13 +932,15 @@ _Static_assert(sizeof ld_contact_keys / sizeof ld_contact_keys[0] - 1 <= LD_MAXK
 static const ld_secdef ld_sections[LD_NSECDEFS] = {
     {"scene", 0, 1, ld_scene_keys, ld_finish_scene},
     {"mesh", 0, 1, ld_mesh_keys, ld_finish_mesh},
-    {"material", 0, 1, ld_material_keys, ld_finish_material},
+    {"material", 2, 1, ld_material_keys, ld_finish_material},
     {"traction", 1, 0, ld_traction_keys, ld_finish_traction},
     {"support", 1, 0, ld_support_keys, ld_finish_support},
-    {"contact", 0, 1, ld_contact_keys, ld_finish_contact},
+    {"contact", 2, 1, ld_contact_keys, ld_finish_contact},
     {"hertz", 0, 0, ld_hertz_keys, ld_finish_hertz},
     {"methods", 0, 0, ld_methods_keys, ld_finish_methods},
     {"units", 0, 0, ld_units_keys, ld_finish_units},
+    {"pressure", 1, 0, ld_pressure_keys, ld_finish_pressure},
+    {"force", 1, 0, ld_force_keys, ld_finish_force},
 };
 
 /* ---- sections open and close ------------------------------------------------- */
@@ -827,18 +989,18 @@ static int ld_open(ld_state *L, const char *text, size_t len)
         if (strcmp(word[0], ld_sections[k].name) == 0)
             kind = k;
     const ld_secdef *def = kind >= 0 ? &ld_sections[kind] : NULL;
-    if (!def || nwords > 1 + def->named)
+    if (!def || nwords > 1 + (def->named > 0))
         return ld_error(L, L->line, L->line, "unknown section [%s]", buf);
-    if (def->named && nwords < 2)
+    if (def->named == 1 && nwords < 2)
         return ld_error(L, L->line, L->line, "section [%s] needs a name: [%s NAME]", buf, buf);
-    if (def->named && !ld_is_word(word[1], 0))
+    if (def->named && nwords > 1 && !ld_is_word(word[1], 0))
         return ld_error(L, L->line, L->line,
                         "section [%s]: expected a name of letters, digits, '_' or '-' (at most %d)",
                         buf, CX_SCENE_NAMELEN - 1);
     if (L->nheaders == 0 && kind != 0)
         return ld_error(L, L->line, L->line, "section [scene] must come first");
 
-    const char *name = def->named ? word[1] : "";
+    const char *name = def->named && nwords > 1 ? word[1] : "";
     for (int k = 0; k < L->nseen[kind]; k++)
         if (strcmp(L->seen_name[kind][k], name) == 0)
             return ld_error(L, L->line, L->line, "section [%s] given twice (first on line %d)",
@@ -1000,14 +1162,21 @@ static int ld_finish(ld_state *L)
         if (ld_sections[k].required && L->nseen[k] == 0)
             return ld_error(L, 1, L->line + 1, "missing section [%s]",
                             ld_sections[k].name);
+    cx_scene *s = L->s;
+    if (!s->line_material && s->nmaterials > 0) {   /* regions only: the first is the default */
+        s->mat = s->materials[0].mat;
+        s->line_material = s->materials[0].line;
+    }
     return ld_check_boundaries(L);
 }
 
-int cx_scene_parse(cx_scene *s, const char *path, const char *text, size_t len, cx_diag *d)
+static int ld_parse(cx_scene *s, const char *path, const char *text, size_t len, int piped,
+                    cx_diag *d)
 {
     ld_state L;
 
     memset(&L, 0, sizeof L);
+    L.piped = piped;
     ld_default(s, path);
     L.s = s;
     L.path = path;
@@ -1040,7 +1209,7 @@ int cx_scene_parse(cx_scene *s, const char *path, const char *text, size_t len, 
  * *text (cx_free). Devices (/dev/zero), directories and sockets are
  * refused before anything is read; O_NONBLOCK keeps the open of a FIFO
  * without a writer from waiting (it then reads as empty). */
-static int ld_slurp(const char *path, char **text, size_t *len, cx_diag *d)
+static int ld_slurp(const char *path, char **text, size_t *len, int *piped, cx_diag *d)
 {
     struct stat sb;
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC), st = CX_OK;
@@ -1062,6 +1231,10 @@ static int ld_slurp(const char *path, char **text, size_t *len, cx_diag *d)
         close(fd);
         return st;
     }
+    /* a pipe, or standard input named as a file (/dev/stdin, /dev/fd/0,
+     * /proc/self/fd/0, whatever it is redirected from): no folder of its own */
+    *piped = S_ISFIFO(sb.st_mode) || strncmp(path, "/dev/", 5) == 0 ||
+             strncmp(path, "/proc/", 6) == 0;
     if (S_ISFIFO(sb.st_mode))
         (void)fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
 
@@ -1111,12 +1284,18 @@ int cx_scene_load(cx_scene *s, const char *path, cx_diag *d)
 {
     char *text;
     size_t len;
-    int st = ld_slurp(path, &text, &len, d);
+    int piped = 0;
+    int st = ld_slurp(path, &text, &len, &piped, d);
     if (st) {
         ld_default(s, path);
         return st;
     }
-    st = cx_scene_parse(s, path, text, len, d);
+    st = ld_parse(s, path, text, len, piped, d);
     cx_free(text);
     return st;
+}
+
+int cx_scene_parse(cx_scene *s, const char *path, const char *text, size_t len, cx_diag *d)
+{
+    return ld_parse(s, path, text, len, 0, d);
 }

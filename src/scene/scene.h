@@ -43,8 +43,65 @@ typedef enum cx_scene_generator {
     CX_GEN_HERTZ,
     CX_GEN_BRICK,
     CX_GEN_TWOBLOCKS     /* two stacked rectangles, two bodies (paper 000) */,
-    CX_GEN_MASONRY     /* paper 003: unit square of bodies, level = courses */
+    CX_GEN_MASONRY     /* paper 003: unit square of bodies, level = courses */,
+    CX_GEN_FILE        /* [mesh] file = NAME.geo | NAME.msh, read through Gmsh */
 } cx_scene_generator;
+
+/* What a scene names in a Gmsh file's physical groups, checked against the
+ * mesh when it is built: a boundary (dimension dim - 1), a region (dim) or
+ * a point (0). */
+typedef enum cx_scene_ref_kind {
+    CX_REF_BOUNDARY,
+    CX_REF_REGION,
+    CX_REF_POINT
+} cx_scene_ref_kind;
+
+#define CX_SCENE_MAX_REFS 64
+typedef struct cx_scene_ref {
+    char name[CX_SCENE_NAMELEN];
+    char key[16];                  /* the key that names it */
+    int line;                      /* of that key */
+    cx_scene_ref_kind kind;
+} cx_scene_ref;
+
+/* [material NAME] with region = GROUP: a region's own material and body
+ * force (Gmsh meshes). The unnamed [material] covers the rest. */
+typedef struct cx_scene_material {
+    char name[CX_SCENE_NAMELEN];
+    char region[CX_SCENE_NAMELEN];
+    int line;
+    cx_material mat;
+    double body_force[3];
+} cx_scene_material;
+
+/* [pressure NAME]: p normal to a boundary (positive pushes into the body). */
+typedef struct cx_scene_pressure {
+    char name[CX_SCENE_NAMELEN];
+    char boundary[CX_SCENE_NAMELEN];
+    int line;
+    double p;
+} cx_scene_pressure;
+
+/* [force NAME]: a force on a physical point (split evenly if the group
+ * holds several nodes). */
+typedef struct cx_scene_force {
+    char name[CX_SCENE_NAMELEN];
+    char point[CX_SCENE_NAMELEN];
+    int line;
+    double F[3];
+} cx_scene_force;
+
+/* [contact] or [contact NAME]: a rigid obstacle against a boundary, or a
+ * 2D pair of bodies (master set). Each has its own F and slip bound. */
+typedef struct cx_scene_contact {
+    char name[CX_SCENE_NAMELEN];   /* "" for [contact] */
+    char boundary[CX_SCENE_NAMELEN];
+    char master[CX_SCENE_NAMELEN]; /* "" = obstacle */
+    int line;
+    cx_obstacle obstacle;
+    double slip_bound;
+    double F;
+} cx_scene_contact;
 
 /* How cells grow with the mesh level (cx_scene_cells). */
 typedef enum cx_level_rule {
@@ -75,6 +132,11 @@ typedef struct cx_scene {
     int cells_lower[3];           /* twoblocks: cells of the lower body per level step */
     cx_level_rule level_rule;     /* how cells grow with the level */
     cx_bond bond;                 /* masonry: stack, running or laminae */
+    char mesh_file[512];          /* file: the path (resolved against the scene's folder) */
+    char mesh_file_key[512];      /* file: as the scene gives it, for messages */
+    double mesh_size;             /* file: h0 (0: the file's own sizes), size h0 / level */
+    int file_element;             /* file: the element type asked for, -1 the file's */
+    int line_file;                /* file: the line of key 'file' */
     double gap_h;                 /* masonry: settlement gap g as a fraction of H */
 
     /* [material] */
@@ -87,7 +149,21 @@ typedef struct cx_scene {
     int nsupports;
     cx_scene_support supports[CX_SCENE_MAX_LOADS];
 
-    /* [contact] */
+    /* [material NAME] (regions), [pressure NAME], [force NAME] */
+    int nmaterials;
+    cx_scene_material materials[CX_SCENE_MAX_LOADS];
+    int npressures;
+    cx_scene_pressure pressures[CX_SCENE_MAX_LOADS];
+    int nforces;
+    cx_scene_force forces[CX_SCENE_MAX_LOADS];
+    /* the physical groups named (file meshes) */
+    int nrefs;
+    cx_scene_ref refs[CX_SCENE_MAX_REFS];
+
+    /* [contact] and [contact NAME]: every contact in contacts[]; the fields
+     * below repeat the first one (its friction law is the scene's) */
+    int ncontacts;
+    cx_scene_contact contacts[CX_SCENE_MAX_LOADS];
     char contact_boundary[CX_SCENE_NAMELEN];
     char contact_master[CX_SCENE_NAMELEN];  /* two bodies: the master boundary ("" = obstacle) */
     cx_obstacle obstacle;
@@ -104,7 +180,8 @@ typedef struct cx_scene {
     char unit_length[16];         /* e.g. "mm" */
     char unit_stress[16];         /* e.g. "MPa" (stresses, tractions, E) */
 
-    /* [hertz] analytical reference (2D): load per unit length P, radius R */
+    /* [hertz] analytical reference: 2D load per unit length P on the cylinder of
+     * radius R; 3D load P on the whole ball of radius R */
     int has_hertz;
     double hertz_P, hertz_R;
 
@@ -164,7 +241,14 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **p, cx_friction_sta
 double cx_scene_hertz_halfwidth(const cx_scene *s);
 double cx_scene_hertz_pressure(const cx_scene *s, double x);
 
-/* L2 error on the x axis of the contact pressure (nodal force lN over
+/* 3D: the contact radius of a solution, from a least-squares fit of
+ * Hertz's p^2 = k (a^2 - r^2) over the points in contact (0 if none or 2D). */
+double cx_scene_contact_radius(const cx_scene *s, const cx_problem *p, const double *lN);
+
+/* 3D scenes (an eighth of a ball, symmetry planes x = 0 and y = 0):
+ * cx_scene_hertz_halfwidth is the contact radius a, the pressure is
+ * p(r), r = hypot(x, y), and the error is over the contact boundary.
+ * L2 error on the x axis of the contact pressure (nodal force lN over
  * lumped length) against Hertz's, absolute and relative to ||p||.
  * CX_EUNSUPPORTED if the scene has no [hertz] section. */
 int cx_scene_pressure_error(const cx_scene *s, const cx_problem *p, const double *lN,

@@ -50,6 +50,13 @@ grep -q '^  hertz ' list.txt || fail "list has no hertz"
 "$p/bin/signorini" solve hertz >solve.txt || fail "solve hertz failed"
 grep -q 'converged' solve.txt || { cat solve.txt >&2; fail "solve hertz did not converge"; }
 if grep -q "$src" solve.txt; then fail "solve hertz names the source tree"; fi
+# a Gmsh scene: the helper found in the moved prefix's libexec (or a build
+# without Gmsh says so)
+if "$p/bin/signorini" solve sphere --level 1 >sphere.txt 2>sphere.err; then
+    grep -q 'converged' sphere.txt || fail "solve sphere did not converge"
+else
+    grep -q 'has no Gmsh' sphere.err || { cat sphere.err >&2; fail "solve sphere failed"; }
+fi
 # a scene only in the moved prefix: the program reads the moved share/
 cp "$p/share/signorini/scenes/hertz.ini" "$p/share/signorini/scenes/onlymoved.ini"
 "$p/bin/signorini" solve onlymoved >/dev/null || fail "solve of a scene only in the moved prefix failed"
