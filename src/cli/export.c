@@ -84,6 +84,12 @@ int cli_export(int argc, char **argv)
     cx_problem *p = NULL;
     if (cx_scene_build(&sc, a.level, &p, NULL, &d))
         return cli_fail(cmd, d.msg);
+    /* a scene's several contacts keep their own values unless --F / --slip
+     * set them all (as solve does) */
+    if (isnan(a.F))
+        fr.Fi = p->contact.Fpt;
+    if (isnan(a.slip))
+        fr.s = p->contact.spt;
     /* the session computes the per-point values (s_i = bound x weight_i) */
     cx_session *s = NULL;
     int code = CX_EXIT_OK;
