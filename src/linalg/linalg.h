@@ -103,6 +103,11 @@ void cx_csc_aug_clear(cx_csc_aug *S);
 
 /* ---- sparse factorisation ------------------------------------------- */
 
+/* CHOLMOD's own OpenMP loops serial (on != 0) in every thread that starts
+ * a factorisation from then on; BLAS keeps its threads. For programs: the
+ * library alone leaves the OpenMP runtime as the environment set it. */
+void cx_linalg_cholmod_serial(int on);
+
 typedef enum cx_fact_kind {
     CX_FACT_CHOLESKY,   /* CHOLMOD, A symmetric positive definite (full storage given) */
     CX_FACT_LU          /* UMFPACK, A square */
