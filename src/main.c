@@ -8,6 +8,7 @@
 #include "cx_config.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -55,6 +56,11 @@ static int main_version(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    /* Debian's CHOLMOD opens 4 OpenMP threads beside OpenBLAS's: serial
+     * loops unless the user set OMP_THREAD_LIMIT (measured in the README's
+     * performance section) */
+    if (!getenv("OMP_THREAD_LIMIT"))
+        cx_linalg_cholmod_serial(1);
     /* no argument: the explorer, when there is a terminal to draw on */
     if (argc < 2 && isatty(STDIN_FILENO) && isatty(STDOUT_FILENO))
         return tui_main(argc, argv);

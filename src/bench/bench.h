@@ -133,6 +133,8 @@ typedef struct bench_paired {
     double baseline;           /* factorise + solve K */
     double assembly;           /* build of the problem */
     double assembly_ratio;     /* assembly / its baseline */
+    double setup_ratio;        /* setup / its baseline */
+    double end_ratio;          /* (assembly + setup + solve) / its baseline: end to end */
     double peak_mb;            /* the largest heap_mb of the runs */
 } bench_paired;
 

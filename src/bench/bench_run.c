@@ -229,7 +229,7 @@ void bench_run_paired(const bench_problem_spec *spec, const cx_method *m, const 
 {
     double time[BENCH_MAX_REPEAT], ratio[BENCH_MAX_REPEAT], setup[BENCH_MAX_REPEAT],
         solve[BENCH_MAX_REPEAT], base[BENCH_MAX_REPEAT], assembly[BENCH_MAX_REPEAT],
-        aratio[BENCH_MAX_REPEAT];
+        aratio[BENCH_MAX_REPEAT], sratio[BENCH_MAX_REPEAT], eratio[BENCH_MAX_REPEAT];
     int n = 0;
     memset(res, 0, sizeof *res);
     memset(out, 0, sizeof *out);
@@ -260,6 +260,8 @@ void bench_run_paired(const bench_problem_spec *spec, const cx_method *m, const 
         base[n] = tb;
         assembly[n] = ta;
         aratio[n] = ta / tb;
+        sratio[n] = setup[n] / tb;
+        eratio[n] = (ta + time[n]) / tb;
         n++;
     }
     /* stopped by Ctrl-C before the first run: not a result either */
@@ -273,4 +275,6 @@ void bench_run_paired(const bench_problem_spec *spec, const cx_method *m, const 
     out->baseline = bench_median(base, n);
     out->assembly = bench_median(assembly, n);
     out->assembly_ratio = bench_median(aratio, n);
+    out->setup_ratio = bench_median(sratio, n);
+    out->end_ratio = bench_median(eratio, n);
 }

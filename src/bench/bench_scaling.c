@@ -14,14 +14,18 @@ static const char scaling_usage[] =
     "\n"
     "Mesh scaling: for each level (a..b doubles from a up to b; or a list a,b,c):\n"
     "dofs, contact points, assembly, the baseline (factorise + solve K), the\n"
-    "factor's size, and for each method its time (setup + solve, from a fresh\n"
-    "session) as a ratio to the baseline, iterations, peak memory of the run\n"
-    "against the factor's, and the error against the reference solution.\n"
-    "Timings are medians of --repeat runs (default 3).\n";
+    "factor's size and the fill (predicted nnz(L)) of both contact-last\n"
+    "orderings (CAMD; METIS on the interior, when analysed) with the one chosen,\n"
+    "and for each method its time (setup + solve, from a fresh\n"
+    "session) as a ratio to the baseline (ratio; setup/baseline; end_to_end,\n"
+    "assembly + setup + solve), iterations, peak memory of the run against the\n"
+    "factor's, and the error against the reference solution. Timings are\n"
+    "medians of --repeat runs (default 3), ratios medians of each run's ratio\n"
+    "to the baseline measured just before it.\n";
 
 static const char *const scaling_cols[] = {
     "scene", "level", "friction", "dofs", "contact", "assembly", "baseline", "assembly/baseline",
-    "factor_mb", "method", "converged", "reason", "iterations", "time", "ratio", "setup", "solve",
+    "factor_mb", "ordering", "fill_camd", "fill_metis", "method", "converged", "reason", "iterations", "time", "ratio", "setup", "setup/baseline", "solve", "end_to_end",
     "peak_mb", "peak/factor", "kkt", "err_u", "message", NULL};
 
 #define SCALING_MAX_LEVELS 24
@@ -152,9 +156,10 @@ static int bench_scaling_plot(const bench_table *t, const char *png, cx_diag *d)
 }
 
 /* Medians over repeat builds of the assembly and of the baseline; the
- * factor's size in MB (values and row indices). */
+ * factor's size in MB (values and row indices) and the orderings' fills. */
 static int scaling_level_costs(const bench_problem_spec *spec, int repeat, double *t_asm,
-                               double *t_base, double *factor_mb, cx_problem **p, cx_diag *d)
+                               double *t_base, double *factor_mb, cx_schur_ordering *ord,
+                               cx_problem **p, cx_diag *d)
 {
     double ta[BENCH_MAX_REPEAT];
     int n = repeat < BENCH_MAX_REPEAT ? repeat : BENCH_MAX_REPEAT;
@@ -170,6 +175,11 @@ static int scaling_level_costs(const bench_problem_spec *spec, int repeat, doubl
     cx_schur *S = NULL;
     int st = cx_schur_create(&S, &(*p)->K, (*p)->cdofs, (*p)->nc, NULL, d);
     *factor_mb = st == CX_OK ? cx_schur_factor_nnz(S) * (sizeof(double) + sizeof(int)) / 1048576.0 : NAN;
+    memset(ord, 0, sizeof *ord);
+    if (st == CX_OK)
+        *ord = *cx_schur_ordering_of(S);
+    else
+        ord->chosen = CX_ORDER_AUTO;   /* none */
     cx_schur_destroy(&S);
     return CX_OK;
 }
@@ -213,9 +223,10 @@ int bench_scaling(int argc, char **argv)
         bench_progress_case(l, label);
         cx_problem *p = NULL;
         double t_asm, t_base, fmb;
+        cx_schur_ordering ord;
         const cx_method *methods[64];
         int nm;
-        if (scaling_level_costs(&spec, a.c.repeat, &t_asm, &t_base, &fmb, &p, &d) ||
+        if (scaling_level_costs(&spec, a.c.repeat, &t_asm, &t_base, &fmb, &ord, &p, &d) ||
             bench_methods(a.c.methods, p, spec.law, methods, 64, &nm, &d)) {
             cx_problem_destroy(&p);
             code = bench_fail("bench scaling", d.msg);
@@ -247,6 +258,12 @@ int bench_scaling(int argc, char **argv)
             bench_set_num(&t, r, "baseline", t_base);
             bench_set_num(&t, r, "assembly/baseline", t_asm / t_base);
             bench_set_num(&t, r, "factor_mb", fmb);
+            if (ord.chosen != CX_ORDER_AUTO) {
+                bench_set_str(&t, r, "ordering", "%s", ord.chosen == CX_ORDER_METIS ? "metis" : "camd");
+                bench_set_num(&t, r, "fill_camd", ord.lnz[CX_ORDER_CAMD]);
+                if (ord.tried)
+                    bench_set_num(&t, r, "fill_metis", ord.lnz[CX_ORDER_METIS]);
+            }
             bench_set_str(&t, r, "method", "%s", methods[k]->id);
             bench_set_result(&t, r, &res);
             if (res.failed)
@@ -257,6 +274,8 @@ int bench_scaling(int argc, char **argv)
             bench_set_num(&t, r, "assembly/baseline", med.assembly_ratio);
             bench_set_num(&t, r, "ratio", med.ratio);
             bench_set_num(&t, r, "setup", med.setup);
+            bench_set_num(&t, r, "setup/baseline", med.setup_ratio);
+            bench_set_num(&t, r, "end_to_end", med.end_ratio);
             bench_set_num(&t, r, "solve", med.solve);
             bench_set_num(&t, r, "peak_mb", med.peak_mb);
             bench_set_num(&t, r, "peak/factor", med.peak_mb / fmb);

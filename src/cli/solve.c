@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* signorini solve SCENE [options]: build, solve, report (text or JSON). */
 #include "cli/cli.h"
+#include "cli/progress.h"
 #include "out/out.h"
 
 #include <errno.h>
@@ -151,6 +152,7 @@ static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it
     (void)s;
     solve_watch *w = ctx;
     char kkt[32], own[32];
+    cli_progress_stop();   /* the setup is over: the iterations have their lines */
     if (w->series && solve_series_step(w, it->iter))
         return 1;   /* the file could not be written: stop (the error is in w->d) */
     if (w->history && cx_history_add(w->history, it))
@@ -304,6 +306,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     }
 
     cx_problem *p = NULL;
+    cli_progress_start();   /* on a terminal: assembly, then the session's setup */
     if (cx_scene_build(&sc, a.s.level, &p, NULL, &d))
         return cli_fail(cmd, d.msg);
     double t_assemble = cx_clock_now() - t0;
@@ -350,6 +353,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     const cx_problem *cp = cx_session_problem(s);
     solve_running = s;   /* from here Ctrl-C cancels the run (the header may be seen first) */
     if (!a.json && !a.quiet) {
+        cli_progress_stop();
         char clamped[32] = "";   /* points of the contact boundary a support holds */
         if (cp->contact.nclamped > 0)
             snprintf(clamped, sizeof clamped, ", %d clamped", cp->contact.nclamped);
@@ -367,7 +371,10 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         cli_fail(cmd, d.msg);
         goto done;
     }
+    if (!a.json && !a.quiet)
+        cli_progress_start();   /* until the first iteration's line */
     int solved = cx_solver_solve(s, solve_print_step, &w, &d);
+    cli_progress_stop();
     solve_running = NULL;
     if (solved) {
         cli_fail(cmd, d.msg);
@@ -379,7 +386,11 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     }
     double t_total = cx_clock_now() - t0;
     double t_base = 0;
-    if (a.baseline && cx_problem_baseline(cp, &t_base, &d)) {
+    if (a.baseline)
+        cli_progress_start();
+    int base_failed = a.baseline && cx_problem_baseline(cp, &t_base, &d);
+    cli_progress_stop();
+    if (base_failed) {
         cli_fail(cmd, d.msg);
         goto done;
     }

@@ -2,8 +2,10 @@
 /* The CHOLMOD glue shared by fact.c and schur.c: a silenced Common whose
  * errors become cx_diag lines, zero-copy views of our arrays, and the
  * checks after every call. */
+#define _GNU_SOURCE   /* dlsym(RTLD_DEFAULT): the OpenMP runtime CHOLMOD loaded */
 #include "linalg/linalg_impl.h"
 
+#include <dlfcn.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -20,8 +22,34 @@ static void cholmod_record(int status, const char *file, int line, const char *m
              message ? message : "?", status);
 }
 
+/* Debian's CHOLMOD 3 opens its parallel loops (clearing and filling each
+ * supernode) with num_threads(4), whatever OMP_NUM_THREADS says, so they
+ * run 4 threads beside OpenBLAS's on a 2-core machine; the threads then
+ * spin for the next region while BLAS works. OMP_THREAD_LIMIT would cap
+ * them, but the runtime reads it when it loads, before main. A program
+ * that wants those loops serial says so here; each thread that starts a
+ * CHOLMOD Common then sets its own max-active-levels to 0 (an ICV of the
+ * calling thread: the runtime then runs every region with one thread).
+ * The library's default leaves the runtime alone. */
+static _Atomic int cholmod_serial;
+
+void cx_linalg_cholmod_serial(int on)
+{
+    cholmod_serial = on != 0;
+}
+
+static void cholmod_apply_threads(void)
+{
+    if (!cholmod_serial)
+        return;
+    void (*levels)(int) = (void (*)(int))dlsym(RTLD_DEFAULT, "omp_set_max_active_levels");
+    if (levels)
+        levels(0);
+}
+
 void cx_cholmod_start(cholmod_common *c)
 {
+    cholmod_apply_threads();
     cholmod_start(c);
     c->print = 0;
     c->error_handler = cholmod_record;

@@ -95,6 +95,7 @@ int cx_fact_analyze(cx_fact *f, const cx_csc *A, cx_diag *d)
     if (f->kind == CX_FACT_CHOLESKY) {
         cholmod_free_factor(&f->L, &f->c);
         cholmod_sparse s = cx_cholmod_view(A, 1);
+        cx_progress_step("ordering", f->n);
         f->L = cholmod_analyze(&s, &f->c);
         CX_TRY(cx_cholmod_check(&f->c, f->L, "Cholesky analysis", d));
         if (!f->L)
@@ -184,6 +185,7 @@ int cx_fact_factorize(cx_fact *f, const cx_csc *A, cx_diag *d)
     if (A->nrow != f->n || A->ncol != f->n || cx_csc_nnz(A) != f->nnz)
         return cx_diag_set(d, CX_EINVAL, "factorisation: the matrix is not the pattern analysed");
     f->factored = 0;
+    cx_progress_step("factorising", f->n);
     if (f->kind == CX_FACT_LU) {
         CX_TRY(lu_factorize(f, A, d));
         f->factored = 1;

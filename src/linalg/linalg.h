@@ -29,6 +29,24 @@ typedef struct cx_counters {
                                     factorises a small dense matrix per step */
 } cx_counters;
 
+/* ---- progress of long steps ----------------------------------------- */
+
+/* A program that shows where a long run is (a progress line on a
+ * terminal) installs a hook in the thread that runs it; the layers that do
+ * the long steps (assembly in scene/, orderings, factorisations and
+ * condensation here) say when one starts. Nothing is printed below the
+ * program: the hook draws. step is called in the working thread, with the
+ * step's name ("assembling", "ordering", "factorising", "condensing") and
+ * its size in dofs. */
+typedef struct cx_progress {
+    void (*step)(void *ctx, const char *what, double size);
+    void *ctx;
+} cx_progress;
+/* Install p (NULL: none) for the calling thread; returns the previous hook. */
+const cx_progress *cx_progress_set(const cx_progress *p);
+/* Report a step to the calling thread's hook, if any. */
+void cx_progress_step(const char *what, double size);
+
 /* ---- triplet / CSC --------------------------------------------------- */
 
 typedef struct cx_triplet {
@@ -103,6 +121,11 @@ void cx_csc_aug_fill(cx_csc_aug *S, const cx_csc *K, const double *w);
 void cx_csc_aug_clear(cx_csc_aug *S);
 
 /* ---- sparse factorisation ------------------------------------------- */
+
+/* CHOLMOD's own OpenMP loops serial (on != 0) in every thread that starts
+ * a factorisation from then on; BLAS keeps its threads. For programs: the
+ * library alone leaves the OpenMP runtime as the environment set it. */
+void cx_linalg_cholmod_serial(int on);
 
 typedef enum cx_fact_kind {
     CX_FACT_CHOLESKY,   /* CHOLMOD, A symmetric positive definite (full storage given) */

@@ -221,6 +221,7 @@ static int schur_factor(cx_schur *s, cx_csc *M, int *cmember, int *perm, cx_diag
     cholmod_common *cc = &s->cc;
     cx_schur_ordering *o = &s->ord;
     cholmod_sparse view = cx_cholmod_view(M, 1);
+    cx_progress_step("ordering", n);
     double t0 = cx_clock_now();
     int ok = cholmod_camd(&view, NULL, 0, cmember, perm, cc);
     CX_TRY(cx_cholmod_check(cc, NULL, "schur: constrained ordering", d));
@@ -256,6 +257,7 @@ static int schur_factor(cx_schur *s, cx_csc *M, int *cmember, int *perm, cx_diag
     for (int t = n - nc; t < n; t++)
         if (!cmember[P[t]])
             return cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering not kept");
+    cx_progress_step("factorising", n);
     cholmod_factorize(&view, s->L, cc);
     if (s->cnt)
         s->cnt->factorizations++;
@@ -274,6 +276,7 @@ static int schur_form(cx_schur *s, const double *dshift)
     double *U = CX_NEW(double, ld * ld);
     if (!U)
         return CX_ENOMEM;
+    cx_progress_step("condensing", nc);
     schur_extract(s);
     for (size_t j = 0; j < ld; j++)
         for (size_t i = 0; i <= j; i++)

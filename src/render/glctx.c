@@ -1,10 +1,23 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* The OSMesa context (doc/toolchain.md §3c, §5): link OSMesa only,
- * request the depth buffer, rows are bottom-up. */
+/* The offscreen OpenGL context, one of two chosen at build time (meson
+ * option gl): OSMesa (doc/toolchain.md §3c, §5: link OSMesa only, request
+ * the depth buffer, rows are bottom-up), the default on Debian 12; or EGL
+ * on Mesa's surfaceless platform, where OSMesa is gone (Mesa 25.1 removed
+ * it): no window system, a pbuffer as the default framebuffer, GL from
+ * GLVND's libOpenGL. Both draw with the same Mesa rasteriser (llvmpipe when
+ * there is no GPU), so the images agree (tests/render/test_egl.py). */
 #define GL_GLEXT_PROTOTYPES 1
 #include "render/glctx.h"
+#include "cx_config.h"
 
+#if CX_GL_EGL
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/gl.h>
+#include <string.h>
+#else
 #include <GL/osmesa.h>
+#endif
 #include <pthread.h>
 
 /* One context at a time in the process: Mesa's OSMesa state (the current
@@ -13,6 +26,137 @@
  * thread's cx_gl_destroy. A cx_gl is used and destroyed by the thread that
  * made it, and a thread holds one at a time. */
 static pthread_mutex_t glctx_lock = PTHREAD_MUTEX_INITIALIZER;
+
+#if CX_GL_EGL
+
+struct cx_gl {
+    EGLDisplay dpy;
+    EGLContext ctx;
+    EGLSurface surf;
+    unsigned char *buf;   /* read back from the pbuffer by cx_gl_pixels */
+    int w, h;
+    const char *version;
+};
+
+/* Mesa's surfaceless platform through EGL_EXT_platform_base (EGL 1.4
+ * names it eglGetPlatformDisplayEXT; the core eglGetPlatformDisplay of
+ * EGL 1.5 takes the same arguments). */
+static EGLDisplay glctx_display(cx_diag *d)
+{
+    const char *ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!ext || !strstr(ext, "EGL_MESA_platform_surfaceless")) {
+        cx_diag_set(d, CX_EEXTERNAL, "EGL: no surfaceless platform (EGL_MESA_platform_surfaceless)");
+        return EGL_NO_DISPLAY;
+    }
+    PFNEGLGETPLATFORMDISPLAYEXTPROC get =
+        (PFNEGLGETPLATFORMDISPLAYEXTPROC)eglGetProcAddress("eglGetPlatformDisplayEXT");
+    EGLDisplay dpy = get ? get(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL) : EGL_NO_DISPLAY;
+    EGLint major, minor;
+    if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor)) {
+        cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot initialise the surfaceless display (error 0x%x)",
+                    (unsigned)eglGetError());
+        return EGL_NO_DISPLAY;
+    }
+    return dpy;
+}
+
+static EGLContext glctx_try(EGLDisplay dpy, EGLConfig cfg, int major, int minor)
+{
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, major, EGL_CONTEXT_MINOR_VERSION, minor,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                              EGL_NONE};
+    return eglCreateContext(dpy, cfg, EGL_NO_CONTEXT, attribs);
+}
+
+/* Frees what c holds and releases the lock; the status given. */
+static int glctx_fail(struct cx_gl *c, int st)
+{
+    if (c->dpy != EGL_NO_DISPLAY) {
+        eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (c->ctx != EGL_NO_CONTEXT)
+            eglDestroyContext(c->dpy, c->ctx);
+        if (c->surf != EGL_NO_SURFACE)
+            eglDestroySurface(c->dpy, c->surf);
+        eglTerminate(c->dpy);
+        eglReleaseThread();
+    }
+    pthread_mutex_unlock(&glctx_lock);
+    cx_free(c->buf);
+    cx_free(c);
+    return st;
+}
+
+int cx_gl_create(cx_gl **g, int w, int h, cx_diag *d)
+{
+    *g = NULL;
+    if (w < 1 || h < 1 || w > 16384 || h > 16384)
+        return cx_diag_set(d, CX_EINVAL, "image size %dx%d: expected 1..16384 pixels each way", w, h);
+    cx_gl *c = CX_NEW(cx_gl, 1);
+    if (!c)
+        return CX_ENOMEM;
+    c->buf = cx_malloc((size_t)w * h * 4);
+    if (!c->buf) {
+        cx_free(c);
+        return CX_ENOMEM;
+    }
+    c->dpy = EGL_NO_DISPLAY;
+    c->ctx = EGL_NO_CONTEXT;
+    c->surf = EGL_NO_SURFACE;
+    c->w = w;
+    c->h = h;
+    pthread_mutex_lock(&glctx_lock);
+    if ((c->dpy = glctx_display(d)) == EGL_NO_DISPLAY)
+        return glctx_fail(c, CX_EEXTERNAL);
+    const EGLint cattr[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                            EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
+                            EGL_DEPTH_SIZE, 24, EGL_STENCIL_SIZE, 8, EGL_NONE};
+    EGLConfig cfg;
+    EGLint ncfg = 0;
+    if (!eglBindAPI(EGL_OPENGL_API) || !eglChooseConfig(c->dpy, cattr, &cfg, 1, &ncfg) || ncfg < 1)
+        return glctx_fail(c, cx_diag_set(d, CX_EEXTERNAL,
+                                          "EGL: no RGBA8 pbuffer configuration with a 24-bit depth buffer"));
+    const EGLint sattr[] = {EGL_WIDTH, w, EGL_HEIGHT, h, EGL_NONE};
+    if ((c->surf = eglCreatePbufferSurface(c->dpy, cfg, sattr)) == EGL_NO_SURFACE)
+        return glctx_fail(c, cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot create a %dx%d pbuffer (error 0x%x)",
+                                          w, h, (unsigned)eglGetError()));
+    c->version = "4.5";
+    c->ctx = glctx_try(c->dpy, cfg, 4, 5);
+    if (c->ctx == EGL_NO_CONTEXT) {
+        c->version = "3.3";
+        c->ctx = glctx_try(c->dpy, cfg, 3, 3);
+    }
+    if (c->ctx == EGL_NO_CONTEXT)
+        return glctx_fail(c, cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot create an OpenGL 3.3 core context"));
+    if (!eglMakeCurrent(c->dpy, c->surf, c->surf, c->ctx))
+        return glctx_fail(c, cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot make the context current"));
+    *g = c;
+    return CX_OK;
+}
+
+void cx_gl_destroy(cx_gl **g)
+{
+    if (!g || !*g)
+        return;
+    glctx_fail(*g, CX_OK);
+    *g = NULL;
+}
+
+/* The pbuffer is GL memory, not ours (OSMesa draws into our buffer): read
+ * it back, rows bottom-up as OSMesa leaves them. */
+const unsigned char *cx_gl_pixels(const cx_gl *g)
+{
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, g->w, g->h, GL_RGBA, GL_UNSIGNED_BYTE, g->buf);
+    return g->buf;
+}
+
+const char *cx_gl_version(const cx_gl *g)
+{
+    return g->version;
+}
+
+#else /* OSMesa */
 
 struct cx_gl {
     OSMesaContext ctx;
@@ -91,3 +235,5 @@ const char *cx_gl_version(const cx_gl *g)
 {
     return g->version;
 }
+
+#endif

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* render/glctx.h (internal): the offscreen OpenGL context. The only file
- * that knows OSMesa is glctx.c, so that an EGL (surfaceless) backend can
- * replace it where Mesa no longer ships OSMesa. */
+ * that knows OSMesa or EGL is glctx.c: the meson option gl chooses one at
+ * build time (EGL on Mesa's surfaceless platform where Mesa no longer ships
+ * OSMesa). */
 #ifndef CX_RENDER_GLCTX_H
 #define CX_RENDER_GLCTX_H
 

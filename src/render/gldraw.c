@@ -7,7 +7,7 @@
 #include "render/render_impl.h"
 #include "render/glctx.h"
 
-#include <GL/osmesa.h>
+#include <GL/gl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>

@@ -349,6 +349,7 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     if ((st = s->generator == CX_GEN_FILE ? build_file_mesh(s, level, &m, &groups, d)
                                           : build_mesh(s, level, &m, d)))
         goto fail;
+    cx_progress_step("assembling", (double)m->dim * m->nnodes);   /* the progress line of cli/ */
     if (!build_finite(m->x, (size_t)m->dim * (size_t)m->nnodes)) {
         st = build_overflow(s, s->line_mesh, d, "section [mesh]: the node coordinates");
         goto fail;

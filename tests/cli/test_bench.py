@@ -138,8 +138,17 @@ with tempfile.TemporaryDirectory() as tmp:
         n = int(r["level"])
         check(int(r["dofs"]) == 2 * (n + 1) ** 2 - (n + 1) and int(r["contact"]) == n + 1,
               f"dofs and contact points at level {n}: {r['dofs']} {r['contact']}")
-        for col in ["assembly", "baseline", "time", "ratio", "factor_mb", "peak_mb"]:
+        for col in ["assembly", "baseline", "time", "ratio", "factor_mb", "peak_mb", "setup/baseline"]:
             check(r[col] != "" and float(r[col]) >= 0, f"scaling {col} at level {n}: {r[col]!r}")
+        # medians of paired ratios: one run (--repeat 1) gives the plain quotients
+        check(abs(float(r["setup/baseline"]) - float(r["setup"]) / float(r["baseline"]))
+              <= 1e-3 * float(r["setup/baseline"]) + 1e-6, f"setup/baseline at level {n}: {r}")
+        e2e = (float(r["assembly"]) + float(r["time"])) / float(r["baseline"])
+        check(abs(float(r["end_to_end"]) - e2e) <= 1e-3 * e2e + 1e-6, f"end_to_end at level {n}: {r}")
+        # the fill of the contact-last factor: at least K's upper triangle
+        # (3 x 3 blocks per node pair in 2D: more than the dofs)
+        check(r["ordering"] in ("camd", "metis") and float(r["fill_camd"]) > int(r["dofs"]),
+              f"ordering and fill at level {n}: {r['ordering']!r} {r['fill_camd']!r}")
         check(r["converged"] == "yes" and float(r["err_u"]) <= 1e-8, f"scaling row {r}")
     check("slopes (log time / log dofs)" in meta, "slopes in the header")
 
