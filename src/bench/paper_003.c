@@ -306,9 +306,9 @@ int bench_paper_003(int argc, char **argv)
         printf("\nTable %d: %s [%s%s%s]\n", tb->table, tb->title, tb->method, tb->set ? " " : "",
                tb->set ? tb->set : "");
         if (strcmp(tb->method, "pdpc") == 0 && tb->paper)
-            printf("  the paper's PDPC has no projection: ours adds one (own = its iterations, 2-7 on\n"
-                   "  running bond and laminae), so ours solves the LCP exactly where the paper stops\n"
-                   "  at PDPC's own criterion\n");
+            printf("  the paper's PDPC has no projection: ours adds one (own = its iterations, 2-8 on\n"
+                   "  running bond, 2-3 on laminae), so ours solves the LCP exactly where the paper\n"
+                   "  stops at PDPC's own criterion\n");
         printf("  %-12s %-6s %10s %8s %7s %9s %10s %9s %8s\n", "geometry", "h", "ours (s)",
                "ratio", "iters", "kkt", "paper (s)", "own", "peak MB");
         for (int g = 0; g < 3 && !bench_interrupted(); g++) {
