@@ -71,7 +71,8 @@ int cx_mesh_rectangle(cx_mesh **m, double x0, double y0, double x1, double y1,
  * (i, j) is j (qN + 1) + i as for the rectangle; (0, N) is the origin.
  * Boundaries "top" (v = 0, the cut y = R), "axis" (u = 0, x = 0),
  * "arc" (v = 1, the lower arc from the origin to 45 degrees: the contact
- * candidates) and "side" (u = 1, the arc from 45 degrees up to (R, R)).
+ * candidates) and "side" (u = 1, the arc from 45 degrees up to (R, R));
+ * "quarter" is arc then side, the whole quarter arc (paper 002's Gc).
  * CX_EINVAL (with d) for R <= 0, N < 1 or a non-2D element type. */
 int cx_mesh_hertz(cx_mesh **m, double R, int N, cx_elem_type t, cx_diag *d);
 

@@ -73,7 +73,7 @@ static const char *const ld_generator_name[] = {"rectangle", "hertz", "brick", "
 static const int ld_generator_dim[] = {2, 2, 3, 2, 2, 0};
 /* the boundary names of each generator's mesh (mesh.h) */
 static const char *const ld_boundaries[] = {
-    "left|right|bottom|top", "top|axis|arc|side", "xmin|xmax|ymin|ymax|zmin|zmax",
+    "left|right|bottom|top", "top|axis|arc|side|quarter", "xmin|xmax|ymin|ymax|zmin|zmax",
     "left1|right1|bottom1|top1|left2|right2|bottom2|top2",
     "left|right|top|settle|base|joints", ""};
 static const char ld_bonds[] = "stack|running|laminae";

@@ -70,6 +70,7 @@ typedef struct {
     double kappa;         /* largest diagonal entry of A */
     double gamma;         /* approximation step (relative), tangential rows */
     double gamma_n;       /* ... multiplier rows */
+    int compliance;       /* step: kp holds 1 / max (A^-1)_vv at the point, not max A_vv */
     double eps;           /* stopping tolerance */
     double fscale;        /* load scale for the residual */
 } ssstar_state;
@@ -77,6 +78,9 @@ typedef struct {
 static const cx_param ssstar_params[] = {
     {"gamma", CX_PARAM_REAL, 12.0, 1e-6, 1e6, NULL,
      "[M, chosen] approximation step, relative to 1/kappa (a point's largest diagonal entry of A)", 0},
+    {"step", CX_PARAM_CHOICE, 0, 0, 1, "diag|compliance",
+     "the approximation step's scale per point: gamma / kappa (diag) or gamma x the largest "
+     "diagonal entry of A^-1 at the point (compliance: the point's own flexibility)", 0},
     {"gamma_n", CX_PARAM_REAL, 1.0, 1e-6, 1e6, NULL,
      "[M, chosen] approximation step of the contact multiplier, relative to kappa", 0},
     {"eps", CX_PARAM_REAL, 1e-12, 0, 1, NULL,
@@ -261,6 +265,7 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
     st->dt = p->dim - 1;
     st->gamma = cx_param_get(params, "gamma");
     st->gamma_n = cx_param_get(params, "gamma_n");
+    st->compliance = (int)cx_param_get(params, "step") == 1;
     st->eps = cx_param_get(params, "eps");
     int status = ssstar_rotation(st, p, d);
     if (status != CX_OK) {
@@ -319,6 +324,35 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
         }
         if (!(st->kp[k] > 0))
             st->kp[k] = st->kappa;
+    }
+    if (st->compliance && nv > 0) {
+        /* the local flexibility: the diagonal of A^-1 (one dense Cholesky
+         * and a solve with the identity, a few Newton steps' price), so that
+         * gamma / kp is gamma times the displacement of the point under a
+         * unit force at it with every other contact point free */
+        size_t nv2c = (size_t)nv * (size_t)nv;
+        double *inv = CX_NEW(double, nv2c);
+        if (!inv) {
+            ssstar_destroy(st);
+            return cx_diag_set(d, CX_ENOMEM, "out of memory");
+        }
+        memcpy(st->M, st->A, sizeof(double) * nv2c);
+        for (int v = 0; v < nv; v++)
+            inv[(size_t)nv * v + v] = 1;
+        if (cx_dense_cholesky(nv, st->M, NULL) == CX_OK) {
+            cx_dense_cholesky_solve(nv, st->M, inv, nv);
+            for (int k = 0; k < np; k++) {
+                double c = 0;
+                for (int a = -1; a < st->dt; a++) {
+                    int v = a < 0 ? st->nvar[k] : st->tv[st->dt * k + a];
+                    if (v >= 0)
+                        c = fmax(c, inv[(size_t)nv * v + v]);
+                }
+                if (c > 0)
+                    st->kp[k] = 1 / c;
+            }
+        }
+        cx_free(inv);
     }
     if (!(st->fscale > 0))
         st->fscale = 1;

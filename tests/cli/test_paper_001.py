@@ -30,6 +30,20 @@ if m and it:
           "our range is the table's")
     check((int(m.group(3)), int(m.group(4))) == (5, 6), "the paper's range on levels 1-2 is 5-6")
 
+# the verdict: every count more than 20 % off the paper's has a line with its reason
+rows = re.findall(r"^\s+([12])\s+(\d+)\s+(\d+) \|.*\|\s+(\d+)\s+(\d+) \|.*\|\s+(\d+)\s+(\d+)\s*$", out, re.M)
+lines = re.findall(r"^  differs: level (\d+), (nodes|contact nodes|Newton steps) (\d+) against the paper's (\d+) "
+                   r"\([+-]\d+ %\): (.+)$", out, re.M)
+check(out.count("  differs:") == len(lines) and len(lines) > 0, f"differs lines well formed ({len(lines)})")
+named = {(int(L), w) for L, w, *_ in lines}
+for L, w, a, b, why in lines:
+    check(abs(int(a) - int(b)) > 0.2 * int(b) and len(why) > 20, f"level {L} {w}: {a} vs {b} off, with a reason")
+for L, n, pn, c, pc, it, pit in rows:
+    for w, a, b in (("nodes", n, pn), ("contact nodes", c, pc), ("Newton steps", it, pit)):
+        if (int(L), w) not in named:
+            check(abs(int(a) - int(b)) <= 0.2 * int(b), f"level {L} {w}: {a} within 20 % of {b}")
+check((2, "nodes") not in named and (2, "contact nodes") not in named, "level 2's mesh is the paper's")
+
 code, out2, err = run("bench", "paper", "001", "--levels", "1-2", "--no-solves", "--repeat", "1", "--gamma", "1")
 check(code == 0, "bench paper 001 --gamma 1 exits 0")
 check("gamma = 1," in out2 and "(--gamma" in out2, "the chosen gamma is stated")

@@ -25,6 +25,18 @@ for geo, (n5, n10) in want.items():
     m = re.search(r"^  1/15\s+(\d+)f\s", sec, re.M)
     check(m is not None, f"{geo} 1/15 (not built): the formula's count is marked f")
 check("connected components of the built mesh" in out, "the rule of the count is stated")
+# the verdict on the sizes: every built row within 20 % of the paper's, said once per geometry
+for N, nb, pnb, n, pn, nc, pnc in re.findall(r"^  1/(\d+)\s+(\d+)\s+(\d+)\s+(\d+)\s+(\d+)\s+(\d+)\s+(\d+)", out, re.M):
+    for a, b in ((nb, pnb), (n, pn), (nc, pnc)):
+        check(abs(int(a) - int(b)) <= 0.2 * int(b), f"1/{N}: {a} within 20 % of the paper's {b}")
+check(out.count("verdict: n_b, n and n_c within 20 % of the paper's") == 3, "each geometry's sizes carry the verdict")
+check("  differs:" not in out, "no size differs")
+
+code, out, err = run("bench", "paper", "003", "--max-level", "15", "--tables", "5", "--geometry", "laminae")
+check(code == 0, f"bench paper 003 --tables 5 (PDAS to 1/15, plain PDAS to 1/25) exits 0 ({err.strip()})")
+m = re.findall(r"^  laminae +differs in time \(the paper's: Matlab 7 .*\); growth 1/10 -> 1/(?:15|25): ours x([\d.]+), "
+               r"the paper's x([\d.]+)$", out, re.M)
+check(len(m) == 2, f"each PDAS table says why its times differ, with the growth of both ({len(m)})")
 
 code, out, err = run("bench", "paper", "003", "--max-level", "5", "--tables", "6", "--geometry", "laminae")
 check(code == 0, f"bench paper 003 --tables 6 exits 0 ({err.strip()})")

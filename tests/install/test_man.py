@@ -94,7 +94,7 @@ t '{exe}' solve hertz --method ssn-tresca-g
 t '{exe}' bench st
 t '{exe}' render hertz --view c
 """
-want = ["solve", "hertz", "--max-iter", "ssn-tresca-glob", "stress", "contact"]
+want = ["solve", "hertz hertz-paper", "--max-iter", "ssn-tresca-glob", "stress", "contact"]
 got = subprocess.run(["bash", "-c", script], capture_output=True, text=True).stdout.splitlines()
 if got != want:
     failed.append(f"bash completion: got {got}, expected {want}")

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* mesh/hertz.c: counts; the origin is a node; "arc" and "side" nodes on the
  * circle x^2 + (y-R)^2 = R^2 to 1e-12 R; "top" at y = R, "axis" at x = 0;
- * the arc runs from the origin to the 45 degree point; positive elements and
+ * the arc runs from the origin to the 45 degree point, "quarter" (arc then
+ * side) on to (R, R); positive elements and
  * outward facets (also against the circle's centre); the area tends to
  * pi R^2 / 4 (N = 64 within 1e-3, and decreasing error); validation and
  * allocation failures. */
@@ -20,7 +21,7 @@ static void test_geometry(cx_elem_type t, int N, double R)
         return;
     int q = t == CX_EL_TRI6 ? 2 : 1, per_cell = t == CX_EL_QUAD4 ? 1 : 2;
     CX_CHECK(m->dim == 2 && m->nnodes == (q * N + 1) * (q * N + 1));
-    CX_CHECK(m->nelems == per_cell * N * N && m->nbounds == 4);
+    CX_CHECK(m->nelems == per_cell * N * N && m->nbounds == 5);
     CX_CHECK(mc_all_nodes_used(m));
 
     int origin = 0;
@@ -75,6 +76,18 @@ static void test_geometry(cx_elem_type t, int N, double R)
         inward += !(n[0] * mid[0] + n[1] * mid[1] > 0);
     }
     CX_CHECK(inward == 0);
+    /* "quarter": arc then side, one chain from the origin to (R, R) */
+    const cx_boundary *qb = cx_mesh_boundary(m, "quarter");
+    CX_CHECK(qb != NULL && qb->nfacets == 2 * N && qb->npf == npf);
+    if (qb) {
+        CX_CHECK(qb->facets[0] == q * N * (q * N + 1));
+        for (int f = 0; f + 1 < qb->nfacets; f++)
+            CX_CHECK(qb->facets[npf * f + 1] == qb->facets[npf * (f + 1)]);
+        const double *top = m->x + 2 * qb->facets[npf * (2 * N - 1) + 1];
+        CX_CHECK_NEAR(top[0], R, 1e-14, 0);
+        CX_CHECK_NEAR(top[1], R, 1e-14, 0);
+        CX_CHECK(mc_bad_facets(m, qb) == 0);
+    }
     cx_mesh_destroy(&m);
 }
 
