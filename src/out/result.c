@@ -197,8 +197,11 @@ int cx_result_from_session(cx_result **r, const cx_session *s, const cx_scene *s
         snprintf(run->title, sizeof run->title, "%s", sc->title);
         snprintf(run->unit_length, sizeof run->unit_length, "%s", sc->unit_length);
         snprintf(run->unit_stress, sizeof run->unit_stress, "%s", sc->unit_stress);
-        x->has_obstacle = !sc->contact_master[0];
-        cx_scene_obstacle(sc, level, &x->obstacle);   /* where the solver has it */
+        /* where the solver has them */
+        x->nobstacles = cx_scene_obstacles(sc, level, x->obstacles, CX_RESULT_MAX_OBSTACLES);
+        x->has_obstacle = x->nobstacles > 0;
+        if (x->has_obstacle)
+            x->obstacle = x->obstacles[0];
         double pa, pr;
         if (cx_scene_pressure_error(sc, p, x->lN, &pa, &pr) == CX_OK) {
             run->has_pressure_error = 1;

@@ -21,6 +21,8 @@
 #include "scene/scene.h"
 
 /* What the run was and how it ended. */
+#define CX_RESULT_MAX_OBSTACLES 8   /* drawn rigid obstacles of one result */
+
 typedef struct cx_run_record {
     char scene[CX_SCENE_NAMELEN];   /* scene id ("" = none) */
     char title[128];                /* scene title */
@@ -73,7 +75,9 @@ typedef struct cx_result {
     cx_contact_set contact;   /* the points' geometry (node, x, weight, normal,
                                  tangent, gap); no N, T rows */
     int has_obstacle;
-    cx_obstacle obstacle;     /* the rigid obstacle (if has_obstacle) */
+    cx_obstacle obstacle;     /* the rigid obstacle (if has_obstacle): the first of */
+    int nobstacles;           /* every rigid obstacle (a ring between two plates: 2) */
+    cx_obstacle obstacles[CX_RESULT_MAX_OBSTACLES];
     double f_applied[3];      /* resultant of the applied loads */
     double f_contact[3];      /* of the contact on the body: -(N'lN + T'lT) */
     double *u;                /* dim * nnodes: the full displacement */

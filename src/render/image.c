@@ -67,18 +67,15 @@ double cx_render_auto_scale(const cx_result *r)
  * touch it at any scale s. Where the points in contact start at other
  * gaps (a curved body) and s != 1, the image says that the contact is not
  * drawn exactly. */
-static void img_obstacle(cx_render_scene *sc)
+/* One obstacle ob (the result's, moved in place as drawn); the uniform
+ * gap of its plane's nearest points in *gap. */
+static void img_obstacle_one(cx_render_scene *sc, cx_obstacle *ob, double *gap)
 {
     const cx_result *r = sc->r;
     const cx_contact_set *cs = &r->contact;
-    sc->obstacle = NULL;
-    if (!r->has_obstacle)
-        return;
-    sc->drawn_obstacle = r->obstacle;
-    sc->obstacle = &sc->drawn_obstacle;
-    cx_obstacle *ob = &sc->drawn_obstacle;
     int dim = sc->dim;
     double size = img_body_size(r->mesh), tolg = 1e-9 * size;
+    *gap = 0;
     if (ob->kind != CX_OBST_PLANE || cs->m == 0) {
         /* curved obstacles: contact at gaps > 0 is inexact when s != 1 */
         for (int i = 0; i < cs->m; i++)
@@ -87,7 +84,8 @@ static void img_obstacle(cx_render_scene *sc)
         return;
     }
     /* the points against the plane: their gap is their distance to it
-     * (body-to-body points, e.g. masonry's joints, are not) */
+     * (body-to-body points, e.g. masonry's joints, and the points against
+     * another obstacle are not) */
     double g0 = INFINITY, tolc = 1e-6 * size;
     int *against = CX_NEW(int, cs->m > 0 ? cs->m : 1);
     for (int i = 0; i < cs->m; i++) {
@@ -102,15 +100,42 @@ static void img_obstacle(cx_render_scene *sc)
     }
     if (!(g0 > tolg) || !isfinite(g0))
         g0 = 0;
-    sc->obstacle_gap = g0;
-    sc->obstacle_shift = (1 - sc->scale) * g0;
+    *gap = g0;
+    double shift = (1 - sc->scale) * g0;
     for (int k = 0; k < dim; k++)
-        ob->point[k] += sc->obstacle_shift * ob->normal[k];
+        ob->point[k] += shift * ob->normal[k];
     /* points in contact that started at another gap are drawn off it */
     for (int i = 0; i < cs->m && sc->scale != 1; i++)
         if (r->status[i] != CX_PT_FREE && (!against || against[i]) && fabs(cs->gap[i] - g0) > tolc)
             sc->contact_inexact = 1;
     cx_free(against);
+}
+
+/* The obstacles where the drawn bodies meet them. A point in contact with
+ * initial gap g moves by g towards the obstacle, and is drawn moved by
+ * s g: a plane whose nearest points all start at the gap g (masonry's
+ * settlement) is drawn moved by (1 - s) g along its normal, so that they
+ * touch it at any scale s. Where the points in contact start at other
+ * gaps (a curved body) and s != 1, the image says that the contact is not
+ * drawn exactly. The first obstacle is drawn in 2D and 3D, the others
+ * (a ring between two plates) in 2D. */
+static void img_obstacle(cx_render_scene *sc)
+{
+    const cx_result *r = sc->r;
+    sc->obstacle = NULL;
+    sc->nextra = 0;
+    if (!r->has_obstacle)
+        return;
+    sc->drawn_obstacle = r->obstacle;
+    sc->obstacle = &sc->drawn_obstacle;
+    img_obstacle_one(sc, &sc->drawn_obstacle, &sc->obstacle_gap);
+    sc->obstacle_shift = (1 - sc->scale) * sc->obstacle_gap;
+    for (int j = 1; j < r->nobstacles && sc->dim == 2; j++) {
+        double g;
+        sc->drawn_extra[sc->nextra] = r->obstacles[j];
+        img_obstacle_one(sc, &sc->drawn_extra[sc->nextra], &g);
+        sc->nextra++;
+    }
 }
 
 static void img_clear(cx_render_scene *sc)

@@ -120,10 +120,9 @@ static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
     cx_text_vertical(cr, title, sc->w - 0.75 * F, y + 0.5 * bh, 0.9 * F, 0);
 }
 
-/* 2D obstacle: a hatched strip beyond the plane, or the disc. */
-static void ov_obstacle2d(const cx_render_scene *sc, cairo_t *cr, double s)
+/* 2D obstacle ob: a hatched strip beyond the plane, or the disc. */
+static void ov_obstacle2d(const cx_render_scene *sc, const cx_obstacle *ob, cairo_t *cr, double s)
 {
-    const cx_obstacle *ob = sc->obstacle;
     if (!ob)
         return;
     cx_render_layout l;
@@ -478,8 +477,11 @@ void cx_render_underlay(const cx_render_scene *sc, cairo_t *cr)
 {
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
-    if (sc->dim == 2)
-        ov_obstacle2d(sc, cr, ov_scale(sc));
+    if (sc->dim == 2) {
+        ov_obstacle2d(sc, sc->obstacle, cr, ov_scale(sc));
+        for (int j = 0; j < sc->nextra; j++)
+            ov_obstacle2d(sc, &sc->drawn_extra[j], cr, ov_scale(sc));
+    }
 }
 
 /* 3D: the undeformed shape as a thin wireframe of its feature edges

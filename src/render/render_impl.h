@@ -27,6 +27,8 @@ typedef struct cx_render_scene {
     double obstacle_gap;           /* plane: the uniform initial gap g of the nearest points */
     double obstacle_shift;         /* plane: moved by this along its normal, (1 - s) g */
     int contact_inexact;           /* points in contact drawn off the obstacle by the scale */
+    int nextra;                    /* 2D: the result's other obstacles (a ring's second plate), */
+    cx_obstacle drawn_extra[CX_RESULT_MAX_OBSTACLES - 1];   /* moved as drawn_obstacle is */
     const cx_render_opts *o;
     int dim;
     const double *uall;  /* dim * nnodes: r->u */

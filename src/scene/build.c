@@ -317,15 +317,33 @@ static int build_masonry_contact(const cx_scene *s, int level, const cx_mesh *m,
     return cx_contact_masonry(cs, m, settle, base, joints, &ob, d);
 }
 
-void cx_scene_obstacle(const cx_scene *s, int level, cx_obstacle *ob)
+/* masonry's plane lowered by the settlement gap g = gap_h H */
+static void scene_obstacle_settle(const cx_scene *s, int level, cx_obstacle *ob)
 {
-    *ob = s->obstacle;
     if (s->generator != CX_GEN_MASONRY)
         return;
     int cells[3];
     cx_scene_cells(s, level > 0 ? level : s->level, cells);
     for (int k = 0; k < 2; k++)
         ob->point[k] -= s->gap_h / cells[0] * ob->normal[k];
+}
+
+void cx_scene_obstacle(const cx_scene *s, int level, cx_obstacle *ob)
+{
+    *ob = s->obstacle;
+    scene_obstacle_settle(s, level, ob);
+}
+
+int cx_scene_obstacles(const cx_scene *s, int level, cx_obstacle *ob, int max)
+{
+    int n = 0;
+    for (int i = 0; i < s->ncontacts && n < max; i++)
+        if (!s->contacts[i].master[0]) {
+            ob[n] = s->contacts[i].obstacle;
+            scene_obstacle_settle(s, level, &ob[n]);
+            n++;
+        }
+    return n;
 }
 
 int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_state *fr,

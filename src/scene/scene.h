@@ -224,6 +224,10 @@ void cx_scene_cells_lower(const cx_scene *s, int level, int cells[3]);
  * default): the scene's, except masonry's plane lowered by the settlement
  * gap g = gap_h H (H = 1 / courses). */
 void cx_scene_obstacle(const cx_scene *s, int level, cx_obstacle *ob);
+/* Every rigid obstacle of the scene's contacts (those without a master
+ * boundary), in the order of its sections, where the solver has them (as
+ * cx_scene_obstacle): at most max of them in ob; returns their count. */
+int cx_scene_obstacles(const cx_scene *s, int level, cx_obstacle *ob, int max);
 
 /* Generate the mesh, assemble, apply supports and loads, build contact:
  * the problem at a level (level <= 0: the scene's default), and beside it

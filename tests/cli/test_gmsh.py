@@ -268,6 +268,23 @@ with tempfile.TemporaryDirectory() as tmp:
         coloured = sum(max(r[i:i + 3]) - min(r[i:i + 3]) > 40 for r in rows for i in range(0, len(r), 3))
         check(coloured > 2000, f"the render is not blank ({coloured} coloured pixels)")
 
+# ---- the ring's two plates are both drawn -------------------------------------
+# The obstacle's fill (0.86, 0.84, 0.80: 220 215 204 as cairo rounds) must appear above the
+# ring and below it: the plate at y = 1 and the plate at y = -1.
+with tempfile.TemporaryDirectory() as tmp:
+    png = os.path.join(tmp, "ring.png")
+    code, out, err = run("render", "ring", "--level", "1", "--png", png)
+    if code == 1 and "render" in err and "not" in err:
+        print("render: not in this build, skipped")
+    else:
+        check(code == 0, f"render ring exits 0 ({err.strip()})")
+        rows = rgb_rows(png)
+        fill = bytes((220, 215, 204))
+        hit = [y for y, r in enumerate(rows) if r.count(fill) > 100]
+        h = len(rows)
+        check(any(y < h // 4 for y in hit), f"the upper plate is drawn (rows with its fill: {hit[:3]}...)")
+        check(any(y > h // 2 for y in hit), f"the lower plate is drawn (rows with its fill: {hit[-3:]})")
+
 # ---- bad inputs: one line each, exit 1 ---------------------------------------
 SCENE = """[scene]
 id = t
