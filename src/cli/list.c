@@ -26,14 +26,18 @@ static const cx_opt list_opts[] = {
 static void list_text(char (*ids)[CX_SCENE_NAMELEN], int nids)
 {
     printf("scenes:\n");
+    int w = 12;   /* the longest id (twoblocks-paper) sets the column */
+    for (int k = 0; k < nids; k++)
+        if ((int)strlen(ids[k]) > w)
+            w = (int)strlen(ids[k]);
     for (int k = 0; k < nids; k++) {
         cx_scene sc;
         cx_diag d;
         if (cx_scene_open(ids[k], &sc, &d) != CX_OK) {
-            printf("  %-12s (cannot load: %s)\n", ids[k], d.msg);
+            printf("  %-*s (cannot load: %s)\n", w, ids[k], d.msg);
             continue;
         }
-        printf("  %-12s %dD %-5s level %-3d friction %-7s %s\n", sc.id, sc.dim, cx_elem_name(sc.element),
+        printf("  %-*s %dD %-5s level %-3d friction %-7s %s\n", w, sc.id, sc.dim, cx_elem_name(sc.element),
                sc.level, cx_friction_name(sc.friction), sc.title);
     }
     printf("\nmethods:\n");
