@@ -76,10 +76,10 @@ void cx_render_layout_image(const cx_result *r, const cx_render_opts *o, cx_rend
         l->bar[3] += up;
         l->banner[1] = l->area[1];
     } else {
-        /* a run record too long for one line wraps: the drawing moves down */
-        char l1[512], l2[512];
-        if (cx_render_subtitle(r, o, l1, l2, sizeof l1) == 2) {
-            double down = CX_RENDER_SUBTITLE_LINE * l->font;
+        /* a title or run record too long for one line wraps: the drawing
+         * moves down */
+        double down = cx_render_title_room(r, o);
+        if (down > 0) {
             l->area[1] += down;
             l->area[3] -= down;
             l->bar[1] += down;

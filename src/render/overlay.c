@@ -120,23 +120,85 @@ int cx_render_subtitle(const cx_result *r, const cx_render_opts *o, char *l1, ch
     return lines;
 }
 
+static const char *ov_title_text(const cx_result *r, const cx_render_opts *o)
+{
+    return o->title ? o->title : r->run.title[0] ? r->run.title : r->run.scene;
+}
+
+/* The title's lines (0 with --no-title, 1, or 2 when it would have to
+ * shrink below 90 % to fit): cut at the last space that lets line 1 fit
+ * (prism's title is 88 characters). */
+int cx_render_title_split(const cx_result *r, const cx_render_opts *o, char *t1, char *t2, size_t len)
+{
+    t1[0] = t2[0] = '\0';
+    if (o->no_title)
+        return 0;
+    const char *t = ov_title_text(r, o);
+    double F = cx_render_font_px(o->width, o->height, o->font_scale), size = 1.2 * F;
+    double maxw = o->width - 1.5 * F;
+    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
+    cairo_t *cr = cairo_create(surf);
+    int lines = 1;
+    snprintf(t1, len, "%s", t);
+    if (cx_text_width(cr, t, size, 1) > maxw / 0.9) {
+        size_t n = strlen(t), cut = 0;
+        for (size_t i = 1; i < n && i < len; i++) {
+            if (t[i] != ' ')
+                continue;
+            memcpy(t1, t, i);
+            t1[i] = '\0';
+            if (cx_text_width(cr, t1, size, 1) > maxw)
+                break;
+            cut = i;
+        }
+        if (cut > 0) {
+            memcpy(t1, t, cut);
+            t1[cut] = '\0';
+            snprintf(t2, len, "%s", t + cut + 1);
+            lines = 2;
+        } else {
+            snprintf(t1, len, "%s", t);
+        }
+    }
+    cairo_destroy(cr);
+    cairo_surface_destroy(surf);
+    return lines;
+}
+
+/* The extra room (pixels) the title block takes beyond one title and one
+ * subtitle line: the layout moves the drawing down by it. */
+double cx_render_title_room(const cx_result *r, const cx_render_opts *o)
+{
+    char a[512], b[512];
+    double F = cx_render_font_px(o->width, o->height, o->font_scale), room = 0;
+    if (cx_render_title_split(r, o, a, b, sizeof a) == 2)
+        room += CX_RENDER_TITLE_LINE * F;
+    if (cx_render_subtitle(r, o, a, b, sizeof a) == 2)
+        room += CX_RENDER_SUBTITLE_LINE * F;
+    return room;
+}
+
 /* The scene's title (1.2 F, bold), then the field and the run in smaller
- * grey (0.75 F), on two lines when one would not fit. */
+ * grey (0.75 F), each on two lines when one would not fit. */
 static void ov_title(const cx_render_scene *sc, cairo_t *cr)
 {
-    const cx_run_record *run = &sc->r->run;
     double F = ov_font(sc), m = 0.75 * F;
     char l1[512], l2[512];
     if (sc->o->no_title)
         return;
+    int tl = cx_render_title_split(sc->r, sc->o, l1, l2, sizeof l1);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    cx_text_fit(cr, sc->o->title ? sc->o->title : run->title[0] ? run->title : run->scene, m, 0.45 * F,
-                1.2 * F, 1, 0, 0, sc->w - 2 * m);
+    cx_text_fit(cr, l1, m, 0.45 * F, 1.2 * F, 1, 0, 0, sc->w - 2 * m);
+    double y = 2.05 * F;
+    if (tl == 2) {
+        cx_text_fit(cr, l2, m, 0.45 * F + CX_RENDER_TITLE_LINE * F, 1.2 * F, 1, 0, 0, sc->w - 2 * m);
+        y += CX_RENDER_TITLE_LINE * F;
+    }
     int lines = cx_render_subtitle(sc->r, sc->o, l1, l2, sizeof l1);
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-    cx_text_fit(cr, l1, m, 2.05 * F, 0.75 * F, 0, 0, 0, sc->w - 2 * m);
+    cx_text_fit(cr, l1, m, y, 0.75 * F, 0, 0, 0, sc->w - 2 * m);
     if (lines == 2)
-        cx_text_fit(cr, l2, m, 2.05 * F + CX_RENDER_SUBTITLE_LINE * F, 0.75 * F, 0, 0, 0, sc->w - 2 * m);
+        cx_text_fit(cr, l2, m, y + CX_RENDER_SUBTITLE_LINE * F, 0.75 * F, 0, 0, 0, sc->w - 2 * m);
 }
 
 /* A run that did not converge says so above the drawing, in the outcome

@@ -905,6 +905,36 @@ static void test_subtitle(void)
         cx_render_layout_image(h.r, &opt, &l);
         CX_CHECK(k == 1 || l.area[1] == l0.area[1]);
     }
+    /* a title too long for one line (prism's is 88 characters) wraps at a
+     * space: the drawing moves down by a title line, the margin stays white */
+    {
+        cx_render_opts opt;
+        cx_render_opts_default(&opt);
+        opt.title = "Prism (paper 001): clamped prism pressed onto a rigid plane, Tresca (E, nu, loads chosen)";
+        test_png img;
+        if (render_read(h.r, &opt, &img) == 0) {
+            cx_render_layout l, l0;
+            cx_render_layout_image(h.r, &opt, &l);
+            cx_render_layout_get(img.w, img.h, &l0);
+            CX_CHECK(l.area[1] >= l0.area[1] + 1.4 * l.font);
+            int ink = 0;
+            for (int y = 0; y < (int)l.area[1]; y++)
+                for (int x = (int)(img.w - 0.6 * l.font); x < img.w; x++) {
+                    const unsigned char *c = test_png_px(&img, x, y);
+                    ink += c[0] < 235 || c[1] < 235 || c[2] < 235;
+                }
+            CX_CHECK(ink == 0);
+            /* the second title line: dark bold glyphs below the first */
+            long dark = 0;
+            for (int y = (int)(1.95 * l.font); y < (int)(3.0 * l.font); y++)
+                for (int x = 0; x < img.w / 3; x++)
+                    dark += test_png_px(&img, x, y)[0] < 60;
+            CX_CHECK(dark > 200);
+            test_png_free(&img);
+        } else {
+            CX_CHECK(0);
+        }
+    }
     /* the start of a run */
     cx_run_record keep = h.r->run;
     h.r->run.reason = CX_ITERATING;
