@@ -935,6 +935,39 @@ static void test_subtitle(void)
             CX_CHECK(0);
         }
     }
+    /* stackbond's note (scale, and the settled ground drawn s g away) is too
+     * long for the row beside the legend: two lines below the drawing
+     * area, neither cut off nor over the ground */
+    {
+        solved sb;
+        solve_scene(&sb, "stackbond", 5, 0);
+        cx_render_opts opt;
+        cx_render_opts_default(&opt);
+        test_png img;
+        if (render_read(sb.r, &opt, &img) == 0) {
+            cx_render_layout l;
+            cx_render_layout_image(sb.r, &opt, &l);
+            /* the ink below the drawing area spans two lines of the note
+             * font (0.8 F), and starts below the area */
+            int bottom = (int)ceil(l.area[1] + l.area[3]), first = -1, last = -1;
+            for (int y = bottom; y < img.h; y++) {
+                int ink = 0;
+                for (int x = (int)(0.75 * l.font); x < img.w / 2 && !ink; x++)
+                    ink = test_png_px(&img, x, y)[0] < 120;
+                if (ink && first < 0)
+                    first = y;
+                if (ink)
+                    last = y;
+            }
+            if (!(first > bottom && last - first + 1 >= 1.6 * 0.8 * l.font))
+                fprintf(stderr, "stackbond notes: ink rows %d..%d below %d\n", first, last, bottom);
+            CX_CHECK(first > bottom && last - first + 1 >= 1.6 * 0.8 * l.font);
+            test_png_free(&img);
+        } else {
+            CX_CHECK(0);
+        }
+        solved_free(&sb);
+    }
     /* the start of a run */
     cx_run_record keep = h.r->run;
     h.r->run.reason = CX_ITERATING;
