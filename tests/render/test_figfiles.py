@@ -185,6 +185,8 @@ with tempfile.TemporaryDirectory() as tmp:
         ranges.add(text.get("colour range"))
         iters.append(int(text.get("iterations", "-1")))
         check((w, h) == (400, 300) and text.get("frame") == str(k), f"{name}: size and frame chunk")
+        if k == 0:
+            check(text.get("outcome") == "start (iteration 0)", f"frame 0's outcome: {text.get('outcome')}")
     check(len(ranges) == 1, f"one colour range in every frame: {ranges}")
     check(iters == list(range(n + 1)), f"frame k is iteration k: {iters}")
 
