@@ -191,6 +191,7 @@ int cx_anim_create(cx_anim **ap, cx_result *final, const cx_render_opts *o, cons
     memset(a, 0, sizeof *a);
     a->o = *o;
     a->o.title = NULL;
+    a->o.band_always = 1;   /* the start, each iterate and the outcome captioned alike */
     *ap = a;
     /* the range from the last iterate with the field drawn */
     cx_render_fix fin;

@@ -72,6 +72,9 @@ static void axis_make_log(cx_axis *a, double lo, double hi, int target, int expa
         every++;
     a->step = every;
     a->nticks = a->nminor = 0;
+    /* the span shown, not the decades touched: a bar from 2e3 to 3e5 spans
+     * 2.2 decades but touches 4, and two labels would leave it unreadable */
+    double span = log10(hi / lo);
     for (int e = (int)e0; e <= (int)e1; e++) {
         double v = pow(10.0, e);
         if ((e - (int)e0) % every == 0 && v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9) &&
@@ -80,15 +83,27 @@ static void axis_make_log(cx_axis *a, double lo, double hi, int target, int expa
         if (every == 1 && decades <= 8)
             for (int m = 2; m <= 9 && a->nminor < CX_AXIS_MAX_TICKS; m++) {
                 double u = m * v;
-                if (!(u > lo && u < hi))
+                if (!(u >= lo * (1 - 1e-9) && u <= hi * (1 + 1e-9)))
                     continue;
-                /* one or two decades: label 2 and 5 too */
-                if (decades <= 2 && (m == 2 || m == 5) && a->nticks < CX_AXIS_MAX_TICKS)
+                /* up to 2.5 decades: label 2 and 5 too; under one: every
+                 * multiple (a bar from 0.3 to 2 has 10⁰ alone otherwise) */
+                int label = span <= 2.5 && (m == 2 || m == 5);
+                if (span < 0.8)
+                    label = 1;
+                if (label && a->nticks < CX_AXIS_MAX_TICKS)
                     a->ticks[a->nticks++] = u;
                 else
                     a->minor[a->nminor++] = u;
             }
     }
+    /* ascending, as the header promises (2 and 5 were appended after their
+     * decade) */
+    for (int i = 1; i < a->nticks; i++)
+        for (int j = i; j > 0 && a->ticks[j - 1] > a->ticks[j]; j--) {
+            double t = a->ticks[j];
+            a->ticks[j] = a->ticks[j - 1];
+            a->ticks[j - 1] = t;
+        }
 }
 
 void cx_axis_make(cx_axis *a, double lo, double hi, int log, int target, int expand)
@@ -178,6 +193,24 @@ static void axis_sci(double v, int digits, char *buf, size_t len)
     axis_superscript(e, buf, len);
 }
 
+/* The fewest decimals that write every tick of a linear axis exactly
+ * (one count for the whole axis, so that 0.5 and 1.0 line up): steps of 0.2
+ * need one, of 0.25 two. Computed from the ticks, not from log10 of the
+ * step, so that a step of 0.2500000001 after scaling by 10^n is still 0.25. */
+static int axis_decimals(const cx_axis *a)
+{
+    for (int dec = 0; dec < 9; dec++) {
+        double q = pow(10.0, dec);
+        int ok = 1;
+        for (int i = 0; i < a->nticks && ok; i++)
+            ok = fabs(round(a->ticks[i] * q) / q - a->ticks[i]) <= 1e-6 * a->step;
+        /* the ticks of the axis, or the step alone when there are none */
+        if (ok && (a->nticks > 0 || fabs(round(a->step * q) / q - a->step) <= 1e-6 * a->step))
+            return dec;
+    }
+    return 9;
+}
+
 void cx_axis_label(const cx_axis *a, double v, char *buf, size_t len)
 {
     if (!a->log && a->exp10 != 0) {   /* in units of 10^exp10 */
@@ -187,6 +220,8 @@ void cx_axis_label(const cx_axis *a, double v, char *buf, size_t len)
         u.lo /= unit;
         u.hi /= unit;
         u.step /= unit;
+        for (int i = 0; i < u.nticks; i++)
+            u.ticks[i] /= unit;
         cx_axis_label(&u, v / unit, buf, len);
         return;
     }
@@ -224,12 +259,7 @@ void cx_axis_label(const cx_axis *a, double v, char *buf, size_t len)
             digits = 6;
         axis_sci(v, digits, buf, len);
     } else {
-        int dec = (int)ceil(-log10(a->step) - 1e-9);
-        if (dec < 0)
-            dec = 0;
-        /* 2.5-steps need one more decimal */
-        if (fabs(a->step / pow(10.0, floor(log10(a->step))) - 2.5) < 1e-9)
-            dec++;
-        snprintf(buf, len, "%.*f", dec, v);
+        snprintf(buf, len, "%.*f", axis_decimals(a), v);
+        return;
     }
 }

@@ -40,9 +40,9 @@ void cx_render_layout_get(int w, int h, cx_render_layout *l)
     cx_render_layout_font(w, h, 1, l);
 }
 
-static void layout_banner(const cx_run_record *run, cx_render_layout *l)
+static void layout_banner(const cx_run_record *run, int always, cx_render_layout *l)
 {
-    if (!cx_render_unconverged(run))
+    if (!always && !cx_render_unconverged(run))
         return;
     double F = l->font, bh = 1.4 * F, move = bh + 0.3 * F;
     l->banner[3] = bh;
@@ -54,13 +54,15 @@ static void layout_banner(const cx_run_record *run, cx_render_layout *l)
 
 int cx_render_unconverged(const cx_run_record *run)
 {
-    return run->reason < 0 || (run->reason == CX_ITERATING && run->iterations > 0);
+    /* an iterate with no error yet (infinite) is a run's start: an
+     * animation's first frame, captioned "start (iteration 0)" */
+    return run->reason < 0 || (run->reason == CX_ITERATING && (run->iterations > 0 || isinf(run->kkt)));
 }
 
 void cx_render_layout_run(const cx_run_record *run, int w, int h, cx_render_layout *l)
 {
     cx_render_layout_font(w, h, 1, l);
-    layout_banner(run, l);
+    layout_banner(run, 0, l);
 }
 
 void cx_render_layout_image(const cx_result *r, const cx_render_opts *o, cx_render_layout *l)
@@ -73,8 +75,19 @@ void cx_render_layout_image(const cx_result *r, const cx_render_opts *o, cx_rend
         l->bar[1] -= up;
         l->bar[3] += up;
         l->banner[1] = l->area[1];
+    } else {
+        /* a title or run record too long for one line wraps: the drawing
+         * moves down */
+        double down = cx_render_title_room(r, o);
+        if (down > 0) {
+            l->area[1] += down;
+            l->area[3] -= down;
+            l->bar[1] += down;
+            l->bar[3] -= down;
+            l->banner[1] = l->area[1];
+        }
     }
-    layout_banner(&r->run, l);
+    layout_banner(&r->run, o->band_always, l);
 }
 
 static void cam_cross(const double *a, const double *b, double *c)

@@ -472,8 +472,11 @@ int cx_render_image_write_png(const cx_result *r, const cx_render_opts *o, const
     snprintf(slip, sizeof slip, "%.17g", run->slip_bound);
     snprintf(kkt, sizeof kkt, "%.6e", run->kkt);
     char outcome[CX_DIAG_LEN + 160];   /* the outcome in solve/'s words */
-    cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
-                     sizeof outcome);
+    if (run->reason == CX_ITERATING && isinf(run->kkt))   /* an animation's first frame */
+        snprintf(outcome, sizeof outcome, "start (iteration %d)", run->iterations);
+    else
+        cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
+                         sizeof outcome);
     snprintf(scale, sizeof scale, "%.6g", b->fix.scale);
     char tol[32], iters[32], args[1024];
     snprintf(tol, sizeof tol, "%.6g", run->tol);

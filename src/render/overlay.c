@@ -29,29 +29,176 @@ static double ov_font(const cx_render_scene *sc)
     return cx_render_font_px(sc->w, sc->h, sc->o->font_scale);
 }
 
+/* The run-record line under the title, in parts joined by " · ". */
+static int ov_subtitle_parts(const cx_result *r, const cx_render_opts *o, char parts[5][320])
+{
+    const cx_run_record *run = &r->run;
+    snprintf(parts[0], 320, "%s", cx_field_label(o->field));
+    snprintf(parts[1], 320, "scene %s, level %d, %d dofs, %d contact points", run->scene, run->level, r->n, r->m);
+    snprintf(parts[2], 320, "%s%s%s", run->method, run->params_text[0] ? " " : "", run->params_text);
+    if (run->friction == CX_FRICTION_COULOMB)
+        snprintf(parts[3], 320, "Coulomb F = %g", run->F);
+    else if (run->friction == CX_FRICTION_TRESCA)
+        snprintf(parts[3], 320, "Tresca slip bound %g", run->slip_bound);
+    else
+        snprintf(parts[3], 320, "frictionless");
+    /* an animation's first frame is the method's starting iterate: it has
+     * no error yet, and "kkt error inf" would read as a blow-up */
+    if (run->reason == CX_ITERATING && isinf(run->kkt))
+        snprintf(parts[4], 320, "start (iteration %d)", run->iterations);
+    else
+        snprintf(parts[4], 320, "kkt error %.2e", run->kkt);
+    return 5;
+}
+
+/* out = a · b (a or b alone when the other is empty), cut to len */
+static void ov_join(char *out, size_t len, const char *a, const char *b)
+{
+    size_t na = strlen(a), nb = strlen(b), n = 0;
+    const char *sep = na && b[0] ? " · " : "";
+    size_t ns = strlen(sep);
+    if (na + ns + nb + 1 > len)
+        nb = len > na + ns + 1 ? len - na - ns - 1 : 0;
+    if (na + ns + 1 > len)
+        na = ns = 0;
+    memcpy(out, a, na);
+    n += na;
+    memcpy(out + n, sep, ns);
+    n += ns;
+    memcpy(out + n, b, nb);
+    out[n + nb] = '\0';
+}
+
+/* The subtitle's lines (0 with --no-title, 1, or 2 when one line would have
+ * to shrink below 90 % of its size to fit the width): line 2 starts at the
+ * first part that does not fit on line 1. The layout makes room for the
+ * second line (cx_render_layout_image), so that nothing is cut or shrunk
+ * out of legibility. */
+int cx_render_subtitle(const cx_result *r, const cx_render_opts *o, char *l1, char *l2, size_t len)
+{
+    l1[0] = l2[0] = '\0';
+    if (o->no_title)
+        return 0;
+    char parts[5][320];
+    int np = ov_subtitle_parts(r, o, parts);
+    double F = cx_render_font_px(o->width, o->height, o->font_scale), size = 0.75 * F;
+    double maxw = o->width - 1.5 * F;
+    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
+    cairo_t *cr = cairo_create(surf);
+    /* the last part measured as the wider of the start's words and an
+     * error, so that every frame of an animation wraps alike (and its
+     * drawing does not jump between frames) */
+    double wl = cx_text_width(cr, parts[np - 1], size, 0);
+    double pad = fmax(cx_text_width(cr, "start (iteration 0)", size, 0),
+                      cx_text_width(cr, "kkt error 8.88e-88", size, 0)) - wl;
+    pad = fmax(pad, 0);
+    int lines = 1;
+    for (int i = 0; i < np; i++) {
+        char *dst = lines == 1 ? l1 : l2;
+        size_t n = strlen(dst);
+        char trial[1024];
+        ov_join(trial, sizeof trial, dst, parts[i]);
+        if (lines == 1 && n > 0 && cx_text_width(cr, trial, size, 0) + (i == np - 1 ? pad : 0) > maxw / 0.9) {
+            lines = 2;
+            ov_join(l2, len, "", parts[i]);
+            continue;
+        }
+        ov_join(dst, len, "", trial);
+    }
+    /* one line that fits within 90 %: it stays one line */
+    if (lines == 2) {
+        char all[1024];
+        ov_join(all, sizeof all, l1, l2);
+        if (cx_text_width(cr, all, size, 0) + pad <= maxw / 0.9) {
+            ov_join(l1, len, "", all);
+            l2[0] = '\0';
+            lines = 1;
+        }
+    }
+    cairo_destroy(cr);
+    cairo_surface_destroy(surf);
+    return lines;
+}
+
+static const char *ov_title_text(const cx_result *r, const cx_render_opts *o)
+{
+    return o->title ? o->title : r->run.title[0] ? r->run.title : r->run.scene;
+}
+
+/* The title's lines (0 with --no-title, 1, or 2 when it would have to
+ * shrink below 90 % to fit): cut at the last space that lets line 1 fit
+ * (prism's title is 88 characters). */
+int cx_render_title_split(const cx_result *r, const cx_render_opts *o, char *t1, char *t2, size_t len)
+{
+    t1[0] = t2[0] = '\0';
+    if (o->no_title)
+        return 0;
+    const char *t = ov_title_text(r, o);
+    double F = cx_render_font_px(o->width, o->height, o->font_scale), size = 1.2 * F;
+    double maxw = o->width - 1.5 * F;
+    cairo_surface_t *surf = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
+    cairo_t *cr = cairo_create(surf);
+    int lines = 1;
+    snprintf(t1, len, "%s", t);
+    if (cx_text_width(cr, t, size, 1) > maxw / 0.9) {
+        size_t n = strlen(t), cut = 0;
+        for (size_t i = 1; i < n && i < len; i++) {
+            if (t[i] != ' ')
+                continue;
+            memcpy(t1, t, i);
+            t1[i] = '\0';
+            if (cx_text_width(cr, t1, size, 1) > maxw)
+                break;
+            cut = i;
+        }
+        if (cut > 0) {
+            memcpy(t1, t, cut);
+            t1[cut] = '\0';
+            snprintf(t2, len, "%s", t + cut + 1);
+            lines = 2;
+        } else {
+            snprintf(t1, len, "%s", t);
+        }
+    }
+    cairo_destroy(cr);
+    cairo_surface_destroy(surf);
+    return lines;
+}
+
+/* The extra room (pixels) the title block takes beyond one title and one
+ * subtitle line: the layout moves the drawing down by it. */
+double cx_render_title_room(const cx_result *r, const cx_render_opts *o)
+{
+    char a[512], b[512];
+    double F = cx_render_font_px(o->width, o->height, o->font_scale), room = 0;
+    if (cx_render_title_split(r, o, a, b, sizeof a) == 2)
+        room += CX_RENDER_TITLE_LINE * F;
+    if (cx_render_subtitle(r, o, a, b, sizeof a) == 2)
+        room += CX_RENDER_SUBTITLE_LINE * F;
+    return room;
+}
+
 /* The scene's title (1.2 F, bold), then the field and the run in smaller
- * grey (0.75 F). */
+ * grey (0.75 F), each on two lines when one would not fit. */
 static void ov_title(const cx_render_scene *sc, cairo_t *cr)
 {
-    const cx_run_record *run = &sc->r->run;
     double F = ov_font(sc), m = 0.75 * F;
-    char line[512], fr[96];
+    char l1[512], l2[512];
     if (sc->o->no_title)
         return;
+    int tl = cx_render_title_split(sc->r, sc->o, l1, l2, sizeof l1);
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    cx_text_fit(cr, sc->o->title ? sc->o->title : run->title[0] ? run->title : run->scene, m, 0.45 * F,
-                1.2 * F, 1, 0, 0, sc->w - 2 * m);
-    if (run->friction == CX_FRICTION_COULOMB)
-        snprintf(fr, sizeof fr, "Coulomb F = %g", run->F);
-    else if (run->friction == CX_FRICTION_TRESCA)
-        snprintf(fr, sizeof fr, "Tresca slip bound %g", run->slip_bound);
-    else
-        snprintf(fr, sizeof fr, "frictionless");
-    snprintf(line, sizeof line, "%s · scene %s, level %d, %d dofs, %d contact points · %s%s%s · %s · kkt error %.2e",
-             cx_field_label(sc->o->field), run->scene, run->level, sc->r->n, sc->r->m, run->method,
-             run->params_text[0] ? " " : "", run->params_text, fr, run->kkt);
+    cx_text_fit(cr, l1, m, 0.45 * F, 1.2 * F, 1, 0, 0, sc->w - 2 * m);
+    double y = 2.05 * F;
+    if (tl == 2) {
+        cx_text_fit(cr, l2, m, 0.45 * F + CX_RENDER_TITLE_LINE * F, 1.2 * F, 1, 0, 0, sc->w - 2 * m);
+        y += CX_RENDER_TITLE_LINE * F;
+    }
+    int lines = cx_render_subtitle(sc->r, sc->o, l1, l2, sizeof l1);
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-    cx_text_fit(cr, line, m, 2.05 * F, 0.75 * F, 0, 0, 0, sc->w - 2 * m);
+    cx_text_fit(cr, l1, m, y, 0.75 * F, 0, 0, 0, sc->w - 2 * m);
+    if (lines == 2)
+        cx_text_fit(cr, l2, m, y + CX_RENDER_SUBTITLE_LINE * F, 0.75 * F, 0, 0, 0, sc->w - 2 * m);
 }
 
 /* A run that did not converge says so above the drawing, in the outcome
@@ -60,19 +207,28 @@ static void ov_banner(const cx_render_scene *sc, cairo_t *cr)
 {
     const cx_run_record *run = &sc->r->run;
     cx_render_layout l;
-    cx_render_layout_run(run, sc->w, sc->h, &l);
+    cx_render_layout_image(sc->r, sc->o, &l);
     if (!(l.banner[3] > 0))
         return;
     char outcome[CX_DIAG_LEN + 160], line[CX_DIAG_LEN + 200];
-    if (run->reason == CX_ITERATING)
+    int start = run->reason == CX_ITERATING && isinf(run->kkt);
+    /* an animation's first frame and its converged last: a caption, not a
+     * warning */
+    int neutral = start || !cx_render_unconverged(run);
+    if (start)
+        snprintf(outcome, sizeof outcome, "start (iteration %d)", run->iterations);
+    else if (run->reason == CX_ITERATING)
         snprintf(outcome, sizeof outcome, "still running: iteration %d, kkt error %.1e > tol %.0e",
                  run->iterations, run->kkt, run->tol);
     else
         cx_reason_format(run->reason, run->iterations, run->kkt, run->tol, run->message, outcome,
                          sizeof outcome);
     /* the sentence says it already when it is "did not converge ..." */
-    snprintf(line, sizeof line, "%s%s", strstr(outcome, "not converge") ? "" : "not converged: ", outcome);
-    cairo_set_source_rgb(cr, CX_PALETTE_WARNING_RGB);
+    snprintf(line, sizeof line, "%s%s", neutral || strstr(outcome, "not converge") ? "" : "not converged: ", outcome);
+    if (neutral)   /* dark grey: one of the GIF table's greys */
+        cairo_set_source_rgb(cr, 89 / 255.0, 89 / 255.0, 89 / 255.0);
+    else
+        cairo_set_source_rgb(cr, CX_PALETTE_WARNING_RGB);
     cairo_rectangle(cr, l.banner[0], l.banner[1], l.banner[2], l.banner[3]);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 1, 1, 1);
@@ -105,6 +261,14 @@ static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
     cx_axis ax;
     cx_axis_colorbar(&ax, vlo, vhi, sc->o->log, (int)fmax(3, fmin(8, bh / (2.2 * F))));
     char lab[64];
+    /* --log: the unlabelled 2..9 of each decade, half as long, so that a bar
+     * spanning few decades still reads as a log scale */
+    for (int i = 0; i < ax.nminor; i++) {
+        double ty = y + bh * (1 - cx_axis_frac(&ax, ax.minor[i]));
+        cairo_move_to(cr, x + bw, ty);
+        cairo_line_to(cr, x + bw + 0.14 * F, ty);
+        cairo_stroke(cr);
+    }
     for (int i = 0; i < ax.nticks; i++) {
         double ty = y + bh * (1 - cx_axis_frac(&ax, ax.ticks[i]));
         cairo_move_to(cr, x + bw, ty);
@@ -426,51 +590,80 @@ static double ov_marker_radius(const cx_render_scene *sc, double s)
 /* The bottom line: the status legend at the right (drawn first, so that
  * the note beside it is fitted into what is left), then the displacement
  * scale, the obstacle's offset and caveats at the left. */
-static void ov_notes(const cx_render_scene *sc, cairo_t *cr, int legend, int hidden)
+/* The status legend at the right of the notes row y; returns where it
+ * starts (x), drawing it only when draw is set. */
+static double ov_legend(const cx_render_scene *sc, cairo_t *cr, double y, double fs, int draw)
 {
-    char line[512];
-    double F = ov_font(sc), fs = 0.8 * F, y = sc->h - 1.05 * F;
-    double x = sc->w - 0.75 * F;
-    if (legend) {
-        static const int codes[4] = {CX_PT_FREE, CX_PT_CONTACT, CX_PT_STICK, CX_PT_SLIP_POS};
-        for (int i = 3; i >= 0; i--) {
-            if (sc->r->run.friction == CX_FRICTION_NONE ? i >= 2 : i == 1)
-                continue;
-            const char *name = cx_palette_status_name[codes[i]];
-            unsigned char c[3];
-            cx_status_color(codes[i], c);
-            x -= cx_text_width(cr, name, fs, 0);
+    static const int codes[4] = {CX_PT_FREE, CX_PT_CONTACT, CX_PT_STICK, CX_PT_SLIP_POS};
+    double x = sc->w - 0.75 * ov_font(sc);
+    for (int i = 3; i >= 0; i--) {
+        if (sc->r->run.friction == CX_FRICTION_NONE ? i >= 2 : i == 1)
+            continue;
+        const char *name = cx_palette_status_name[codes[i]];
+        unsigned char c[3];
+        cx_status_color(codes[i], c);
+        x -= cx_text_width(cr, name, fs, 0);
+        if (draw) {
             cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
             cx_text(cr, name, x, y, fs, 0, 0, 0.5);
-            x -= 0.65 * fs;
+        }
+        x -= 0.65 * fs;
+        if (draw) {
             cairo_new_sub_path(cr);
             cairo_arc(cr, x, y, 0.3 * fs, 0, 2 * CX_PI);
             ov_rgb(cr, c);
             cairo_fill(cr);
-            x -= 1.2 * fs;
         }
+        x -= 1.2 * fs;
     }
-    cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
-    size_t n;
+    return x;
+}
+
+static void ov_notes(const cx_render_scene *sc, cairo_t *cr, int legend, int hidden)
+{
+    char line[512];
+    double F = ov_font(sc), fs = 0.8 * F, y = sc->h - 1.05 * F;
+    double x = legend ? ov_legend(sc, cr, y, fs, 0) : sc->w - 0.75 * F;
     if (sc->o->scale > 0)
-        n = (size_t)snprintf(line, sizeof line, "displacement × %.3g (set), max |u| = %.3g", sc->scale,
-                             sc->umax);
+        snprintf(line, sizeof line, "displacement × %.3g (set), max |u| = %.3g", sc->scale, sc->umax);
     else if (sc->scale == 1 && sc->r->m > 0 && sc->umax > 0)
-        n = (size_t)snprintf(line, sizeof line, "displacement × 1 (auto: true scale with contact, "
-                             "max |u| = %.3g)", sc->umax);
+        snprintf(line, sizeof line, "displacement × 1 (auto: true scale with contact, max |u| = %.3g)", sc->umax);
     else
-        n = (size_t)snprintf(line, sizeof line, "displacement × %.3g (auto: max |u| = %.3g drawn as "
-                             "7 %% of the body size)", sc->scale, sc->umax);
-    if (sc->obstacle_gap > 0 && n < sizeof line)
+        snprintf(line, sizeof line, "displacement × %.3g (auto: max |u| = %.3g drawn as 7 %% of the body size)",
+                 sc->scale, sc->umax);
+    /* the settlement and the magnification notes: on the line, or on a
+     * line of their own above it when the legend leaves too little room
+     * (both lines then move down into the bottom margin, below the
+     * drawing area: nothing is cut off and nothing covers the ground) */
+    char extra[320];
+    size_t ne = 0;
+    extra[0] = '\0';
+    if (sc->obstacle_gap > 0)
         /* the settlement: the obstacle moved with the scale (image.c) */
-        n += (size_t)snprintf(line + n, sizeof line - n, " · obstacle drawn %.3g × its gap %.3g "
-                              "from the body", sc->scale, sc->obstacle_gap);
-    if (sc->contact_inexact && n < sizeof line)
-        snprintf(line + n, sizeof line - n, " · magnified: contact drawn inexactly (exact at --scale 1)");
-    cx_text_fit(cr, line, 0.75 * F, y, fs, 0, 0, 0.5, x - 0.75 * F);
+        ne += (size_t)snprintf(extra, sizeof extra, "obstacle drawn %.3g × its gap %.3g from the body", sc->scale,
+                               sc->obstacle_gap);
+    if (sc->contact_inexact && ne < sizeof extra)
+        snprintf(extra + ne, sizeof extra - ne, "%smagnified: contact drawn inexactly (exact at --scale 1)",
+                 ne ? " · " : "");
+    char all[840];
+    ov_join(all, sizeof all, line, extra);
+    int two = extra[0] && cx_text_width(cr, all, fs, 0) > x - 0.75 * F;
+    if (two)
+        y = sc->h - 0.55 * F;
+    double above = y - 0.95 * fs;
+    if (legend)
+        ov_legend(sc, cr, y, fs, 1);
+    cairo_set_source_rgb(cr, 0.25, 0.25, 0.25);
+    if (two) {
+        cx_text_fit(cr, line, 0.75 * F, y, fs, 0, 0, 0.5, x - 0.75 * F);
+        cx_text_fit(cr, extra, 0.75 * F, above, fs, 0, 0, 0.5, sc->w - 1.5 * F);
+        above -= 0.95 * fs;
+    } else {
+        cx_text_fit(cr, all, 0.75 * F, y, fs, 0, 0, 0.5, x - 0.75 * F);
+    }
     if (hidden)
-        cx_text(cr, "the contact faces are hidden from here: --view contact shows them",
-                0.75 * F, y - 1.1 * fs, fs, 0, 0, 0.5);
+        cx_text(cr, "the contact faces are hidden from here: --view contact shows them", 0.75 * F,
+                two ? above : y - 1.1 * fs, fs, 0, 0, 0.5);
 }
 
 void cx_render_underlay(const cx_render_scene *sc, cairo_t *cr)

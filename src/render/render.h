@@ -117,6 +117,9 @@ typedef struct cx_render_opts {
     int has_range;                /* colour range fixed to [range_lo, range_hi] */
     double range_lo, range_hi;    /* (so that several figures share one scale) */
     int no_title;                 /* no title lines (a caption says it) */
+    int band_always;              /* an animation's frames: the band above the
+                                     drawing in every frame (start, running,
+                                     the outcome), so that nothing jumps */
     const char *title;            /* the title instead of the scene's (NULL: the scene's) */
     /* camera and framing (3D views, crop, mirror) */
     int has_camera;               /* 3D: look from azimuth cam_az, elevation cam_el */
@@ -168,8 +171,11 @@ void cx_render_layout_run(const cx_run_record *run, int w, int h, cx_render_layo
 /* The layout of the image that cx_render_png draws of r with o. */
 void cx_render_layout_image(const cx_result *r, const cx_render_opts *o, cx_render_layout *l);
 /* Non-zero if the image of this run must say that it did not converge:
- * it ended without converging, or it is still running (a snapshot). A
- * result without a run (no iterations, reason 0) is not flagged. */
+ * it ended without converging, or it is still running (a snapshot), or
+ * it is a run's start (iterating, no iterations, an infinite kkt error:
+ * an animation's first frame, whose band says "start (iteration 0)"). A
+ * result without a run (no iterations, reason 0, finite error) is not
+ * flagged. */
 int cx_render_unconverged(const cx_run_record *run);
 
 /* The pixel (top-left origin) where the world point x (dim coordinates,

@@ -91,6 +91,17 @@ int cx_render_gl_draw(const cx_render_scene *sc, unsigned char *argb, int stride
 /* overlay.c: what goes under the GL image (the 2D obstacle) and over it
  * (title, colour bar, outlines, markers, notes). */
 void cx_render_underlay(const cx_render_scene *sc, cairo_t *cr);
+/* The subtitle (the run record) of the image of r with o, as 0 (no title),
+ * 1 or 2 lines (overlay.c); the second line is CX_RENDER_SUBTITLE_LINE
+ * fonts below the first, and the layout moves the drawing down by that. */
+#define CX_RENDER_SUBTITLE_LINE 0.95
+int cx_render_subtitle(const cx_result *r, const cx_render_opts *o, char *l1, char *l2, size_t len);
+/* The title as 0, 1 or 2 lines (cut at a space), the second
+ * CX_RENDER_TITLE_LINE fonts below the first. */
+#define CX_RENDER_TITLE_LINE 1.45
+int cx_render_title_split(const cx_result *r, const cx_render_opts *o, char *t1, char *t2, size_t len);
+/* Pixels the title block takes beyond one line of each (0: none wraps). */
+double cx_render_title_room(const cx_result *r, const cx_render_opts *o);
 void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr);
 
 #endif

@@ -114,8 +114,12 @@ double cx_text_fit(cairo_t *cr, const char *s, double x, double y, double size, 
     double w = cx_text_width(cr, s, size, bold);
     if (w <= maxw)
         return cx_text(cr, s, x, y, size, bold, ax, ay);
+    /* hinted advances are not proportional to the size (a 6 px font's
+     * glyphs round up), so the scaled size is measured again */
     double fit = size * maxw / w;
-    if (fit >= 0.75 * size)
+    for (int k = 0; k < 8 && cx_text_width(cr, s, fit, bold) > maxw; k++)
+        fit *= 0.97;
+    if (fit >= 0.75 * size && cx_text_width(cr, s, fit, bold) <= maxw)
         return cx_text(cr, s, x, y, fit, bold, ax, ay);
     size *= 0.75;
     char buf[1024];

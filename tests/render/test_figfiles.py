@@ -159,7 +159,8 @@ with tempfile.TemporaryDirectory() as tmp:
         check(len(g["table"]) == 256 and g["local"] == 0, f"one global table of 256 colours: {len(g['table'])}, {g['local']}")
         check([f[3] for f in fr] == [50] * n + [300], f"0.5 s a frame, the last 3 s: {[f[3] for f in fr]}")
         # the colour bar (right strip, below the title) is the same in the
-        # first and the last frame (neither has the 'still running' banner)
+        # first and the last frame (every frame has its band: start, still
+        # running, the outcome)
         box = (int(0.85 * 400), int(0.3 * 300), 400, int(0.85 * 300))
         check(crop(fr[0], *box) == crop(fr[-1], *box), "colour bar identical in the first and last frame")
         check(fr[0][2] != fr[-1][2], "the run changes the picture")
@@ -169,6 +170,13 @@ with tempfile.TemporaryDirectory() as tmp:
             return sum(1 for i in px if g["table"][i][0] > 140 and g["table"][i][1] < 80 and g["table"][i][2] < 30)
         check(banner(fr[1]) > 1000 and banner(fr[-1]) == 0, f"the banner in frame 1, not in the last: "
               f"{banner(fr[1])}, {banner(fr[-1])}")
+        # the first and the last frame: a dark grey caption band (start,
+        # converged) where the others have the warning
+        def grey(f):
+            px = crop(f, 0, int(0.1 * 300), 400, int(0.2 * 300))
+            return sum(1 for i in px if g["table"][i] == (89, 89, 89))
+        check(grey(fr[0]) > 1000 and grey(fr[-1]) > 1000 and grey(fr[1]) < 100,
+              f"grey bands in the first and last frame: {grey(fr[0])}, {grey(fr[-1])}, {grey(fr[1])}")
     names = sorted(os.listdir(frames)) if os.path.isdir(frames) else []
     check(names == [f"frame_{k:04d}.png" for k in range(n + 1)], f"frames 0..{n}: {names}")
     ranges, iters = set(), []
@@ -177,6 +185,8 @@ with tempfile.TemporaryDirectory() as tmp:
         ranges.add(text.get("colour range"))
         iters.append(int(text.get("iterations", "-1")))
         check((w, h) == (400, 300) and text.get("frame") == str(k), f"{name}: size and frame chunk")
+        if k == 0:
+            check(text.get("outcome") == "start (iteration 0)", f"frame 0's outcome: {text.get('outcome')}")
     check(len(ranges) == 1, f"one colour range in every frame: {ranges}")
     check(iters == list(range(n + 1)), f"frame k is iteration k: {iters}")
 

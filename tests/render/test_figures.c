@@ -858,6 +858,144 @@ static void test_supports(void)
     solved_free(&o);
 }
 
+/* The run record under the title wraps rather than running off the edge:
+ * twoblocks-paper's is too long for one line at 1200 and at 400 px; the
+ * right margin of the title rows stays white, a second line is drawn and
+ * the drawing moves down by it. A short one (hertz) stays one line. An
+ * animation's first frame (iterating, no iteration, an infinite error)
+ * carries the grey "start" band, not the warning colour. */
+static void test_subtitle(void)
+{
+    solved o, h;
+    solve_scene(&o, "twoblocks-paper", 4, 0);
+    solve_scene(&h, "hertz", 8, 0);
+    int sizes[2][2] = {{1200, 900}, {400, 300}};
+    for (int k = 0; k < 2; k++) {
+        cx_render_opts opt;
+        cx_render_opts_default(&opt);
+        opt.width = sizes[k][0];
+        opt.height = sizes[k][1];
+        test_png img;
+        if (render_read(o.r, &opt, &img) != 0) {
+            CX_CHECK(0);
+            continue;
+        }
+        cx_render_layout l, l0;
+        cx_render_layout_image(o.r, &opt, &l);
+        cx_render_layout_get(img.w, img.h, &l0);
+        double F = l.font;
+        CX_CHECK(l.area[1] > l0.area[1] + 0.9 * F);
+        /* nothing in the right margin (0.6 F) above the drawing */
+        int ink = 0;
+        for (int y = 0; y < (int)l0.area[1]; y++)
+            for (int x = (int)(img.w - 0.6 * F); x < img.w; x++) {
+                const unsigned char *c = test_png_px(&img, x, y);
+                ink += c[0] < 235 || c[1] < 235 || c[2] < 235;
+            }
+        CX_CHECK(ink == 0);
+        /* the second line: grey text in the left half of its row */
+        long second = 0;
+        for (int y = (int)(2.05 * F + 0.95 * F); y < (int)(2.05 * F + 1.7 * F); y++)
+            for (int x = 0; x < img.w / 2; x++) {
+                const unsigned char *c = test_png_px(&img, x, y);
+                second += c[0] < 160 && abs(c[0] - c[2]) < 10;
+            }
+        CX_CHECK(second > (k == 0 ? 100 : 10));
+        test_png_free(&img);
+        cx_render_layout_image(h.r, &opt, &l);
+        CX_CHECK(k == 1 || l.area[1] == l0.area[1]);
+    }
+    /* a title too long for one line (prism's is 88 characters) wraps at a
+     * space: the drawing moves down by a title line, the margin stays white */
+    {
+        cx_render_opts opt;
+        cx_render_opts_default(&opt);
+        opt.title = "Prism (paper 001): clamped prism pressed onto a rigid plane, Tresca (E, nu, loads chosen)";
+        test_png img;
+        if (render_read(h.r, &opt, &img) == 0) {
+            cx_render_layout l, l0;
+            cx_render_layout_image(h.r, &opt, &l);
+            cx_render_layout_get(img.w, img.h, &l0);
+            CX_CHECK(l.area[1] >= l0.area[1] + 1.4 * l.font);
+            int ink = 0;
+            for (int y = 0; y < (int)l.area[1]; y++)
+                for (int x = (int)(img.w - 0.6 * l.font); x < img.w; x++) {
+                    const unsigned char *c = test_png_px(&img, x, y);
+                    ink += c[0] < 235 || c[1] < 235 || c[2] < 235;
+                }
+            CX_CHECK(ink == 0);
+            /* the second title line: dark bold glyphs below the first */
+            long dark = 0;
+            for (int y = (int)(1.95 * l.font); y < (int)(3.0 * l.font); y++)
+                for (int x = 0; x < img.w / 3; x++)
+                    dark += test_png_px(&img, x, y)[0] < 60;
+            CX_CHECK(dark > 200);
+            test_png_free(&img);
+        } else {
+            CX_CHECK(0);
+        }
+    }
+    /* stackbond's note (scale, and the settled ground drawn s g away) is too
+     * long for the row beside the legend: two lines below the drawing
+     * area, neither cut off nor over the ground */
+    {
+        solved sb;
+        solve_scene(&sb, "stackbond", 5, 0);
+        cx_render_opts opt;
+        cx_render_opts_default(&opt);
+        test_png img;
+        if (render_read(sb.r, &opt, &img) == 0) {
+            cx_render_layout l;
+            cx_render_layout_image(sb.r, &opt, &l);
+            /* the ink below the drawing area spans two lines of the note
+             * font (0.8 F), and starts below the area */
+            int bottom = (int)ceil(l.area[1] + l.area[3]), first = -1, last = -1;
+            for (int y = bottom; y < img.h; y++) {
+                int ink = 0;
+                for (int x = (int)(0.75 * l.font); x < img.w / 2 && !ink; x++)
+                    ink = test_png_px(&img, x, y)[0] < 120;
+                if (ink && first < 0)
+                    first = y;
+                if (ink)
+                    last = y;
+            }
+            if (!(first > bottom && last - first + 1 >= 1.6 * 0.8 * l.font))
+                fprintf(stderr, "stackbond notes: ink rows %d..%d below %d\n", first, last, bottom);
+            CX_CHECK(first > bottom && last - first + 1 >= 1.6 * 0.8 * l.font);
+            test_png_free(&img);
+        } else {
+            CX_CHECK(0);
+        }
+        solved_free(&sb);
+    }
+    /* the start of a run */
+    cx_run_record keep = h.r->run;
+    h.r->run.reason = CX_ITERATING;
+    h.r->run.iterations = 0;
+    h.r->run.converged = 0;
+    h.r->run.kkt = INFINITY;
+    CX_CHECK(cx_render_unconverged(&h.r->run));
+    cx_render_opts opt;
+    cx_render_opts_default(&opt);
+    opt.width = 600;
+    opt.height = 450;
+    test_png img;
+    if (render_read(h.r, &opt, &img) == 0) {
+        cx_render_layout l;
+        cx_render_layout_image(h.r, &opt, &l);
+        CX_CHECK(l.banner[3] > 10);
+        const unsigned char *c = test_png_px(&img, (int)(l.banner[0] + l.banner[2] - 4), (int)(l.banner[1] + 0.5 * l.banner[3]));
+        CX_CHECK(c[0] == 89 && c[1] == 89 && c[2] == 89);
+        CX_CHECK(test_png_count(&img, (int)lround(255 * 0.66), (int)lround(255 * 0.22), 0, 4) < 20);
+        test_png_free(&img);
+    } else {
+        CX_CHECK(0);
+    }
+    h.r->run = keep;
+    solved_free(&o);
+    solved_free(&h);
+}
+
 int main(void)
 {
     test_masonry("stackbond", 1);
@@ -865,6 +1003,7 @@ int main(void)
     test_masonry("laminae", 0);
     test_hertz_contact();
     test_unconverged();
+    test_subtitle();
     test_units();
     test_legible();
     test_control();

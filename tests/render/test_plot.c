@@ -70,6 +70,31 @@ static void test_axis(void)
     CX_CHECK(a.exp10 == 0 && a.nticks >= 4);
     cx_axis_label(&a, 1e-3, lab, sizeof lab);
     CX_CHECK(strcmp(lab, "10⁻³") == 0);
+    /* log bars over few decades: 2 and 5 labelled, the rest minor ticks,
+     * ascending; under one decade every multiple */
+    cx_axis_colorbar(&a, 2e3, 3e5, 1, 8);
+    CX_CHECK(a.nticks == 7 && a.nminor > 0);
+    for (int i = 1; i < a.nticks; i++)
+        CX_CHECK(a.ticks[i] > a.ticks[i - 1]);
+    cx_axis_label(&a, a.ticks[0], lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "2×10³") == 0);
+    cx_axis_colorbar(&a, 1.2, 7.0, 1, 8);
+    CX_CHECK(a.nticks == 6 && a.ticks[0] == 2.0 && a.ticks[5] == 7.0);
+    cx_axis_colorbar(&a, 1e-3, 1e3, 1, 8);
+    CX_CHECK(a.nticks == 7 && a.nminor == 48);
+    /* the fewest decimals that write the ticks: a bar of -1e-3..0 in units
+     * of 10^-3 reads -1.0 ... -0.2, 0 (one decimal, not three); steps of
+     * 0.25 two */
+    cx_axis_colorbar(&a, -1.02e-3, 0.0, 0, 6);
+    CX_CHECK(a.exp10 == -3);
+    cx_axis_label(&a, a.ticks[0], lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "-1.0") == 0);
+    cx_axis_colorbar(&a, -1e-3, 1e-3, 0, 8);
+    cx_axis_label(&a, a.ticks[1], lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "-0.75") == 0);
+    cx_axis_make(&a, 0.0, 10.0, 0, 5, 1);
+    cx_axis_label(&a, a.ticks[1], lab, sizeof lab);
+    CX_CHECK(strcmp(lab, "2") == 0);
     /* moderate values: plain, no unit */
     cx_axis_colorbar(&a, 0.0, 262.0, 0, 6);
     CX_CHECK(a.exp10 == 0);
