@@ -24,6 +24,7 @@ static const char solve_usage[] =
 typedef struct {
     cx_solve_args s;          /* the options every solve has (base/opt_solve.h) */
     int json, baseline, quiet;
+    int backend;              /* --backend: 0 direct, 1 petsc */
     const char *vtu_series;   /* --vtu-series DIR */
     cli_render_args render;   /* --png, --vtu and the drawing options (cli/render.c) */
 } solve_args;
@@ -40,6 +41,9 @@ static const cx_opt solve_own_opts[] = {
      offsetof(solve_args, baseline), NULL},
     {"quiet", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no per-iteration lines", offsetof(solve_args, quiet),
      NULL},
+    {"backend", 0, CX_OPT_CHOICE, 0, 0, 0, "direct|petsc", "NAME",
+     "direct (sparse Cholesky, the default) | petsc (CG + GAMG on the MPI ranks: mpirun -n N signorini "
+     "solve ...; methods ssn-tresca, petsc-vi, petsc-tao)", offsetof(solve_args, backend), NULL},
     {"vtu-series", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR",
      "write every iterate as DIR/iter_NNNN.vtu and DIR/series.pvd (a ParaView time series, time = "
      "iteration); each iterate is completed first, as the explorer does", offsetof(solve_args, vtu_series),
@@ -67,7 +71,7 @@ static int solve_parse(int argc, char **argv, const char **scene, solve_args *a,
     if (npos == 0)
         return cx_diag_set(d, CX_EINVAL, "missing SCENE");
     /* a method id is a word of the registry: known before anything is built */
-    for (int k = 0; k < a->s.methods.n; k++) {
+    for (int k = 0; k < a->s.methods.n && !a->backend; k++) {   /* the PETSc backend checks its own */
         const char *id = a->s.methods.v[k];
         if (strcmp(id, "auto") != 0 && !cx_method_find(id))
             return cx_diag_set(d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", id);
@@ -156,7 +160,7 @@ static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it
     return 0;
 }
 
-static void solve_write_text(const cx_result *r, FILE *out)
+void cli_solve_write_text(const cx_result *r, FILE *out)
 {
     const cx_run_record *run = &r->run;
     char outcome[CX_DIAG_LEN + 160], b1[32], b2[32], b3[32], b4[32];
@@ -244,6 +248,9 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         return cli_usage(cmd, d.msg);
     if (strcmp(cmd, "render") == 0 && !a.render.png)
         return cli_usage(cmd, "missing --png FILE");
+    if (a.backend && (strcmp(cmd, "solve") != 0 || a.render.png || a.vtu_series || a.s.methods.n > 1 ||
+                      a.s.sets.n > 0))
+        return cli_usage(cmd, "--backend petsc: solve only, with one method, and no --set, --png or --vtu-series");
     cx_options opt;
     cx_options_default(&opt);
     opt.tol = a.s.tol;
@@ -284,7 +291,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     int is_auto = !a.s.method || strcmp(a.s.method, "auto") == 0;
     const cx_method *m = NULL;
     cx_param_values pv;
-    if (!is_auto) {
+    if (!is_auto && !a.backend) {
         m = cx_method_find(a.s.method);
         if (solve_method_params(m, "", &a, &pv, &d))
             return cli_usage(cmd, d.msg);   /* --set names a key or a value the method has not */
@@ -304,6 +311,12 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     if (cx_friction_check(&fr, 0, &d)) {
         cx_problem_destroy(&p);
         return cli_fail(cmd, d.msg);
+    }
+    if (a.backend) {   /* cli/solve_petsc.c */
+        cli_petsc_args pa = {a.s.method, a.s.level, a.json, a.quiet, a.baseline, a.render.vtu, t_assemble};
+        int code = cli_solve_petsc(cmd, &sc, p, &fr, &opt, &pa, summary);
+        cx_problem_destroy(&p);
+        return code;
     }
     if (is_auto) {
         const char *auto_sets;
@@ -378,7 +391,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     if (a.json)
         cx_result_write_json_history(res, &history, stdout);
     else
-        solve_write_text(res, summary);
+        cli_solve_write_text(res, summary);
     const cx_schur *S = a.baseline && !a.json ? cx_session_schur_built(s) : NULL;
     if (S) {   /* both orderings' predicted fill, when both were analysed */
         const cx_schur_ordering *o = cx_schur_ordering_of(S);

@@ -11,7 +11,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from clicheck import check, finish, run, usage_error  # noqa: E402
 
 SOLVE = {"method", "friction", "F", "slip", "level", "tol", "max-iter", "stop", "time-limit", "set",
-         "json", "baseline", "quiet", "vtu-series",
+         "json", "baseline", "quiet", "backend", "vtu-series",
          "png", "field", "scale", "font-scale", "cmap", "range", "title", "no-title", "size", "view", "edges", "vtu", "vtu-ascii", "plot", "timing"}
 BENCH = {"methods", "friction", "slip", "F", "max-iter", "time-limit", "repeat", "threads", "csv", "json",
          "png", "cache"}
