@@ -42,8 +42,9 @@ typedef struct {
     PetscInt *rows;            /* owned pinned rows */
     PetscScalar *vals;         /* their values */
     Mat A;
-    KSP ksp, ksp_sor;          /* CG + GAMG with Chebyshev smoothing (GAMG's default), and with SOR */
-    int sor;                   /* 1 once Chebyshev failed: SOR for the rest of the run */
+    KSP ksp[3];                /* CG + GAMG with Chebyshev smoothing (GAMG's default), with SOR;
+                                  CG + hypre's BoomerAMG */
+    int stage;                 /* the one in use: a failure moves on for the rest of the run */
     Vec U, B, X, R, U0;
 } ssn_ctx;
 
@@ -80,7 +81,11 @@ static void ssn_predict(ssn_ctx *c, const cx_friction_state *fr, const double *u
         c->set[m + 2 * i] = c->set[m + 2 * i + 1] = (signed char)slip;
         c->q[2 * i] = slip ? z[0] / nz : 0;
         c->q[2 * i + 1] = slip ? z[1] / nz : 0;
-        c->beta[i] = slip ? fr->s[i] * c->rho / (nz - fr->s[i]) : 0;
+        /* capped at 100 times the stiffest dof of K: beta grows without
+         * bound as |z| comes down to s, and a spring of 1e10 kscale left
+         * GAMG's preconditioner indefinite or failed (prism 8, step 8). The
+         * cap changes the step, not the solution (at it, P T u = 0) */
+        c->beta[i] = slip ? fmin(fr->s[i] * c->rho / (nz - fr->s[i]), 1e2 * c->sys->kscale) : 0;
     }
 }
 
@@ -190,10 +195,9 @@ static void ssn_clear(ssn_ctx *c)
 {
     if (c->A)
         MatDestroy(&c->A);
-    if (c->ksp)
-        KSPDestroy(&c->ksp);
-    if (c->ksp_sor)
-        KSPDestroy(&c->ksp_sor);
+    for (int k = 0; k < 3; k++)
+        if (c->ksp[k])
+            KSPDestroy(&c->ksp[k]);
     if (c->U0)
         VecDestroy(&c->U0);
     if (c->U)
@@ -220,7 +224,9 @@ static void ssn_clear(ssn_ctx *c)
  * large as |z| is close to s, and Chebyshev's eigenvalue estimate then
  * made the preconditioner indefinite (prism 5; prism 3 on 2 ranks); SOR
  * in turn failed on a coarse level of hertz 128 (a zero pivot), so a run
- * starts with Chebyshev and changes for good at the first such step. */
+ * starts with Chebyshev and changes for good at the first such step; and
+ * where both failed (prism 8, step 8: "SUBPC_ERROR" after 4 iterations),
+ * prefix "cx_hypre_" takes hypre's BoomerAMG, where PETSc has it. */
 static int ssn_ksp(px_system *sys, const char *prefix, KSP *ksp, cx_diag *d)
 {
     int status = CX_OK;
@@ -231,7 +237,11 @@ static int ssn_ksp(px_system *sys, const char *prefix, KSP *ksp, cx_diag *d)
     PX(KSPSetInitialGuessNonzero(*ksp, PETSC_TRUE));
     PX(KSPConvergedDefaultSetUIRNorm(*ksp));
     PX(KSPGetPC(*ksp, &pc));
+#ifdef PETSC_HAVE_HYPRE
+    PX(PCSetType(pc, strcmp(prefix, "cx_hypre_") == 0 ? PCHYPRE : PCGAMG));
+#else
     PX(PCSetType(pc, PCGAMG));
+#endif
     PX(KSPSetOptionsPrefix(*ksp, prefix));   /* PETSC_OPTIONS="-cx_ksp_monitor ..." */
     if (strcmp(prefix, "cx_sor_") == 0) {
         static const char *const dflt[][2] = {{"-cx_sor_mg_levels_ksp_type", "richardson"},
@@ -285,8 +295,9 @@ int px_ssn_solve(px_run *run, cx_diag *d)
     PX(VecDuplicate(c.U, &c.X));
     PX(VecDuplicate(c.U, &c.R));
     PX(VecSet(c.U, 0.0));
-    if ((status = ssn_ksp(sys, "cx_", &c.ksp, d)) != CX_OK ||
-        (status = ssn_ksp(sys, "cx_sor_", &c.ksp_sor, d)) != CX_OK)
+    if ((status = ssn_ksp(sys, "cx_", &c.ksp[0], d)) != CX_OK ||
+        (status = ssn_ksp(sys, "cx_sor_", &c.ksp[1], d)) != CX_OK ||
+        (status = ssn_ksp(sys, "cx_hypre_", &c.ksp[2], d)) != CX_OK)
         goto fail;
     PX(VecDuplicate(c.U, &c.U0));
 
@@ -312,7 +323,7 @@ int px_ssn_solve(px_run *run, cx_diag *d)
         PetscInt its, its0 = 0;
         PX(VecCopy(c.U, c.U0));
         for (;;) {
-            KSP ksp = c.sor ? c.ksp_sor : c.ksp;
+            KSP ksp = c.ksp[c.stage];
             PX(KSPSetOperators(ksp, c.A, c.A));
             PX(KSPSetTolerances(ksp, eta, 0.0, PETSC_DEFAULT, 100000));
             PX(KSPSolve(ksp, c.B, c.U));
@@ -321,17 +332,17 @@ int px_ssn_solve(px_run *run, cx_diag *d)
             PX(KSPGetIterationNumber(ksp, &its));
             r->krylov += its;
             its += its0;
-            if (kr >= 0 || c.sor || (kr != KSP_DIVERGED_INDEFINITE_PC && kr != KSP_DIVERGED_PC_FAILED))
+            if (kr >= 0 || c.stage == 2 || (kr != KSP_DIVERGED_INDEFINITE_PC && kr != KSP_DIVERGED_PC_FAILED))
                 break;
-            /* Chebyshev's estimate failed: this step and the next by SOR */
-            c.sor = 1;
+            /* the preconditioner failed: this step and the next by the next one */
+            c.stage++;
             its0 = its;
             PX(VecCopy(c.U0, c.U));
         }
         if (kr < 0) {
             PC pc;
             PCFailedReason pr = PC_NOERROR;
-            PX(KSPGetPC(c.sor ? c.ksp_sor : c.ksp, &pc));
+            PX(KSPGetPC(c.ksp[c.stage], &pc));
             PX(PCGetFailedReasonRank(pc, &pr));
             snprintf(r->message, sizeof r->message, "step %d: CG + GAMG stopped: %s after %d iterations%s%s", k,
                      KSPConvergedReasons[kr], (int)its, pr != PC_NOERROR ? ", preconditioner: " : "",
