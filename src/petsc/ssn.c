@@ -82,9 +82,11 @@ static void ssn_predict(ssn_ctx *c, const cx_friction_state *fr, const double *u
         c->q[2 * i] = slip ? z[0] / nz : 0;
         c->q[2 * i + 1] = slip ? z[1] / nz : 0;
         /* capped at 100 times the stiffest dof of K: beta grows without
-         * bound as |z| comes down to s, and a spring of 1e10 kscale left
-         * GAMG's preconditioner indefinite or failed (prism 8, step 8). The
-         * cap changes the step, not the solution (at it, P T u = 0) */
+         * bound as |z| comes down to s, and a spring far stiffer than K
+         * only worsens the Krylov solve's conditioning. A guard, not a
+         * fix: it did not change prism 8's preconditioner failure at step
+         * 8 (ssn_ksp). It changes the step, not the solution (there,
+         * P T u = 0) */
         c->beta[i] = slip ? fmin(fr->s[i] * c->rho / (nz - fr->s[i]), 1e2 * c->sys->kscale) : 0;
     }
 }
