@@ -20,6 +20,18 @@ int cli_export(int argc, char **argv);  /* cli/export.c */
  * path with a's method, friction and --set, opt's stopping rules. */
 int cli_solve_problem(const char *cmd, const char *path, const cx_solve_args *a, const cx_options *opt, int json,
                       int quiet);
+/* The summary of a result (solve's text output). */
+void cli_solve_write_text(const cx_result *r, FILE *out);
+/* solve --backend petsc (cli/solve_petsc.c): the problem built on every
+ * rank solved by the PETSc backend; rank 0 prints and writes. */
+typedef struct cli_petsc_args {
+    const char *method;   /* NULL or "auto": ssn-tresca */
+    int level, json, quiet, baseline;
+    const char *vtu;      /* --vtu FILE (NULL: none) */
+    double t_assemble;
+} cli_petsc_args;
+int cli_solve_petsc(const char *cmd, const cx_scene *sc, const cx_problem *p, const cx_friction_state *fr,
+                    const cx_options *opt, const cli_petsc_args *a, FILE *summary);
 /* 'solve' under another command name and usage (render: the same options,
  * and --png required). */
 int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv);

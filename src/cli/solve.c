@@ -25,6 +25,7 @@ static const char solve_usage[] =
 typedef struct {
     cx_solve_args s;          /* the options every solve has (base/opt_solve.h) */
     int json, baseline, quiet;
+    int backend;              /* --backend: 0 direct, 1 petsc */
     const char *vtu_series;   /* --vtu-series DIR */
     const char *problem;      /* --problem DIR|FILE (cli/solve_problem.c) */
     cli_render_args render;   /* --png, --vtu and the drawing options (cli/render.c) */
@@ -45,6 +46,9 @@ static const cx_opt solve_own_opts[] = {
      "of MatrixMarket files or an FCLIB .hdf5) instead of a SCENE", offsetof(solve_args, problem), NULL},
     {"quiet", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no per-iteration lines", offsetof(solve_args, quiet),
      NULL},
+    {"backend", 0, CX_OPT_CHOICE, 0, 0, 0, "direct|petsc", "NAME",
+     "direct (sparse Cholesky, the default) | petsc (CG + GAMG on the MPI ranks: mpirun -n N signorini "
+     "solve ...; methods ssn-tresca, petsc-vi, petsc-tao)", offsetof(solve_args, backend), NULL},
     {"vtu-series", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR",
      "write every iterate as DIR/iter_NNNN.vtu and DIR/series.pvd (a ParaView time series, time = "
      "iteration); each iterate is completed first, as the explorer does", offsetof(solve_args, vtu_series),
@@ -74,7 +78,7 @@ static int solve_parse(int argc, char **argv, const char **scene, solve_args *a,
     if (npos > 0 && a->problem)
         return cx_diag_set(d, CX_EINVAL, "a SCENE and --problem: give one");
     /* a method id is a word of the registry: known before anything is built */
-    for (int k = 0; k < a->s.methods.n; k++) {
+    for (int k = 0; k < a->s.methods.n && !a->backend; k++) {   /* the PETSc backend checks its own */
         const char *id = a->s.methods.v[k];
         if (strcmp(id, "auto") != 0 && !cx_method_find(id))
             return cx_diag_set(d, CX_EINVAL, "--method: unknown method '%s' (see 'signorini list')", id);
@@ -164,7 +168,7 @@ static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it
     return 0;
 }
 
-static void solve_write_text(const cx_result *r, FILE *out)
+void cli_solve_write_text(const cx_result *r, FILE *out)
 {
     const cx_run_record *run = &r->run;
     char outcome[CX_DIAG_LEN + 160], b1[32], b2[32], b3[32], b4[32];
@@ -253,6 +257,10 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         return cli_usage(cmd, d.msg);
     if (strcmp(cmd, "render") == 0 && !cli_render_wanted(&a.render))
         return cli_usage(cmd, "missing --png FILE (or --svg, --pdf, --gif, --frames)");
+    if (a.backend && (strcmp(cmd, "solve") != 0 || cli_render_wanted(&a.render) || a.vtu_series || a.problem ||
+                      a.s.methods.n > 1 || a.s.sets.n > 0))
+        return cli_usage(cmd, "--backend petsc: solve SCENE only, with one method, and no --set, --problem, --png or "
+                         "--vtu-series");
     cx_options opt;
     cx_options_default(&opt);
     opt.tol = a.s.tol;
@@ -299,7 +307,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     int is_auto = !a.s.method || strcmp(a.s.method, "auto") == 0;
     const cx_method *m = NULL;
     cx_param_values pv;
-    if (!is_auto) {
+    if (!is_auto && !a.backend) {
         m = cx_method_find(a.s.method);
         if (solve_method_params(m, "", &a, &pv, &d))
             return cli_usage(cmd, d.msg);   /* --set names a key or a value the method has not */
@@ -325,6 +333,12 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     if (cx_friction_check(&fr, 0, &d)) {
         cx_problem_destroy(&p);
         return cli_fail(cmd, d.msg);
+    }
+    if (a.backend) {   /* cli/solve_petsc.c */
+        cli_petsc_args pa = {a.s.method, a.s.level, a.json, a.quiet, a.baseline, a.render.vtu, t_assemble};
+        int code = cli_solve_petsc(cmd, &sc, p, &fr, &opt, &pa, summary);
+        cx_problem_destroy(&p);
+        return code;
     }
     if (is_auto) {
         const char *auto_sets;
@@ -407,7 +421,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     if (a.json)
         cx_result_write_json_history(res, &history, stdout);
     else
-        solve_write_text(res, summary);
+        cli_solve_write_text(res, summary);
     const cx_schur *S = a.baseline && !a.json ? cx_session_schur_built(s) : NULL;
     if (S) {   /* both orderings' predicted fill, when both were analysed */
         const cx_schur_ordering *o = cx_schur_ordering_of(S);

@@ -15,6 +15,12 @@ with tempfile.TemporaryDirectory() as tmp:
         d = os.path.join(src, layer)
         if not os.path.isdir(d):
             continue
+        extra = []
+        if layer == "petsc":   # the one layer built with PETSc and MPI (a build without them skips it)
+            r = subprocess.run(["pkg-config", "--cflags", "PETSc", "mpi"], capture_output=True, text=True)
+            if r.returncode != 0:
+                continue
+            extra = r.stdout.split()
         for name in sorted(os.listdir(d)):
             if not name.endswith(".h"):
                 continue
@@ -24,7 +30,7 @@ with tempfile.TemporaryDirectory() as tmp:
                 f.write(f'#include "{layer}/{name}"\n#include "{layer}/{name}"\n')
             r = subprocess.run(cc + ["-std=c11", "-D_POSIX_C_SOURCE=200809L", "-Wall", "-Wextra",
                                      "-Werror", "-fsyntax-only", "-I", src, "-I", builddir,
-                                     "-I/usr/include/suitesparse", unit],
+                                     "-I/usr/include/suitesparse"] + extra + [unit],
                                capture_output=True, text=True)
             if r.returncode != 0:
                 failed += 1

@@ -6,12 +6,15 @@ The program layers (cli/, tui/) sit on top and never include each other,
 nor declare or call each other's functions (cli_*, tui_*) by hand. The
 program itself, src/main.c, stands above them all and is the one file of
 src/ outside a layer: it may include any layer. The library (base/ up to
-render/) installs no signal handler: Ctrl-C belongs to the programs."""
+render/) installs no signal handler: Ctrl-C belongs to the programs.
+The PETSc backend (petsc/) sits above solve/ in its own library; no other
+file includes a PETSc or MPI header, so that the core library and the
+Python package pull in MPI only when asked."""
 import os
 import re
 import sys
 
-ORDER = ["base", "linalg", "mesh", "fem", "contact", "solve", "scene", "out", "render", "bench"]
+ORDER = ["base", "linalg", "mesh", "fem", "contact", "solve", "petsc", "scene", "out", "render", "bench"]
 PROGRAM = ["tui", "cli"]
 
 src = sys.argv[1]
@@ -26,6 +29,7 @@ call = {"cli": re.compile(r'\btui_[a-z0-9_]+\s*\('), "tui": re.compile(r'\bcli_[
 comment = re.compile(r'/\*.*?\*/|//[^\n]*', re.S)
 LIBRARY = ORDER[:ORDER.index("render") + 1]
 handler = re.compile(r'\b(signal|sigaction)\s*\(')
+external_mpi = re.compile(r'^\s*#\s*include\s+<(petsc[a-z]*\.h|mpi\.h)>')
 bad = []
 for layer in sorted(os.listdir(src)):
     path = os.path.join(src, layer)
@@ -59,6 +63,8 @@ for layer in sorted(os.listdir(src)):
                     bad.append(f"src/{layer}/{name}:{lineno}: '{layer}' names '{m.group(0).rstrip('( ')}' "
                                f"of the other program layer (the program, src/{MAIN}, joins them)")
         for lineno, line in enumerate(text.splitlines(), 1):
+            if layer != "petsc" and external_mpi.match(line):
+                bad.append(f"src/{layer}/{name}:{lineno}: only src/petsc/ includes PETSc or MPI headers")
             m = include.match(line)
             if not m or m.group(1) == layer:
                 continue

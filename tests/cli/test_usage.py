@@ -11,7 +11,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from clicheck import check, finish, run, usage_error  # noqa: E402
 
 SOLVE = {"method", "friction", "F", "slip", "level", "tol", "max-iter", "stop", "time-limit", "set",
-         "json", "baseline", "quiet", "vtu-series", "problem",
+         "json", "baseline", "quiet", "backend", "vtu-series", "problem",
          "png", "field", "scale", "font-scale", "cmap", "range", "title", "no-title", "size", "view", "edges", "vtu", "vtu-ascii", "plot", "timing"}
 SOLVE |= {"camera", "crop", "mirror"}   # render's camera and framing (issue 22)
 SOLVE |= {"svg", "pdf", "log", "frames", "gif", "every"}   # render/: vector files, log scale, animation

@@ -1,0 +1,138 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* The backend's one entry: the methods' table, the run's bookkeeping (the
+ * kkt error, the limits, the observer) in one place, as solve/solver.c
+ * does for the direct path, and what each rank did. */
+#include "petsc/petsc_impl.h"
+
+#include <math.h>
+#include <string.h>
+
+static const cx_petsc_method px_methods[] = {
+    {"ssn-tresca", "primal semismooth Newton / active set, CG + GAMG per step (000 §4.2 without the Schur "
+                   "reduction)", CX_FRICTIONLESS | CX_TRESCA},
+    {"petsc-vi", "PETSc SNES vinewtonrsls: reduced-space active-set Newton on the bounds", CX_FRICTIONLESS},
+    {"petsc-tao", "PETSc TAO tron: trust-region Newton with gradient projection on the energy", CX_FRICTIONLESS},
+};
+#define PX_NMETHODS ((int)(sizeof px_methods / sizeof px_methods[0]))
+
+const cx_petsc_method *cx_petsc_method_at(int k)
+{
+    return k >= 0 && k < PX_NMETHODS ? &px_methods[k] : NULL;
+}
+
+const cx_petsc_method *cx_petsc_method_find(const char *id)
+{
+    for (int k = 0; id && k < PX_NMETHODS; k++)
+        if (strcmp(px_methods[k].id, id) == 0)
+            return &px_methods[k];
+    return NULL;
+}
+
+void cx_petsc_result_clear(cx_petsc_result *r)
+{
+    cx_free(r->u);
+    cx_free(r->lN);
+    cx_free(r->lT);
+    cx_free(r->rows);
+    cx_free(r->elems);
+    cx_free(r->mem_peak);
+    memset(r, 0, sizeof *r);
+}
+
+int px_run_check(px_run *run, int iter, int ncontact, int nstick, int nslip, int nchanged, int krylov,
+                 double rtol)
+{
+    const cx_problem *p = run->sys->p;
+    cx_petsc_result *r = run->r;
+    /* every rank holds the same iterate: the same error everywhere */
+    r->kkt = cx_kkt_error(p, run->fr, r->u, r->lN, r->lT, run->work, NULL, &r->kkt_parts);
+    r->iterations = iter;
+    cx_petsc_step st = {iter, r->kkt, ncontact, nstick, nslip, nchanged, krylov, rtol,
+                        cx_clock_now() - run->t0};
+    int stop = run->obs && run->obs(run->ctx, &st) != 0;
+    /* what differs between ranks (the clock, an observer) is decided by
+     * all of them together, so that none is left waiting in a collective */
+    int late = run->opt->time_limit > 0 && st.time > run->opt->time_limit;
+    int flags[2] = {stop, late}, all[2];
+    MPI_Allreduce(flags, all, 2, MPI_INT, MPI_MAX, run->sys->comm);
+    /* stalled as the direct path's solver says it: no fall below half the
+     * best error for stall_window iterations */
+    if (r->kkt < 0.5 * run->best || iter == 1) {
+        run->best = r->kkt;
+        run->best_iter = iter;
+    }
+    if (!isfinite(r->kkt))
+        r->reason = CX_DIVERGED_NAN;
+    else if (r->kkt <= run->opt->tol)
+        r->reason = CX_CONVERGED_KKT;
+    else if (all[0])
+        r->reason = CX_CANCELLED;
+    else if (all[1])
+        r->reason = CX_DIVERGED_TIME;
+    else if (iter >= run->opt->max_iter)
+        r->reason = CX_DIVERGED_MAXIT;
+    else if (run->opt->stall_window > 0 && iter - run->best_iter >= run->opt->stall_window)
+        r->reason = CX_DIVERGED_STALL;
+    return r->reason != CX_ITERATING;
+}
+
+int cx_petsc_solve(const cx_problem *p, const cx_friction_state *fr, const char *method,
+                   const cx_options *opt, cx_petsc_observer obs, void *ctx, cx_petsc_result *r,
+                   cx_diag *d)
+{
+    CX_TRY(cx_petsc_initialize(d));
+    CX_TRY(cx_petsc_check(p, method, fr->law, d));
+    memset(r, 0, sizeof *r);
+    r->kkt = NAN;   /* no iterate yet */
+    int status = CX_OK;
+    px_system sys = {0};
+    double *s = NULL;
+    cx_friction_state frs = *fr;
+    r->nranks = cx_petsc_size();
+    r->u = CX_NEW(double, p->n + 1);
+    r->lN = CX_NEW(double, p->m + 1);
+    r->lT = CX_NEW(double, p->nt + 1);
+    r->rows = CX_NEW(int, r->nranks);
+    r->elems = CX_NEW(int, r->nranks);
+    r->mem_peak = CX_NEW(double, r->nranks);
+    double *work = CX_NEW(double, p->n + p->m + p->nt + 1);
+    if (fr->law == CX_FRICTION_TRESCA && !fr->s) {   /* the session's rule: s_i = bound x weight_i */
+        s = CX_NEW(double, p->m + 1);
+        for (int i = 0; s && i < p->m; i++)
+            s[i] = fr->slip_bound * p->contact.weight[i];
+        frs.s = s;
+    }
+    if (!r->u || !r->lN || !r->lT || !r->rows || !r->elems || !r->mem_peak || !work ||
+        (fr->law == CX_FRICTION_TRESCA && !frs.s)) {
+        status = cx_diag_set(d, CX_ENOMEM, "out of memory");
+        goto fail;
+    }
+    double t0 = cx_clock_now();
+    if ((status = px_system_create(&sys, p, fr->law == CX_FRICTION_TRESCA, d)) != CX_OK)
+        goto fail;
+    r->t_setup = cx_clock_now() - t0;
+    px_run run = {&sys, &frs, opt, obs, ctx, r, work, cx_clock_now(), INFINITY, 0};
+    if (strcmp(method, "petsc-vi") == 0)
+        status = px_vi_solve(&run, d);
+    else if (strcmp(method, "petsc-tao") == 0)
+        status = px_tao_solve(&run, d);
+    else
+        status = px_ssn_solve(&run, d);
+    r->t_solve = cx_clock_now() - run.t0;
+    if (status != CX_OK)
+        goto fail;
+    if ((status = px_allgather_int(&sys, (int)(sys.rend - sys.rstart), r->rows, d)) != CX_OK ||
+        (status = px_allgather_int(&sys, sys.nelems, r->elems, d)) != CX_OK ||
+        (status = px_allgather_double(&sys, px_peak_memory(), r->mem_peak, d)) != CX_OK)
+        goto fail;
+    px_system_destroy(&sys);
+    cx_free(work);
+    cx_free(s);
+    return CX_OK;
+fail:
+    px_system_destroy(&sys);
+    cx_free(work);
+    cx_free(s);
+    cx_petsc_result_clear(r);
+    return status;
+}

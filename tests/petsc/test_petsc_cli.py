@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""signorini solve --backend petsc as a user runs it: alone and under
+mpirun -n 2 (rank 0 alone prints: one summary, a line per rank), the
+refusals with their reasons (contact rows off the axes, Tresca for the
+peers, options the backend has not), and the JSON and VTU it writes."""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+exe = sys.argv[1]
+failed = 0
+
+
+def run(args, mpi=0):
+    cmd = ([shutil.which("mpirun"), "-n", str(mpi)] if mpi else []) + [exe] + args
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=500)
+
+
+def check(cond, what, r=None):
+    global failed
+    if not cond:
+        failed += 1
+        print(f"FAIL: {what}")
+        if r is not None:
+            print(r.stdout[-2000:], r.stderr[-2000:])
+    else:
+        print(f"ok: {what}")
+
+
+# one rank, no mpirun: converges, prints the rank line
+r = run(["solve", "hertz", "--level", "32", "--backend", "petsc"])
+check(r.returncode == 0 and "converged" in r.stdout and "(petsc, 1 rank)" in r.stdout
+      and re.search(r"rank 0: \d+ rows, 2048 elements assembled", r.stdout), "hertz 32 alone", r)
+contact1 = re.search(r"contact x 0 y (\S+)", r.stdout)
+
+# two ranks: one summary (rank 0's), both ranks' lines, the elements split
+if shutil.which("mpirun"):
+    r = run(["solve", "hertz", "--level", "32", "--backend", "petsc"], mpi=2)
+    elems = [int(x) for x in re.findall(r"rank \d: \d+ rows, (\d+) elements", r.stdout)]
+    check(r.returncode == 0 and r.stdout.count("converged in") == 1 and "(petsc, 2 ranks)" in r.stdout
+          and len(elems) == 2 and sum(elems) == 2048 and min(elems) > 0, "hertz 32 on 2 ranks", r)
+    contact2 = re.search(r"contact x 0 y (\S+)", r.stdout)
+    check(contact1 and contact2 and abs(float(contact1.group(1)) - float(contact2.group(1))) < 1e-6 * 800,
+          "the same contact force on 1 and 2 ranks", r)
+
+# a contact row off the axes (node to segment between two bodies): refused with the reason
+r = run(["solve", "twoblocks", "--backend", "petsc"])
+check(r.returncode == 1 and "acts on more than one dof" in r.stderr and "flat obstacles along an axis" in r.stderr,
+      "twoblocks refused", r)
+# the peers take no Tresca friction
+r = run(["solve", "slider", "--backend", "petsc", "--method", "petsc-vi"])
+check(r.returncode == 1 and "does not solve tresca friction" in r.stderr, "petsc-vi refuses Tresca", r)
+r = run(["solve", "hertz", "--backend", "petsc", "--method", "pdas"])
+check(r.returncode == 1 and "unknown method 'pdas'" in r.stderr, "a direct-path method refused", r)
+r = run(["solve", "hertz", "--backend", "petsc", "--set", "rho=1"])
+check(r.returncode == 2 and "--backend petsc" in r.stderr, "--set refused", r)
+r = run(["render", "hertz", "--backend", "petsc", "--png", "x.png"])
+check(r.returncode == 2, "render refuses the backend", r)
+
+# JSON and VTU from rank 0
+with tempfile.TemporaryDirectory() as tmp:
+    vtu = os.path.join(tmp, "s.vtu")
+    r = run(["solve", "block3d", "--level", "4", "--backend", "petsc", "--method", "petsc-tao", "--json",
+             "--vtu", vtu], mpi=2 if shutil.which("mpirun") else 0)
+    ok = r.returncode == 0
+    if ok:
+        j = json.loads(r.stdout)
+        ok = j.get("method") == "petsc-tao" or j.get("run", {}).get("method") == "petsc-tao" or "petsc-tao" in r.stdout
+        ok = ok and os.path.getsize(vtu) > 1000
+    check(ok, "block3d 4 petsc-tao: JSON on stdout, a VTU file", r)
+
+print(f"petsc cli: {failed} failed")
+sys.exit(1 if failed else 0)
