@@ -168,6 +168,8 @@ static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it
     return 0;
 }
 
+#define SOLVE_BODY_LINES 4   /* bodies listed one a line; more: a summary */
+
 void cli_solve_write_text(const cx_result *r, FILE *out)
 {
     const cx_run_record *run = &r->run;
@@ -181,10 +183,21 @@ void cli_solve_write_text(const cx_result *r, FILE *out)
     fprintf(out, "force:   applied");
     for (int k = 0; k < r->dim; k++)
         fprintf(out, " %c %s", axes[k], solve_num(b1, sizeof b1, "%.6g", r->f_applied[k]));
-    fprintf(out, ";  contact");
+    /* several bodies: the rigid obstacles' force on them all, then each
+     * body's contact force (a wall of many bodies: their count) */
+    fprintf(out, r->nbodies > 1 ? ";  from rigid obstacles" : ";  contact");
     for (int k = 0; k < r->dim; k++)
         fprintf(out, " %c %s", axes[k], solve_num(b1, sizeof b1, "%.6g", r->f_contact[k]));
+    if (r->nbodies > SOLVE_BODY_LINES)
+        fprintf(out, " (on %d of %d bodies)", r->nbodies_obstacle, r->nbodies);
     fprintf(out, "\n");
+    for (int b = 0; r->nbodies > 1 && b < r->nbodies && r->nbodies <= SOLVE_BODY_LINES; b++) {
+        fprintf(out, "         contact on body %d", b + 1);
+        for (int k = 0; k < r->dim; k++)
+            fprintf(out, " %c %s", axes[k],
+                    solve_num(b1, sizeof b1, "%.6g", r->f_contact_body[r->dim * b + k]));
+        fprintf(out, "\n");
+    }
     if (run->has_pressure_error)
         fprintf(out, "pressure vs Hertz: L2 error %s (%s %%), %s %s computed, %s = %s Hertz\n",
                 solve_num(b1, sizeof b1, "%.4g", run->pressure_error_abs),

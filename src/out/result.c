@@ -72,8 +72,73 @@ void cx_result_destroy(cx_result **r)
     cx_free(x->stress_cache);
     cx_free(x->vm_cache);
     cx_free(x->tu);
+    cx_free(x->f_contact_body);
     cx_free(x);
     *r = NULL;
+}
+
+/* The contact forces of the result (result.h, f_contact): every entry of
+ * the rows N (and T with friction) is a nodal force -lN_i N_ij on the
+ * node of all-dof j, added to that node's body. A row on one node only is
+ * a rigid obstacle's; the rows between bodies touch two or three nodes. */
+static int result_contact_forces(cx_result *x, const cx_problem *p, int friction)
+{
+    const cx_mesh *pm = p->mesh;
+    const cx_contact_set *c = &p->contact;
+    int dim = p->dim, dt = dim - 1, nn = pm->nnodes, m = p->m;
+    x->nbodies = pm->nbodies > 1 && pm->body ? pm->nbodies : 1;
+    x->f_contact_body = CX_NEW(double, (size_t)dim * x->nbodies);
+    int *bof = CX_NEW(int, (size_t)nn + 1);      /* body of a node */
+    int *rown = CX_NEW(int, (size_t)m + 1);      /* the node of a row, -2: several */
+    unsigned char *hit = CX_NEW(unsigned char, (size_t)x->nbodies);
+    if (!x->f_contact_body || !bof || !rown || !hit) {
+        cx_free(bof);
+        cx_free(rown);
+        cx_free(hit);
+        return CX_ENOMEM;
+    }
+    if (x->nbodies > 1)
+        for (int e = 0; e < pm->nelems; e++)
+            for (int a = 0; a < pm->npe; a++)
+                bof[pm->conn[pm->npe * e + a]] = pm->body[e];
+    for (int i = 0; i < m; i++)
+        rown[i] = -1;
+    for (size_t k = 0; k < c->N.nnz; k++) {
+        int i = c->N.i[k], node = c->N.j[k] / dim;
+        if (i < m && c->N.j[k] < dim * nn)
+            rown[i] = rown[i] == -1 || rown[i] == node ? node : -2;
+    }
+    /* one pass over N, one over T: lam is lN or lT, its row's point i */
+    for (int pass = 0; pass < (friction ? 2 : 1); pass++) {
+        const cx_triplet *R = pass ? &c->T : &c->N;
+        const double *lam = pass ? x->lT : x->lN;
+        int rows = pass ? p->nt : m, per = pass ? dt : 1;
+        for (size_t k = 0; k < R->nnz; k++) {
+            int r = R->i[k], j = R->j[k];
+            if (r >= rows || j >= dim * nn)
+                continue;
+            double f = -lam[r] * R->x[k];
+            int node = j / dim, comp = j % dim, i = r / per;
+            x->f_contact_body[dim * bof[node] + comp] += f;
+            if (node == c->node[i])
+                x->f_points[comp] += f;
+            if (rown[i] >= 0)
+                x->f_contact[comp] += f;
+        }
+    }
+    /* in contact: lN above roundoff (1e-12 of the largest) */
+    double lmax = 0;
+    for (int i = 0; i < m; i++)
+        lmax = fmax(lmax, x->lN[i]);
+    for (int i = 0; i < m; i++)
+        if (rown[i] >= 0 && x->lN[i] > 1e-12 * lmax)
+            hit[bof[rown[i]]] = 1;
+    for (int b = 0; b < x->nbodies; b++)
+        x->nbodies_obstacle += hit[b];
+    cx_free(bof);
+    cx_free(rown);
+    cx_free(hit);
+    return CX_OK;
 }
 
 int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state *fr,
@@ -119,16 +184,10 @@ int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state
     for (size_t k = 0; k < T->nnz; k++)
         if (T->i[k] < p->nt && T->j[k] < p->dim * pm->nnodes)
             x->tu[T->i[k]] += T->x[k] * x->u[T->j[k]];
-    /* the contact's resultant on the body: -(N'lN + T'lT), per component */
-    const cx_contact_set *c = &p->contact;
-    int dim = p->dim, dt = dim - 1;
-    for (int i = 0; i < p->m; i++)
-        for (int k = 0; k < dim; k++) {
-            x->f_contact[k] -= x->lN[i] * c->normal[dim * i + k];
-            if (fr->law != CX_FRICTION_NONE)
-                for (int q = 0; q < dt; q++)
-                    x->f_contact[k] -= x->lT[dt * i + q] * c->tangent[dim * (dt * i + q) + k];
-        }
+    if (result_contact_forces(x, p, fr->law != CX_FRICTION_NONE) != CX_OK) {
+        cx_result_destroy(&x);
+        return cx_diag_set(d, CX_ENOMEM, "result: out of memory");
+    }
     x->run.friction = fr->law;
     x->run.F = fr->F;
     x->run.slip_bound = fr->slip_bound;

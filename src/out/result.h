@@ -79,7 +79,24 @@ typedef struct cx_result {
     int nobstacles;           /* every rigid obstacle (a ring between two plates: 2) */
     cx_obstacle obstacles[CX_RESULT_MAX_OBSTACLES];
     double f_applied[3];      /* resultant of the applied loads */
-    double f_contact[3];      /* of the contact on the body: -(N'lN + T'lT) */
+    /* The contact's forces, from the rows N and T (all-dof numbering):
+     * -(N'lN + T'lT) is a nodal force on every node a row touches, so a
+     * node-to-node or node-to-segment row acts on both of its bodies
+     * with opposite forces. f_contact is their sum over all bodies, which
+     * is the force of the rigid obstacles alone (the rows between bodies
+     * cancel): it is summed over the rigid-obstacle rows (a row on one
+     * node); one body: the contact force on it. */
+    double f_contact[3];
+    int nbodies;              /* mesh->nbodies (1 if the mesh has no body ids) */
+    double *f_contact_body;   /* dim * nbodies: the contact force on body b,
+                                 -(N'lN + T'lT) summed over b's nodes; with
+                                 b's applied load and its support reactions it
+                                 balances */
+    int nbodies_obstacle;     /* bodies with a rigid-obstacle point in contact
+                                 (lN above 1e-12 of the largest lN) */
+    /* -(lN n + lT t) summed over the points (at their slave nodes): what the
+     * VTU's tractions x weights sum to; one body's force only for one body */
+    double f_points[3];
     double *u;                /* dim * nnodes: the full displacement */
     double *lN;               /* m */
     double *lT;               /* nt */

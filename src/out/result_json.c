@@ -6,6 +6,8 @@
 
 #include <math.h>
 
+#define RJ_MAX_BODIES 1000
+
 int cx_history_add(cx_history *h, const cx_iterate *it)
 {
     if (h->n == h->cap) {
@@ -134,6 +136,20 @@ int cx_result_write_json_history(const cx_result *r, const cx_history *h, FILE *
     cx_json_object(&j, "force");
     cx_json_vec(&j, "applied", r->f_applied, r->dim);
     cx_json_vec(&j, "contact", r->f_contact, r->dim);
+    if (r->nbodies > 1) {
+        /* several bodies: "contact" is the rigid obstacles' force on them all;
+         * each body's own up to RJ_MAX_BODIES bodies (a fine masonry wall has
+         * tens of thousands: the totals only) */
+        cx_json_vec(&j, "points", r->f_points, r->dim);
+        cx_json_int(&j, "bodies", r->nbodies);
+        cx_json_int(&j, "bodies_on_obstacle", r->nbodies_obstacle);
+        if (r->nbodies <= RJ_MAX_BODIES) {
+            cx_json_array(&j, "contact_bodies");
+            for (int b = 0; b < r->nbodies; b++)
+                cx_json_vec(&j, NULL, r->f_contact_body + (size_t)r->dim * b, r->dim);
+            cx_json_end_array(&j);
+        }
+    }
     cx_json_end_object(&j);
     cx_json_object(&j, "params");
     const cx_param_values *pv = &run->params;
