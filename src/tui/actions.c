@@ -146,7 +146,7 @@ static int level_refused(tui_state *st, int level)
     char msg[CX_DIAG_LEN];
     if (!tui_state_level_refused(st, level, tui_mem_available(), msg, sizeof msg))
         return 0;
-    tui_msg(st, 1, "%s (/proc/meminfo MemAvailable)", msg);
+    tui_msg(st, 1, "%s (%s)", msg, tui_mem_source());
     return 1;
 }
 

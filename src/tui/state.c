@@ -119,9 +119,10 @@ static double state_sel_coef(const tui_state *st)
 /* ---- the size of a level -------------------------------------------------- */
 
 /* What a build at another level will take, scaled from the level built:
- * dofs go with the cells (r^dim, r the growth of a cell row; a masonry's
- * bodies with the courses squared), the contact dofs with the contact
- * boundary (r^(dim-1); a masonry's interfaces with its bodies). Memory and
+ * dofs go with the nodes (the product of each direction's growth in
+ * nodes; a masonry's bodies with the courses squared), the contact dofs
+ * with the contact boundary (that product to the (dim-1)/dim; a
+ * masonry's interfaces with its bodies). Memory and
  * time follow the operators the default methods build: the sparse
  * Cholesky factor of K (fill about n log2 n in 2D, n^(4/3) in 3D) and the
  * dense Schur complement onto the contact dofs (nc^2, kept with its
@@ -155,12 +156,17 @@ int tui_state_level_estimate(const tui_state *st, int level, double *dofs, doubl
         r = (double)level / st->level;
         rn = rc = r * r;
     } else {
+        /* nodes, not cells: from a small level (the first build's
+         * calibration, state_build_target) r^dim overestimates by the
+         * boundary's row of nodes (block3d 4 to 16: 72k for 54k dofs) */
         int c0[3], c1[3];
         cx_scene_cells(sc, st->level, c0);
         cx_scene_cells(sc, level, c1);
-        r = c0[0] > 0 ? (double)c1[0] / c0[0] : (double)level / st->level;
-        rn = pow(r, dim);
-        rc = pow(r, dim - 1);
+        r = c0[0] > 0 ? (c1[0] + 1.0) / (c0[0] + 1.0) : (double)level / st->level;
+        rn = 1;
+        for (int k = 0; k < dim; k++)   /* a direction not refined (hertz's second): as the first */
+            rn *= c0[k] > 0 && c0[k] != c1[k] ? (c1[k] + 1.0) / (c0[k] + 1.0) : r;
+        rc = pow(rn, (dim - 1.0) / dim);
     }
     double n = p->n * rn, nc = (p->nc > 0 ? p->nc : 2 * p->m) * rc;
     state_level_model(dim, n, nc, bytes, secs);
@@ -176,8 +182,26 @@ int tui_state_level_estimate(const tui_state *st, int level, double *dofs, doubl
     return 1;
 }
 
+/* SIGNORINI_MEMAVAILABLE (bytes) stands in for MemAvailable, so that the
+ * tests can make a refusal happen on any machine; not meant for users. */
+static double state_mem_override(void)
+{
+    const char *env = getenv("SIGNORINI_MEMAVAILABLE");
+    char *end;
+    double x = env && *env ? strtod(env, &end) : -1;
+    return env && *env && *end == '\0' && x > 0 && isfinite(x) ? x : -1;
+}
+
+const char *tui_mem_source(void)
+{
+    return state_mem_override() > 0 ? "SIGNORINI_MEMAVAILABLE" : "/proc/meminfo MemAvailable";
+}
+
 double tui_mem_available(void)
 {
+    double x = state_mem_override();
+    if (x > 0)
+        return x;
     FILE *f = fopen("/proc/meminfo", "r");
     if (!f)
         return -1;
@@ -332,6 +356,33 @@ static void state_after_job(tui_state *st)
     }
 }
 
+/* The level asked for at start, once the scene's default level is built
+ * and can measure it: built next if its estimate fits in the free memory,
+ * else refused with both figures while the level built stays open. Not
+ * if something else was asked for meanwhile. */
+static void state_build_target(tui_state *st)
+{
+    int target = st->target_level;
+    st->target_level = 0;
+    if (!target || !st->session || st->level == target || (st->pending & TUI_REASSEMBLE))
+        return;
+    char msg[CX_DIAG_LEN];
+    if (tui_state_level_refused(st, target, tui_mem_available(), msg, sizeof msg)) {
+        tui_msg(st, 1, "%s (%s); %s level %d, built to measure it, is open", msg, tui_mem_source(),
+                st->scene.id, st->level);
+        return;
+    }
+    double dofs, bytes, secs;
+    if (tui_state_level_estimate(st, target, &dofs, &bytes, &secs)) {
+        char need[32];
+        tui_size_text(bytes, need, sizeof need);
+        tui_msg(st, 0, "level %d: about %.3g dofs, %s, %.2g s (scaled from level %d): building", target, dofs,
+                need, secs, st->level);
+    }
+    st->sel_level = target;
+    st->pending |= TUI_REASSEMBLE;
+}
+
 int tui_state_poll(tui_state *st)
 {
     tui_job *j = &st->job;
@@ -415,6 +466,8 @@ int tui_state_poll(tui_state *st)
                 st->level, st->info->n, st->info->m, st->build_time);
     else
         tui_msg(st, 0, "%s ready (nothing reassembled)", st->cur_method ? st->cur_method->id : "-");
+    if (kind == TUI_JOB_BUILD)
+        state_build_target(st);
     state_after_job(st);
     return 1;
 }
@@ -598,6 +651,7 @@ void tui_state_abandon_build(tui_state *st)
     snprintf(id, sizeof id, "%s", st->scene.id);
     if (!tui_job_abandon(st))
         return;
+    st->target_level = 0;
     st->pending = 0;
     st->queued_steps = 0;
     st->running = 0;
@@ -701,6 +755,14 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
         tui_state_select_auto(st);   /* for the level and law asked for */
     }
     st->field = TUI_F_METHOD;
+    /* a level above the scene's default is not built blind: the default
+     * level (small, quick) is built first and its estimate decides
+     * (state_build_target) */
+    if (st->sel_level > st->scene.level) {
+        st->target_level = st->sel_level;
+        st->sel_level = st->scene.level;
+        tui_msg(st, 0, "level %d first, to estimate level %d", st->sel_level, st->target_level);
+    }
     tui_job_start(st, TUI_JOB_BUILD);
     return CX_OK;
 }

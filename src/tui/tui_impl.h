@@ -71,6 +71,9 @@ struct tui_state {
     cx_scene scene;           /* the scene of the session (or being built) */
     cx_scene prev_scene;      /* the scene before a build, kept if it fails */
     int level;                /* of the session */
+    /* the level asked for at start, when above the scene's default: that
+     * level is built first and measures it (0: none, or done) */
+    int target_level;
 
     /* the session (NULL until the first build ends) */
     cx_session *session;
@@ -164,8 +167,10 @@ void tui_msg(tui_state *st, int error, const char *fmt, ...)
 int tui_state_level_estimate(const tui_state *st, int level, double *dofs, double *bytes, double *secs);
 /* 1, with the message, if level's memory estimate exceeds avail bytes. */
 int tui_state_level_refused(const tui_state *st, int level, double avail, char *msg, size_t len);
-/* /proc/meminfo's MemAvailable in bytes, -1 if unknown. */
+/* /proc/meminfo's MemAvailable in bytes (or $SIGNORINI_MEMAVAILABLE's, for
+ * the tests), -1 if unknown; and which of the two it is. */
 double tui_mem_available(void);
+const char *tui_mem_source(void);
 /* "1.2 GB", "48 MB", "300 kB". */
 void tui_size_text(double bytes, char *buf, size_t len);
 

@@ -605,6 +605,45 @@ static void test_level_estimate(void)
     }
 }
 
+/* The level asked for at start, above the scene's default: the default
+ * level is built first and measures it. Refused with the estimate and the
+ * memory available when it does not fit (the measured level open and
+ * stepping); built when it fits, its dofs within 10% of the estimate.
+ * $SIGNORINI_MEMAVAILABLE stands in for MemAvailable (malformed: ignored). */
+static void test_first_level(void)
+{
+    static tui_state st;
+    cx_diag d;
+    setenv("SIGNORINI_MEMAVAILABLE", "100e6", 1);
+    CX_CHECK(tui_mem_available() == 100e6 && strcmp(tui_mem_source(), "SIGNORINI_MEMAVAILABLE") == 0);
+    CX_CHECK_OK(tui_state_init(&st, "block3d", 16, NULL, -1, 1, &d));
+    CX_CHECK(st.session && st.level == st.scene.level && st.level < 16 && st.sel_level == st.level);
+    CX_CHECK(st.msg_error == 1 && strstr(st.msg, "level 16 refused: about ") &&
+             strstr(st.msg, "100 MB of memory is available (SIGNORINI_MEMAVAILABLE)") &&
+             strstr(st.msg, "block3d level 4, built to measure it, is open"));
+    double n, b, t;
+    CX_CHECK(tui_state_level_estimate(&st, 16, &n, &b, &t) && b > 100e6 && t > 0);
+    /* block3d 16: 33 x 33 x 17 nodes, 54 417 dofs */
+    CX_CHECK(fabs(n - 54417) < 0.1 * 54417);
+    tui_key(&st, 's');
+    CX_CHECK(tui_state_nruns(&st) == 1 && tui_state_run(&st)->nsteps == 1);
+    tui_state_clear(&st);
+
+    setenv("SIGNORINI_MEMAVAILABLE", "100e9", 1);
+    CX_CHECK_OK(tui_state_init(&st, "block3d", 8, NULL, -1, 1, &d));
+    CX_CHECK(st.level == 8 && st.sel_level == 8 && st.target_level == 0);
+    CX_CHECK(st.msg_error == 0 && strstr(st.msg, "block3d level 8:") && strstr(st.msg, "built in"));
+    tui_state_clear(&st);
+    /* the default level itself: built at once, nothing measured first */
+    CX_CHECK_OK(tui_state_init(&st, "block3d", 4, NULL, -1, 1, &d));
+    CX_CHECK(st.level == 4 && st.msg_error == 0 && strstr(st.msg, "block3d level 4:"));
+    tui_state_clear(&st);
+
+    setenv("SIGNORINI_MEMAVAILABLE", "lots", 1);
+    CX_CHECK(strcmp(tui_mem_source(), "/proc/meminfo MemAvailable") == 0);
+    unsetenv("SIGNORINI_MEMAVAILABLE");
+}
+
 /* The mesh view in 3D draws the surface's folds, not every surface edge:
  * block3d at level 4 is an 8 x 8 x 4 brick, whose 12 box edges are 4 x 8 +
  * 4 x 8 + 4 x 4 = 80 mesh edges; its plane obstacle is drawn, twoblocks'
@@ -627,6 +666,7 @@ static void test_mesh_view(void)
 int main(void)
 {
     test_level_estimate();
+    test_first_level();
     test_mesh_view();
     test_pieces();
     test_hertz();

@@ -456,6 +456,32 @@ try:
     with open(statsfile) as f:
         check("explorer:" in f.read(), "--stats printed after an abandoned build")
 
+    # ---- the level on the command line: the scene's default level is built
+    # first and measures it; one that does not fit in the free memory
+    # (SIGNORINI_MEMAVAILABLE stands in for /proc/meminfo) is refused with the
+    # estimate, and the UI goes on on the level built ----
+    start(f"{exe} tui block3d --level 16", x=100, y=30, extra="SIGNORINI_MEMAVAILABLE=100e6")
+    wait_for(lambda t: "refused" in status_block(), "level 16 to be refused")
+    msg = status_block()
+    m = re.search(r"level 16 refused: about ([\d.e+]+) dofs need about (\d+) MB, and 100 MB of memory is "
+                  r"available \(SIGNORINI_MEMAVAILABLE\); block3d level 4, built to measure it, is open", msg)
+    check(m is not None, f"the refusal gives the estimate and the memory available: {msg!r}")
+    if m:
+        # block3d 16 has 54 417 dofs; its build peaks near 600 MB (README)
+        check(27e3 < float(m.group(1)) < 110e3 and 300 < int(m.group(2)) < 1200, f"the estimate: {m.groups()}")
+    check("block3d L4" in screen(), "level 4 is open")
+    keys("s")
+    wait_for(lambda t: steps(t), "a step on level 4 after the refusal")
+    keys("q")
+    exited_cleanly("q after a refused first level")
+
+    # a level that fits is built after the measuring one, without a key
+    start(f"{exe} tui block3d --level 8", x=100, y=30, extra="SIGNORINI_MEMAVAILABLE=100e9")
+    wait_for(lambda t: "block3d L8" in t and "built in" in status_block(), "block3d level 8 to be built")
+    check(re.search(r"level\s+.8 7\.5k dofs", screen()) is not None, "the level row shows level 8's dofs")
+    keys("q")
+    exited_cleanly("q after level 8")
+
     # ---- scripted sessions end by themselves ------------------------------------
     start(f"{exe} tui slider --keys rq")
     exited_cleanly("the scripted keys 'rq'")
