@@ -554,7 +554,7 @@ static int gm_groups(const cx_mesh *m, const gm_raw *raw, const int *elem_block_
         if (strlen(gr->name) >= sizeof o->name)
             return cx_diag_set(d, CX_EINVAL, "%s: physical group '%s': name too long (at most %d "
                                "characters)", path, gr->name, (int)sizeof o->name - 1);
-        snprintf(o->name, sizeof o->name, "%s", gr->name);
+        memcpy(o->name, gr->name, strlen(gr->name) + 1);   /* its length checked above */
         o->dim = gr->dim;
         gs->n++;
         if (gr->dim != m->dim && gr->dim != 0)
