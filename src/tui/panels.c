@@ -589,16 +589,16 @@ void tui_panel_runs(const tui_state *st, tui_box b)
 {
     tui_rule(b.y, b.x, b.w, "runs");
     /* narrow: the time and K-solve columns go, the outcome stays */
-    int wide = b.w >= 86;
+    int wide = b.w >= 91;
     /* each row opens with its run's colour, as in the plot and its legend */
     b.x += 2;
     b.w -= 2;
-    if (wide)
-        tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-11s %-7s %-7s %4s %7s %7s %4s  %s", "method", "law", "F/slip",
-            "iter", "kkt", "ms", "nK", "outcome; changed parameters");
+    if (wide)   /* fact and nK: the run's own factorisations and K-solves, as solve counts them */
+        tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-11s %-7s %-7s %4s %7s %7s %4s %4s  %s", "method", "law",
+            "F/slip", "iter", "kkt", "ms", "fact", "nK", "outcome; changed parameters");
     else
-        tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-10s %-7s %-6s %4s %7s  %s", "method", "law", "F/slip", "iter",
-            "kkt", "outcome; changed");
+        tui_put(b.y + 1, b.x, TUI_C_LABEL, b.w, "%-10s %-7s %-6s %4s %7s %4s  %s", "method", "law", "F/slip", "iter",
+            "kkt", "fact", "outcome; changed");
     int rows = b.h - 2;
     int first = tui_state_nruns(st) - rows;
     if (first < 0)
@@ -632,14 +632,14 @@ void tui_panel_runs(const tui_state *st, tui_box b)
         tui_put(y, b.x - 2, TUI_C_SERIES0 + tui_run_colour(run), 2, "%s", tui_sym("■", "#"));
         tui_hit_add(y, b.x - 2, b.x + b.w, TUI_HIT_RUN, r);
         if (wide)
-            tui_put(y, b.x, role, b.w, "%-11.11s %-7s %-7.7s %4d %s %7.1f %4ld  %s%s%s", run->method,
-                cx_friction_name(run->law), coef, s ? s->iter : 0, kkt, s ? 1e3 * s->time : 0, s ? s->solves : 0,
-                outcome, run->changed[0] ? "; " : "", run->changed);
+            tui_put(y, b.x, role, b.w, "%-11.11s %-7s %-7.7s %4d %s %7.1f %4ld %4ld  %s%s%s", run->method,
+                cx_friction_name(run->law), coef, s ? s->iter : 0, kkt, s ? 1e3 * s->time : 0, run->factorizations,
+                s ? s->solves : 0, outcome, run->changed[0] ? "; " : "", run->changed);
         else {
             /* the sentence if it fits, else the outcome's word (the
              * iterations are in their column), cut with an ellipsis only
              * when even that is too long */
-            int avail = b.w - 40;
+            int avail = b.w - 45;
             char tail[CX_DIAG_LEN + 200];
             snprintf(tail, sizeof tail, "%s%s%s", outcome, run->changed[0] ? "; " : "", run->changed);
             if ((int)strlen(tail) > avail && run->reason)
@@ -648,8 +648,8 @@ void tui_panel_runs(const tui_state *st, tui_box b)
             /* the full legend is in the status line when the run is clicked */
             if ((int)strlen(tail) > avail && avail > 1)
                 snprintf(tail + avail - 1, sizeof tail - (size_t)avail + 1, "%s", tui_sym("…", "~"));
-            tui_put(y, b.x, role, b.w, "%-10.10s %-7s %-6.6s %4d %s  %s", run->method, cx_friction_name(run->law),
-                coef, s ? s->iter : 0, kkt, tail);
+            tui_put(y, b.x, role, b.w, "%-10.10s %-7s %-6.6s %4d %s %4ld  %s", run->method, cx_friction_name(run->law),
+                coef, s ? s->iter : 0, kkt, run->factorizations, tail);
         }
     }
 }
