@@ -274,6 +274,10 @@ void cx_render_draw_area(const cx_render_scene *sc, double area[4])
         l.area[0] += 4.6 * l.font;
         l.area[2] -= 4.6 * l.font;
         l.area[3] -= 2.8 * l.font;
+    } else if (sc->dim == 3) {
+        /* the bottom row for the view's caption beside the triad
+         * (overlay.c), so that it is not written over the body */
+        l.area[3] -= 1.6 * l.font;
     }
     for (int k = 0; k < 4; k++)
         area[k] = l.area[k];
