@@ -15,31 +15,29 @@
 #include <string.h>
 #include <unistd.h>
 
-/* The real path of the file that holds this code, or 0. */
-static int data_self(char *path, size_t len)
+int cx_data_self(char *path, size_t len, int *lib, int *in_build)
 {
     Dl_info info;
     char raw[PATH_MAX];
-    if (dladdr((void *)&data_self, &info) && info.dli_fname && strchr(info.dli_fname, '/') &&
+    *lib = 0;
+    *in_build = 0;
+    if (dladdr((void *)&cx_data_self, &info) && info.dli_fname && strchr(info.dli_fname, '/') &&
         strstr(info.dli_fname, "libsignorini")) {
         snprintf(raw, sizeof raw, "%s", info.dli_fname);
-    } else {
+        *lib = 1;
+    } else {   /* a program (dladdr would give argv[0]) */
         ssize_t n = readlink("/proc/self/exe", raw, sizeof raw - 1);
         if (n <= 0)
             return 0;
         raw[n] = '\0';
     }
-    char real[PATH_MAX];
-    if (!realpath(raw, real))
+    char real[PATH_MAX], build[PATH_MAX];
+    if (!realpath(raw, real) || strlen(real) >= len)
         return 0;
-    return snprintf(path, len, "%s", real) > 0 && strlen(real) < len;
-}
-
-/* Is path inside the directory dir (both real paths)? */
-static int data_inside(const char *path, const char *dir)
-{
-    size_t n = strlen(dir);
-    return n > 0 && strncmp(path, dir, n) == 0 && path[n] == '/';
+    snprintf(path, len, "%s", real);
+    size_t n = realpath(CX_BUILD_ROOT, build) ? strlen(build) : 0;
+    *in_build = n > 0 && strncmp(real, build, n) == 0 && real[n] == '/';
+    return 1;
 }
 
 static int data_push(char dirs[CX_DATA_MAXDIRS][CX_DATA_PATHLEN], int n, const char *a, const char *b)
@@ -68,17 +66,18 @@ int cx_data_dirs(const char *kind, const char *env_var, char dirs[CX_DATA_MAXDIR
     if (data && *data)
         n = data_push(dirs, n, data, kind);
 
-    char self[PATH_MAX], build[PATH_MAX];
-    if (!data_self(self, sizeof self))
+    char self[PATH_MAX];
+    int lib, in_build;
+    if (!cx_data_self(self, sizeof self, &lib, &in_build))
         return n;
-    if (realpath(CX_BUILD_ROOT, build) && data_inside(self, build))
+    if (in_build)
         return data_push(dirs, n, CX_SOURCE_ROOT, kind);
     /* installed: from the file's directory up to the prefix and down to
      * share/signorini (the relative paths are worked out by meson from
      * libdir, bindir and datadir) */
     char *slash = strrchr(self, '/');
     *slash = '\0';
-    const char *rel = strstr(slash + 1, "libsignorini") == slash + 1 ? CX_DATA_FROM_LIBDIR : CX_DATA_FROM_BINDIR;
+    const char *rel = lib ? CX_DATA_FROM_LIBDIR : CX_DATA_FROM_BINDIR;
     if (rel[0] == '/')   /* a libdir or datadir outside the prefix */
         return data_push(dirs, n, rel, kind);
     char base[PATH_MAX + 64];

@@ -26,6 +26,11 @@
  * (at least 0, at most CX_DATA_MAXDIRS). */
 int cx_data_dirs(const char *kind, const char *env_var, char dirs[CX_DATA_MAXDIRS][CX_DATA_PATHLEN]);
 
+/* The real path of the file that holds this code (libsignorini.so, or the
+ * program that links it statically) in path (len bytes); *lib: it is the
+ * library; *in_build: it lies in the build tree. 0 if it cannot be told. */
+int cx_data_self(char *path, size_t len, int *lib, int *in_build);
+
 /* The directories of cx_data_dirs as one ':'-separated string (for
  * messages such as "no scenes found in ..."). */
 void cx_data_describe(const char *kind, const char *env_var, char *buf, size_t len);

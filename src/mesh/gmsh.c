@@ -24,6 +24,7 @@
  * entity, or with no area, is an inverted element (an error). */
 #define _GNU_SOURCE 1
 #include "mesh/mesh_impl.h"
+#include "base/data.h"
 
 #include "cx_config.h"
 
@@ -207,27 +208,6 @@ static int32_t gm_at(const int32_t *a, size_t k)
 
 /* ---- running the helper ----------------------------------------------------- */
 
-/* The real path of the file that holds this code: libsignorini.so, or
- * the program (dladdr names it; in a static program glibc gives argv[0],
- * so /proc/self/exe is read). *lib: it is the library. */
-static int gm_self(char *real, int *lib)
-{
-    Dl_info info;
-    char raw[PATH_MAX];
-    *lib = 0;
-    if (dladdr((void *)&gm_self, &info) && info.dli_fname && strchr(info.dli_fname, '/') &&
-        strstr(info.dli_fname, "libsignorini")) {
-        snprintf(raw, sizeof raw, "%s", info.dli_fname);
-        *lib = 1;
-    } else {
-        ssize_t n = readlink("/proc/self/exe", raw, sizeof raw - 1);
-        if (n <= 0)
-            return 0;
-        raw[n] = '\0';
-    }
-    return realpath(raw, real) != NULL;
-}
-
 /* The helper: $SIGNORINI_MESHER; the build tree's for the build tree's
  * code; else libexec/signorini-mesh relative to the installed library or
  * program (as base/data.c finds share/), so a moved prefix finds it. */
@@ -236,12 +216,9 @@ static const char *gm_helper(char *buf, size_t len)
     const char *env = getenv("SIGNORINI_MESHER");
     if (env && *env)
         return env;
-    char self[PATH_MAX], build[PATH_MAX];
-    int lib;
-    if (!gm_self(self, &lib))
-        return CX_MESHER_BUILD;
-    size_t n = realpath(CX_BUILD_ROOT, build) ? strlen(build) : 0;
-    if (n > 0 && strncmp(self, build, n) == 0 && self[n] == '/')
+    char self[PATH_MAX];
+    int lib, in_build;
+    if (!cx_data_self(self, sizeof self, &lib, &in_build) || in_build)
         return CX_MESHER_BUILD;
     const char *rel = lib ? CX_MESHER_FROM_LIBDIR : CX_MESHER_FROM_BINDIR;
     if (rel[0] == '/')

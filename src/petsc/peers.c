@@ -71,6 +71,16 @@ fail:
     return status;
 }
 
+/* What both peers hold at the end (PETSc's destroyers take NULL). */
+static void peer_clear(peer_ctx *c, Vec *x, Vec *lo, Vec *hi)
+{
+    VecDestroy(x);
+    VecDestroy(lo);
+    VecDestroy(hi);
+    VecDestroy(&c->R);
+    MatDestroy(&c->K);
+}
+
 /* The iterate x with its gradient g = K x - f: gathered, multipliers from
  * -g, the kkt error; 1 if the run ends. */
 static int peer_check(peer_ctx *c, Vec x, Vec g, int iter, long krylov, int *ended)
@@ -198,20 +208,9 @@ int px_vi_solve(px_run *run, cx_diag *d)
         run->r->reason = CX_DIVERGED_BREAKDOWN;
     }
 fail:
-    if (snes)
-        SNESDestroy(&snes);
-    if (x)
-        VecDestroy(&x);
-    if (F)
-        VecDestroy(&F);
-    if (lo)
-        VecDestroy(&lo);
-    if (hi)
-        VecDestroy(&hi);
-    if (c.R)
-        VecDestroy(&c.R);
-    if (c.K)
-        MatDestroy(&c.K);
+    SNESDestroy(&snes);
+    VecDestroy(&F);
+    peer_clear(&c, &x, &lo, &hi);
     return status;
 }
 
@@ -303,17 +302,7 @@ int px_tao_solve(px_run *run, cx_diag *d)
         run->r->reason = CX_DIVERGED_BREAKDOWN;
     }
 fail:
-    if (tao)
-        TaoDestroy(&tao);
-    if (x)
-        VecDestroy(&x);
-    if (lo)
-        VecDestroy(&lo);
-    if (hi)
-        VecDestroy(&hi);
-    if (c.R)
-        VecDestroy(&c.R);
-    if (c.K)
-        MatDestroy(&c.K);
+    TaoDestroy(&tao);
+    peer_clear(&c, &x, &lo, &hi);
     return status;
 }
