@@ -250,7 +250,7 @@ int perturb_contrast(cx_problem *p, const void *arg, cx_diag *d)
     const perturb_contrast_arg *a = arg;
     if (p->mesh->nbodies < 2)
         return cx_diag_set(d, CX_EUNSUPPORTED, "n/a (one body)");
-    for (int k = 1; k < p->mesh->nbodies; k++)
+    for (int k = 1; k < cx_mesh_nmats(p->mesh); k++)   /* every material id but the first */
         p->mats[k].E *= a->ratio;
     return perturb_reassemble(p, a->scene, d);
 }

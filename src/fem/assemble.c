@@ -36,6 +36,10 @@ static int check_mesh(const cx_mesh *m, cx_diag *d)
         if (m->body[e] < 0 || m->body[e] >= m->nbodies)
             return cx_diag_set(d, CX_EINVAL, "element %d: body %d not in [0, %d)", e, m->body[e],
                                m->nbodies);
+    for (int e = 0; m->mat && e < m->nelems; e++)
+        if (m->mat[e] < 0 || m->mat[e] >= m->nmats)
+            return cx_diag_set(d, CX_EINVAL, "element %d: material %d not in [0, %d)", e, m->mat[e],
+                               m->nmats);
     /* the pattern indexes by node: a node out of range would write anywhere */
     for (size_t k = 0; k < (size_t)m->nelems * (size_t)m->npe; k++)
         if (m->conn[k] < 0 || m->conn[k] >= m->nnodes)
@@ -47,10 +51,10 @@ static int check_mesh(const cx_mesh *m, cx_diag *d)
 static int check_material(const cx_material *mat, int k, int dim, cx_diag *d)
 {
     if (dim == 3 ? mat->model != CX_SOLID : mat->model == CX_SOLID)
-        return cx_diag_set(d, CX_EINVAL, "body %d: a %s model on a %dD mesh", k,
+        return cx_diag_set(d, CX_EINVAL, "material %d: a %s model on a %dD mesh", k,
                            mat->model == CX_SOLID ? "3D" : "plane", dim);
     if (!(mat->E > 0) || !(mat->nu > -1 && mat->nu < 0.5))
-        return cx_diag_set(d, CX_EINVAL, "body %d: need E > 0 and -1 < nu < 0.5 (got E = %g, nu = %g)",
+        return cx_diag_set(d, CX_EINVAL, "material %d: need E > 0 and -1 < nu < 0.5 (got E = %g, nu = %g)",
                            k, mat->E, mat->nu);
     return CX_OK;
 }
@@ -195,7 +199,7 @@ assemble_elements(int dim, int npe, const cx_mesh *restrict m, const cx_fem_ref 
         for (int a = 0; a < npe; a++)
             for (int i = 0; i < dim; i++)
                 xe[dim * a + i] = m->x[dim * nodes[a] + i];
-        if (cx_fem_ref_stiffness(ref, xe, D + ns * ns * (m->body ? m->body[e] : 0), Ke))
+        if (cx_fem_ref_stiffness(ref, xe, D + ns * ns * cx_mesh_elem_mat(m, e), Ke))
             return e;
         for (int b = 0; b < npe; b++) {
             int nb = nodes[b], deg = g->p[nb + 1] - g->p[nb];
@@ -223,16 +227,16 @@ int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc 
 
     memset(K, 0, sizeof *K);
     CX_TRY(check_mesh(m, d));
-    for (int k = 0; k < m->nbodies; k++)
+    for (int k = 0; k < cx_mesh_nmats(m); k++)
         CX_TRY(check_material(&mats[k], k, dim, d));
     if (cx_fem_ref_init(&ref, m->etype))
         return cx_diag_set(d, CX_EINVAL, "no stiffness kernel for %s elements", cx_elem_name(m->etype));
-    D = CX_NEW(double, (size_t)m->nbodies * (size_t)(ns * ns));
+    D = CX_NEW(double, (size_t)cx_mesh_nmats(m) * (size_t)(ns * ns));
     if (!D) {
         status = CX_ENOMEM;
         goto fail;
     }
-    for (int k = 0; k < m->nbodies; k++)
+    for (int k = 0; k < cx_mesh_nmats(m); k++)
         cx_fem_elasticity(&mats[k], D + ns * ns * k);
     if ((status = node_graph_build(m, &g, d)) || (status = pattern_alloc(&g, m->nnodes, dim, K)))
         goto fail;

@@ -57,10 +57,11 @@ void cx_fem_facet_lumped(int dim, int npf, const double *xf, double *w);
 
 /* ---- assembly ---------------------------------------------------------- */
 
-/* K over all dim * nnodes dofs, symmetric, full storage. mats: one per body
- * (mesh->nbodies entries). The pattern: every dof pair of two nodes that
+/* K over all dim * nnodes dofs, symmetric, full storage. mats: one per
+ * material id of the mesh (cx_mesh_nmats entries: per body unless the mesh
+ * has material ids per element). The pattern: every dof pair of two nodes that
  * share an element (explicit zeros kept), nothing else. K must be empty and
- * is left empty on failure: CX_EINVAL (bad material, body or node id, or
+ * is left empty on failure: CX_EINVAL (bad material, body, material or node id, or
  * more than INT_MAX entries), CX_ENUMERIC (names the degenerate element),
  * CX_ENOMEM. */
 int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc *K, cx_diag *d);
@@ -110,7 +111,7 @@ void cx_fem_expand(const cx_dofmap *map, const double *u, double *uall);
 
 /* ---- stresses ------------------------------------------------------------ */
 
-/* Nodal stresses: element stresses at the nodes (P1: the constant; others:
+/* Nodal stresses (mats as for cx_fem_assemble_stiffness): element stresses at the nodes (P1: the constant; others:
  * at the node's reference position), averaged over the elements of each
  * node. sig: nstress * nnodes, node-major. uall: dim * nnodes. */
 int cx_fem_nodal_stress(const cx_mesh *m, const cx_material *mats, const double *uall, double *sig);

@@ -15,20 +15,20 @@ int cx_fem_nodal_stress(const cx_mesh *m, const cx_material *mats, const double 
     if (cx_fem_ref_init(&ref, m->etype) || ref.dim != dim || ref.npe != npe)
         return CX_EINVAL;
     int *count = CX_NEW(int, m->nnodes);
-    double *D = CX_NEW(double, (size_t)m->nbodies * (size_t)(ns * ns));
+    double *D = CX_NEW(double, (size_t)cx_mesh_nmats(m) * (size_t)(ns * ns));
     if (!count || !D) {
         cx_free(count);
         cx_free(D);
         return CX_ENOMEM;
     }
-    for (int k = 0; k < m->nbodies; k++)
+    for (int k = 0; k < cx_mesh_nmats(m); k++)
         cx_fem_elasticity(&mats[k], D + ns * ns * k);
     memset(sig, 0, sizeof(double) * (size_t)ns * (size_t)m->nnodes);
 
     int status = CX_OK;
     for (int e = 0; e < m->nelems && !status; e++) {
         const int *nodes = m->conn + npe * e;
-        const double *De = D + ns * ns * (m->body ? m->body[e] : 0);
+        const double *De = D + ns * ns * cx_mesh_elem_mat(m, e);
         double xe[3 * CX_FEM_MAXNPE], ue[CX_FEM_MAXDOF];
         for (int a = 0; a < npe; a++)
             for (int i = 0; i < dim; i++) {

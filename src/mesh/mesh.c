@@ -42,6 +42,7 @@ void cx_mesh_destroy(cx_mesh **m)
     cx_free(p->x);
     cx_free(p->conn);
     cx_free(p->body);
+    cx_free(p->mat);
     for (int k = 0; p->bounds && k < p->nbounds; k++)
         cx_free(p->bounds[k].facets);
     cx_free(p->bounds);

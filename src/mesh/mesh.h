@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* mesh/: meshes and their generators, one generator per geometry. A mesh is
- * nodes, elements of one type, an optional body id per element, and named
- * boundaries (lists of boundary facets). It knows nothing of elasticity.
+ * nodes, elements of one type, an optional body id and material id per
+ * element, and named boundaries (lists of boundary facets). It knows
+ * nothing of elasticity: a material id is an index into a table its user
+ * keeps.
  * Generators return a new mesh the caller owns (cx_mesh_destroy). */
 #ifndef CX_MESH_H
 #define CX_MESH_H
@@ -37,9 +39,21 @@ typedef struct cx_mesh {
     int *conn;                /* npe * nelems */
     int nbodies;              /* >= 1 */
     int *body;                /* nelems body ids in [0, nbodies), or NULL if one body */
+    int nmats;                /* material ids when mat is set (else unused) */
+    int *mat;                 /* nelems material ids in [0, nmats), set where the material
+                                 is per region (a body may hold several), or NULL: each
+                                 body is one material, its id the body id */
     int nbounds;
     cx_boundary *bounds;      /* nbounds named boundaries */
 } cx_mesh;
+
+/* The material id of element e (mat, else body, else 0), and the size
+ * of a material table for m: one entry per id (nmats, else nbodies). */
+static inline int cx_mesh_elem_mat(const cx_mesh *m, int e)
+{
+    return m->mat ? m->mat[e] : m->body ? m->body[e] : 0;
+}
+static inline int cx_mesh_nmats(const cx_mesh *m) { return m->mat ? m->nmats : m->nbodies; }
 
 /* Nodes per element of a type, and the space dimension of a type. */
 int cx_elem_npe(cx_elem_type t);

@@ -29,6 +29,7 @@ static cx_mesh *result_mesh_copy(const cx_mesh *src)
     m->x = result_dup(src->x, sizeof(double) * (size_t)src->dim * src->nnodes, &bad);
     m->conn = result_dup(src->conn, sizeof(int) * (size_t)src->npe * src->nelems, &bad);
     m->body = result_dup(src->body, sizeof(int) * (size_t)src->nelems, &bad);
+    m->mat = result_dup(src->mat, sizeof(int) * (size_t)src->nelems, &bad);
     m->bounds = result_dup(src->bounds, sizeof(cx_boundary) * (size_t)src->nbounds, &bad);
     for (int k = 0; m->bounds && k < m->nbounds; k++)
         m->bounds[k].facets = bad ? NULL
@@ -158,7 +159,8 @@ int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state
     x->m = p->m;
     x->nt = p->nt;
     x->mesh = result_mesh_copy(pm);
-    x->mats = CX_NEW(cx_material, pm->nbodies > 0 ? pm->nbodies : 1);
+    int nmats = cx_mesh_nmats(pm) > 0 ? cx_mesh_nmats(pm) : 1;
+    x->mats = CX_NEW(cx_material, nmats);
     x->u = CX_NEW(double, (size_t)p->dim * pm->nnodes);
     x->lN = CX_NEW(double, (size_t)p->m + 1);
     x->lT = CX_NEW(double, (size_t)p->nt + 1);
@@ -169,7 +171,7 @@ int cx_result_create(cx_result **r, const cx_problem *p, const cx_friction_state
         cx_result_destroy(&x);
         return cx_diag_set(d, CX_ENOMEM, "result: out of memory");
     }
-    memcpy(x->mats, p->mats, sizeof(cx_material) * (size_t)pm->nbodies);
+    memcpy(x->mats, p->mats, sizeof(cx_material) * (size_t)cx_mesh_nmats(pm));
     cx_fem_expand(&p->map, u, x->u);
     if (p->m > 0) {
         memcpy(x->lN, lN, sizeof(double) * (size_t)p->m);
@@ -327,11 +329,10 @@ int cx_result_stress(cx_result *r, const double **sigma, const double **von_mise
         int *owner = CX_NEW(int, (size_t)nn + 1);
         int rc = sig && vm && owner ? cx_fem_nodal_stress(m, r->mats, r->u, sig) : CX_ENOMEM;
         if (rc == CX_OK) {
-            /* the material of a node: that of the body of an element using it */
-            if (m->body)
-                for (int e = 0; e < m->nelems; e++)
-                    for (int a = 0; a < m->npe; a++)
-                        owner[m->conn[m->npe * e + a]] = m->body[e];
+            /* the material of a node: that of an element using it */
+            for (int e = 0; e < m->nelems; e++)
+                for (int a = 0; a < m->npe; a++)
+                    owner[m->conn[m->npe * e + a]] = cx_mesh_elem_mat(m, e);
             for (int k = 0; k < nn; k++)
                 vm[k] = cx_fem_von_mises(&r->mats[owner[k]], sig + (size_t)ns * k);
             r->stress_cache = sig;

@@ -168,15 +168,19 @@ static int vtu_body(vtu_out *o, cx_result *r, cx_diag *d)
     double *cw = CX_NEW(double, (size_t)nn + 1), *tn = CX_NEW(double, 3 * (size_t)nn + 1);
     double *tt = CX_NEW(double, 3 * (size_t)nn + 1), *sl = CX_NEW(double, 3 * (size_t)nn + 1);
     int32_t *npts = CX_NEW(int32_t, (size_t)nn + 1);
+    /* per cell: its material id and that material's E and nu, so that a
+     * body split between materials shows its regions */
+    int32_t *matc = cx_malloc(sizeof(int32_t) * (size_t)ne + 1);
+    double *Ec = cx_malloc(sizeof(double) * (size_t)ne + 1), *nuc = cx_malloc(sizeof(double) * (size_t)ne + 1);
     int rc = CX_ENOMEM;
     if (!x3 || !u3 || !pr || !stv || !status || !body || !conn || !off || !types || !s6 || !cw ||
-        !tn || !tt || !sl || !npts)
+        !tn || !tt || !sl || !npts || !matc || !Ec || !nuc)
         goto done;
-    /* the material of a node: that of the body of an element using it (as
+    /* the material of a node: that of an element using it (as
      * cx_result_stress takes it for von Mises); npts is borrowed, reset below */
-    for (int e = 0; m->body && e < ne; e++)
+    for (int e = 0; e < ne; e++)
         for (int a = 0; a < m->npe; a++)
-            npts[m->conn[m->npe * e + a]] = m->body[e];
+            npts[m->conn[m->npe * e + a]] = cx_mesh_elem_mat(m, e);
     for (int i = 0; i < nn; i++) {
         const double *v = sig + (size_t)ns * i;
         double *t = s6 + 6 * (size_t)i;
@@ -237,6 +241,9 @@ static int vtu_body(vtu_out *o, cx_result *r, cx_diag *d)
         off[e] = (int64_t)m->npe * (e + 1);
         types[e] = (uint8_t)vtu_celltype(m->etype);
         body[e] = m->body ? m->body[e] : 0;
+        matc[e] = cx_mesh_elem_mat(m, e);
+        Ec[e] = r->mats[matc[e]].E;
+        nuc[e] = r->mats[matc[e]].nu;
     }
     FILE *f = o->f;
     uint16_t one = 1;
@@ -273,6 +280,12 @@ static int vtu_body(vtu_out *o, cx_result *r, cx_diag *d)
     fprintf(f, "      </PointData>\n      <CellData Scalars=\"body\">\n");
     if ((rc = vtu_array(o, "Int32", "body", 1, body, (size_t)ne)) != CX_OK)
         goto done;
+    if ((rc = vtu_array(o, "Int32", "material", 1, matc, (size_t)ne)) != CX_OK)
+        goto done;
+    if ((rc = vtu_array(o, "Float64", "young_modulus", 1, Ec, (size_t)ne)) != CX_OK)
+        goto done;
+    if ((rc = vtu_array(o, "Float64", "poisson_ratio", 1, nuc, (size_t)ne)) != CX_OK)
+        goto done;
     fprintf(f, "      </CellData>\n      <Points>\n");
     if ((rc = vtu_array(o, "Float64", NULL, 3, x3, 3 * (size_t)nn)) != CX_OK)
         goto done;
@@ -301,6 +314,9 @@ done:
     cx_free(tt);
     cx_free(sl);
     cx_free(npts);
+    cx_free(matc);
+    cx_free(Ec);
+    cx_free(nuc);
     return rc == CX_OK ? CX_OK : cx_diag_set(d, rc, "%s", cx_status_str(rc));
 }
 

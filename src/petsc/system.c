@@ -187,7 +187,7 @@ int px_system_create(px_system *sys, const cx_problem *p, int tangential, cx_dia
     PetscInt *dnz = CX_NEW(PetscInt, nloc + 1), *onz = CX_NEW(PetscInt, nloc + 1);
     PetscInt *idx = CX_NEW(PetscInt, nd), *fixed = NULL;
     double *Ke = CX_NEW(double, (size_t)nd * nd), *xe = CX_NEW(double, nd);
-    double *D = CX_NEW(double, 36 * (size_t)(m->nbodies > 0 ? m->nbodies : 1));
+    double *D = CX_NEW(double, 36 * (size_t)(cx_mesh_nmats(m) > 0 ? cx_mesh_nmats(m) : 1));
     sys->ndof = CX_NEW(int, p->m + 1);
     sys->nval = CX_NEW(double, p->m + 1);
     sys->tdof = CX_NEW(int, p->nt + 1);
@@ -202,7 +202,7 @@ int px_system_create(px_system *sys, const cx_problem *p, int tangential, cx_dia
         status = cx_diag_set(d, status, "out of memory");
         goto fail;
     }
-    for (int b = 0; b < m->nbodies; b++)
+    for (int b = 0; b < cx_mesh_nmats(m); b++)
         cx_fem_elasticity(&p->mats[b], D + 36 * b);
 
     PX(MatCreate(sys->comm, &sys->K));
@@ -225,8 +225,7 @@ int px_system_create(px_system *sys, const cx_problem *p, int tangential, cx_dia
                 xe[dim * a + k] = m->x[(size_t)dim * c[a] + k];
                 idx[dim * a + k] = (PetscInt)dim * c[a] + k;
             }
-        int body = m->body ? m->body[e] : 0;
-        if (cx_fem_element_stiffness(m->etype, xe, D + 36 * body, Ke) != CX_OK) {
+        if (cx_fem_element_stiffness(m->etype, xe, D + 36 * cx_mesh_elem_mat(m, e), Ke) != CX_OK) {
             status = cx_diag_set(d, CX_ENUMERIC, "element %d is degenerate or inverted", e);
             goto fail;
         }

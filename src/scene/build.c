@@ -76,45 +76,61 @@ static int build_file_refs(const cx_scene *s, const cx_mesh *m, const cx_mesh_gr
     return CX_OK;
 }
 
-/* The material of each body: a region's [material NAME] where the region
- * covers the body, else [material]; a body split between two regions of
- * different materials is refused (a body is one material: the methods
- * that treat bodies apart take it so). */
-static int build_file_materials(const cx_scene *s, const cx_mesh *m, const cx_mesh_groups *g,
-                                cx_material *mats, cx_diag *d)
+/* The material of each element: a region's [material NAME] where the
+ * region holds the element, else [material]. A body may be split between
+ * materials (a bimaterial block, a layered ring): the mesh gets a
+ * material id per element, section k of [material NAME] id k and
+ * [material] id nmaterials; mats has nmaterials + 1 entries. An element
+ * in no region takes [material], or where there is none the first
+ * [material NAME] (load.c takes it as the default); one in two regions of
+ * different materials is refused. */
+static int build_file_materials(const cx_scene *s, cx_mesh *m, const cx_mesh_groups *g,
+                                cx_material **mats, cx_diag *d)
 {
-    int nb = m->nbodies;
-    int *owner = CX_NEW(int, nb);
-    if (!owner)
+    int nm = s->nmaterials, *id = CX_NEW(int, (size_t)m->nelems + 1);
+    cx_material *tab = CX_NEW(cx_material, (size_t)nm + 1);
+    if (!id || !tab) {
+        cx_free(id);
+        cx_free(tab);
         return CX_ENOMEM;
-    for (int b = 0; b < nb; b++)
-        owner[b] = -1, mats[b] = s->mat;
+    }
+    for (int e = 0; e < m->nelems; e++)
+        id[e] = -1;
+    for (int k = 0; k < nm; k++)
+        tab[k] = s->materials[k].mat;
+    tab[nm] = s->mat;
     int st = CX_OK;
-    for (int k = 0; k < s->nmaterials && st == CX_OK; k++) {
+    for (int k = 0; k < nm && st == CX_OK; k++) {
         const cx_mesh_group *grp = cx_mesh_group_find(g, s->materials[k].region);
         for (int q = 0; grp && q < grp->count; q++) {
-            int e = grp->items[q], b = m->body ? m->body[e] : 0;
-            if (owner[b] >= 0 && owner[b] != k) {
+            int e = grp->items[q], o = id[e];
+            if (o >= 0 && o != k) {
                 st = cx_diag_set(d, CX_EINVAL, "%s:%d: section [material %s]: region '%s' and "
-                                 "region '%s' ([material %s]) share a body (a body has one "
-                                 "material)", s->path, s->materials[k].line, s->materials[k].name,
-                                 s->materials[k].region, s->materials[owner[b]].region,
-                                 s->materials[owner[b]].name);
+                                 "region '%s' ([material %s]) overlap (element %d is in both)",
+                                 s->path, s->materials[k].line, s->materials[k].name,
+                                 s->materials[k].region, s->materials[o].region,
+                                 s->materials[o].name, e + 1);
                 break;
             }
-            owner[b] = k;
-            mats[b] = s->materials[k].mat;
+            id[e] = k;
         }
     }
-    for (int b = 0; b < nb && st == CX_OK; b++)
-        if (owner[b] < 0 && !s->line_material)
-            st = cx_diag_set(d, CX_EINVAL, "%s:%d: body %d of %s is in no region of a [material "
-                             "NAME] and there is no [material]", s->path, s->line_mesh, b + 1,
-                             s->mesh_file_key);
-    /* a region's elements all in bodies it owns: also the elements of one
-     * body split among regions where the body has another's material */
-    cx_free(owner);
-    return st;
+    /* no unnamed [material]: the loader took the first region's line for it */
+    int rest = nm > 0 && s->line_material == s->materials[0].line ? 0 : nm;
+    for (int e = 0; e < m->nelems; e++)
+        if (id[e] < 0)
+            id[e] = rest;
+    if (st != CX_OK) {
+        cx_free(id);
+        cx_free(tab);
+        return st;
+    }
+    cx_free(m->mat);
+    m->mat = id;
+    m->nmats = nm + 1;
+    cx_free(*mats);
+    *mats = tab;
+    return CX_OK;
 }
 
 static int build_file_loads(const cx_scene *s, const cx_mesh *m, const cx_mesh_groups *g,
@@ -380,7 +396,8 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     }
     for (int k = 0; k < m->nbodies; k++)
         mats[k] = s->mat;
-    if (s->generator == CX_GEN_FILE && (st = build_file_materials(s, m, &groups, mats, d)))
+    if (s->generator == CX_GEN_FILE && s->nmaterials > 0 &&
+        (st = build_file_materials(s, m, &groups, &mats, d)))
         goto fail;
     if ((st = cx_fem_assemble_stiffness(m, mats, &K, d)))
         goto fail;

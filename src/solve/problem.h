@@ -66,7 +66,7 @@ typedef struct cx_problem {
 
     /* geometry, for output */
     cx_mesh *mesh;
-    cx_material *mats;  /* mesh->nbodies */
+    cx_material *mats;  /* cx_mesh_nmats(mesh): per body, or per material id */
     cx_dofmap map;
     cx_contact_set contact;
     double f_applied[3];/* resultant of the applied loads (tractions + body forces) */

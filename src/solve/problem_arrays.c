@@ -195,7 +195,7 @@ fail:
 double cx_problem_stiffness(const cx_problem *p)
 {
     double E = p->E;
-    for (int b = 0; p->mesh && p->mats && b < p->mesh->nbodies; b++)
+    for (int b = 0; p->mesh && p->mats && b < cx_mesh_nmats(p->mesh); b++)
         E = fmax(E, p->mats[b].E);
     return E > 0 ? E : p->kscale > 0 ? p->kscale : 1;
 }
