@@ -54,6 +54,17 @@ static int dual_build(void **obj, const cx_problem *p, const void *arg, cx_count
     if ((st = cx_fact_create(&D->K, CX_FACT_CHOLESKY, cnt, d)) || (st = cx_fact_analyze(D->K, &p->K, d)) ||
         (st = cx_fact_factorize(D->K, &p->K, d))) {
         dual_destroy(D);
+        if (st == CX_ENUMERIC && !p->mesh) {
+            /* a problem read from a file has no mesh, so the support check
+             * below (dual_rigid_translation) cannot name the body: the
+             * factorisation's zero or tiny pivot is its algebraic stand-in,
+             * and its column is the one to look at */
+            char why[CX_DIAG_LEN];
+            snprintf(why, sizeof why, "%s", d && d->msg[0] ? d->msg : "a zero pivot");
+            return cx_diag_set(d, CX_EUNSUPPORTED,
+                               "the dual methods need K^-1, but K is singular (%s): a body held only by "
+                               "contact has a rigid motion K cannot see; use ssn-tresca", why);
+        }
         if (st == CX_ENUMERIC)
             return cx_diag_set(d, CX_EUNSUPPORTED,
                                "the dual methods need K^-1, but K is not positive definite "
