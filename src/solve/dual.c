@@ -5,6 +5,7 @@
 #include "solve/dual_impl.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -31,6 +32,52 @@ static void dual_destroy(void *obj)
     cx_free(D->v0);
     cx_free(D->v1);
     cx_free(D);
+}
+
+/* A problem read from a file has no mesh, so dual_rigid_translation
+ * cannot see a body held only by contact. Its algebraic stand-in, after a
+ * factorisation that passed the pivot check (a floating body's pivot is
+ * roundoff, which on a fine mesh can sit above that check's bound): the
+ * smallest eigenvalue of K by inverse iteration (three solves from a fixed
+ * start), an upper bound of it (a Rayleigh quotient), against K's largest
+ * diagonal entry. A rigid motion leaves roundoff, about 1e-16 of that
+ * scale; a finite element K, however fine, stays far above 1e-12. Sets
+ * *ratio; returns 1 if K is singular to working precision, 0 if not, or
+ * a (negative) status. */
+#define DUAL_SINGULAR_RATIO 1e-12
+static int dual_singular(cx_fact *F, const cx_problem *p, double *ratio, cx_diag *d)
+{
+    int n = p->n;
+    double amax = 0, lam = INFINITY;
+    for (int j = 0; j < n; j++)
+        for (int q = p->K.p[j]; q < p->K.p[j + 1]; q++)
+            if (p->K.i[q] == j)
+                amax = fmax(amax, fabs(p->K.x[q]));
+    double *x = CX_NEW(double, (size_t)n + 1), *y = CX_NEW(double, (size_t)n + 1);
+    int st = x && y ? CX_OK : cx_diag_set(d, CX_ENOMEM, "out of memory");
+    uint64_t r = 0x9e3779b97f4a7c15u;   /* a fixed start: the same answer on every run */
+    for (int i = 0; !st && i < n; i++) {
+        r ^= r << 13, r ^= r >> 7, r ^= r << 17;
+        x[i] = (double)(r >> 11) / 9007199254740992.0 - 0.5;
+    }
+    for (int it = 0; !st && it < 3; it++) {
+        double nx = cx_vec_norm2(n, x);
+        for (int i = 0; i < n; i++)
+            x[i] /= nx;
+        if ((st = cx_fact_solve(F, x, y, d)))
+            break;
+        double xy = cx_vec_dot(n, x, y);   /* x' K^-1 x, |x| = 1 */
+        lam = cx_vec_finite(n, y) && xy > 0 ? fmin(lam, 1 / xy) : 0;
+        memcpy(x, y, sizeof(double) * (size_t)n);
+        if (!(lam > 0))
+            break;
+    }
+    cx_free(x);
+    cx_free(y);
+    *ratio = amax > 0 ? lam / amax : 0;
+    if (st)
+        return st;
+    return *ratio < DUAL_SINGULAR_RATIO;
 }
 
 static int dual_build(void **obj, const cx_problem *p, const void *arg, cx_counters *cnt, cx_diag *d)
@@ -70,6 +117,16 @@ static int dual_build(void **obj, const cx_problem *p, const void *arg, cx_count
                                "the dual methods need K^-1, but K is not positive definite "
                                "(a body held only by contact); use ssn-tresca");
         return st;
+    }
+    double ratio;
+    if (!p->mesh && (st = dual_singular(D->K, p, &ratio, d)) != 0) {
+        dual_destroy(D);
+        if (st != 1)
+            return st;
+        return cx_diag_set(d, CX_EUNSUPPORTED,
+                           "the dual methods need K^-1, but K is singular (its smallest eigenvalue, by "
+                           "inverse iteration, is %.1e of its largest diagonal entry): a body held only by "
+                           "contact has a rigid motion K cannot see; use ssn-tresca", ratio);
     }
     if ((st = cx_fact_solve(D->K, p->f, D->uf, d))) {
         dual_destroy(D);
