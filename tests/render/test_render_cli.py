@@ -11,30 +11,16 @@ import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
-import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, exe, finish, run, one_line_error, usage_error  # noqa: E402
+from clicheck import check, exe, finish, one_line_error, png_read, run, usage_error  # noqa: E402
 
 
 def png_info(path):
-    """(width, height, {tEXt key: value}) of a PNG, chunk by chunk."""
-    with open(path, "rb") as f:
-        data = f.read()
-    check(data[:8] == b"\x89PNG\r\n\x1a\n", "PNG signature")
-    pos, text, size = 8, {}, None
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        crc = struct.unpack(">I", data[pos + 8 + n:pos + 12 + n])[0]
-        check(zlib.crc32(kind + body) == crc, f"CRC of {kind}")
-        if kind == b"IHDR":
-            size = struct.unpack(">II", body[:8])
-        if kind == b"tEXt":
-            k, v = body.split(b"\0", 1)
-            text[k.decode("latin-1")] = v.decode("latin-1")
-        pos += 12 + n
-    return size[0], size[1], text
+    """(width, height, {tEXt key: value}) of a PNG, chunk by chunk (CRCs
+    checked)."""
+    png = png_read(path, pixels=False)
+    return png.width, png.height, png.text
 
 
 def vtu_arrays(path):
