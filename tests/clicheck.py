@@ -4,12 +4,14 @@ program under test (argv[1]), checks that count, running it, the
 one-line error every bad input must give, and a reader of the PNGs it
 writes."""
 import collections
+import os
 import struct
 import subprocess
 import sys
 import zlib
 
-exe = sys.argv[1]
+# a path (not a name looked up in PATH) made absolute: runs with cwd= find it
+exe = os.path.abspath(sys.argv[1]) if os.sep in sys.argv[1] else sys.argv[1]
 _count = {"checks": 0, "failures": 0}
 
 
@@ -20,8 +22,11 @@ def check(cond, what):
         print(f"FAIL: {what}")
 
 
-def run(*args, cwd=None):
-    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=300, cwd=cwd)
+def run(*args, cwd=None, env=None, stdin=None):
+    """(exit status, stdout, stderr) of the program with args; env: variables
+    added to the environment."""
+    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=300, cwd=cwd,
+                       env=None if env is None else {**os.environ, **env}, stdin=stdin)
     return r.returncode, r.stdout, r.stderr
 
 
