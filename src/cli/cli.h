@@ -9,7 +9,7 @@
 
 #include "base/args.h"
 #include "base/opt_solve.h"
-#include "out/result.h"
+#include "out/out.h"
 
 int cli_list(int argc, char **argv);
 int cli_solve(int argc, char **argv);
@@ -22,6 +22,34 @@ int cli_solve_problem(const char *cmd, const char *path, const cx_solve_args *a,
                       int quiet);
 /* The summary of a result (solve's text output). */
 void cli_solve_write_text(const cx_result *r, FILE *out);
+
+/* What 'solve SCENE' and 'solve --problem' share (cli/solve.c). */
+/* The method's parameters: its defaults, then auto_sets ("key=value ...",
+ * --method auto's choice), then a's --set. */
+int cli_method_params(const cx_method *m, const char *auto_sets, const cx_solve_args *a, cx_param_values *pv,
+                      cx_diag *d);
+/* A run's observer: a line per iterate on out unless quiet, every
+ * iterate in history (--json; NULL: none), with series every iterate as
+ * series/iter_NNNN.vtu (completed on s, sc at level; the first error in
+ * d stops the run). */
+typedef struct cli_watch {
+    int quiet;
+    FILE *out;
+    cx_history *history;
+    const char *series;
+    cx_session *s;
+    const cx_scene *sc;
+    int level, nseries;
+    cx_diag *d;
+} cli_watch;
+/* Run session s (its friction and method set) observed by w: unless
+ * w->quiet, first the header "TITLE: 2D, N dofs, M contact points; METHOD
+ * [(auto)], friction LAW" and the column heads. Ctrl-C cancels the run:
+ * it ends at the next check, as cancelled. The solver's status. */
+int cli_solve_run(cx_session *s, const char *title, int is_auto, cli_watch *w, cx_diag *d);
+/* The exit status of a run that ended for reason: 0 converged, 130
+ * cancelled, else 3. */
+int cli_exit_status(int reason);
 /* solve --backend petsc (cli/solve_petsc.c): the problem built on every
  * rank solved by the PETSc backend; rank 0 prints and writes. */
 typedef struct cli_petsc_args {

@@ -45,16 +45,22 @@ static int render_check_size(const char *text, cx_diag *d)
     return CX_OK;
 }
 
+/* "A<sep>B": two finite numbers and nothing else. */
+static int render_parse_pair(const char *text, char sep, double *a, double *b)
+{
+    char *end;
+    *a = strtod(text, &end);
+    if (end == text || *end != sep)
+        return 0;
+    const char *rest = end + 1;
+    *b = strtod(rest, &end);
+    return end != rest && *end == '\0' && isfinite(*a) && isfinite(*b);
+}
+
 /* --range MIN:MAX: finite numbers, MIN < MAX */
 static int render_parse_range(const char *text, double *lo, double *hi)
 {
-    char *end;
-    *lo = strtod(text, &end);
-    if (end == text || *end != ':')
-        return 0;
-    const char *b = end + 1;
-    *hi = strtod(b, &end);
-    return end != b && *end == '\0' && isfinite(*lo) && isfinite(*hi) && *lo < *hi;
+    return render_parse_pair(text, ':', lo, hi) && *lo < *hi;
 }
 
 static int render_check_range(const char *text, cx_diag *d)
@@ -68,13 +74,7 @@ static int render_check_range(const char *text, cx_diag *d)
 /* --camera AZ,EL: degrees, |EL| <= 90 */
 static int render_parse_camera(const char *text, double *az, double *el)
 {
-    char *end;
-    *az = strtod(text, &end);
-    if (end == text || *end != ',')
-        return 0;
-    const char *b = end + 1;
-    *el = strtod(b, &end);
-    return end != b && *end == '\0' && isfinite(*az) && isfinite(*el) && fabs(*el) <= 90;
+    return render_parse_pair(text, ',', az, el) && fabs(*el) <= 90;
 }
 
 static int render_check_camera(const char *text, cx_diag *d)

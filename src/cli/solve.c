@@ -110,20 +110,9 @@ static const char *solve_num(char *buf, size_t len, const char *fmt, double v)
     return buf;
 }
 
-typedef struct {
-    int quiet;
-    FILE *out;
-    cx_history *history;   /* --json: every iterate, for its "history" */
-    const char *series;    /* --vtu-series DIR (NULL: none) */
-    cx_session *s;         /* the session observed (to complete its iterate) */
-    const cx_scene *sc;
-    int level, nseries;
-    cx_diag *d;
-} solve_watch;
-
 /* One iterate of --vtu-series: DIR/iter_NNNN.vtu. Non-zero on an error
  * (in w->d), which stops the run. */
-static int solve_series_step(solve_watch *w, int iter)
+static int solve_series_step(cli_watch *w, int iter)
 {
     char path[4096];
     cx_result *r = NULL;
@@ -138,7 +127,7 @@ static int solve_series_step(solve_watch *w, int iter)
 }
 
 /* DIR/series.pvd: the iterates 1..n as time steps. */
-static int solve_series_pvd(const solve_watch *w, cx_diag *d)
+static int solve_series_pvd(const cli_watch *w, cx_diag *d)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/series.pvd", w->series);
@@ -154,7 +143,7 @@ static int solve_series_pvd(const solve_watch *w, cx_diag *d)
 static int solve_print_step(void *ctx, const cx_session *s, const cx_iterate *it)
 {
     (void)s;
-    solve_watch *w = ctx;
+    cli_watch *w = ctx;
     char kkt[32], own[32];
     cli_progress_stop();   /* the setup is over: the iterations have their lines */
     if (w->series && solve_series_step(w, it->iter))
@@ -233,10 +222,8 @@ static void solve_on_sigint(int sig)
     _exit(CX_EXIT_INTERRUPTED);
 }
 
-/* The method's parameters: its defaults, then auto_sets ("key=value ...",
- * --method auto's choice), then --set. */
-static int solve_method_params(const cx_method *m, const char *auto_sets, const solve_args *a,
-                               cx_param_values *pv, cx_diag *d)
+int cli_method_params(const cx_method *m, const char *auto_sets, const cx_solve_args *a, cx_param_values *pv,
+                      cx_diag *d)
 {
     cx_param_default(pv, m->params);
     char owner[64];
@@ -245,9 +232,37 @@ static int solve_method_params(const cx_method *m, const char *auto_sets, const 
     snprintf(buf, sizeof buf, "%s", auto_sets);
     for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok; tok = strtok_r(NULL, " ", &save))
         CX_TRY(cx_param_set_pair(pv, tok, owner, d));
-    for (int k = 0; k < a->s.sets.n; k++)
-        CX_TRY(cli_param_set_for(pv, a->s.sets.v[k], a->s.methods.n, owner, d));
+    for (int k = 0; k < a->sets.n; k++)
+        CX_TRY(cli_param_set_for(pv, a->sets.v[k], a->methods.n, owner, d));
     return CX_OK;
+}
+
+int cli_solve_run(cx_session *s, const char *title, int is_auto, cli_watch *w, cx_diag *d)
+{
+    solve_running = s;   /* from here Ctrl-C cancels the run (the header may be seen first) */
+    if (!w->quiet) {
+        const cx_problem *p = cx_session_problem(s);
+        cli_progress_stop();
+        char clamped[32] = "";   /* points of the contact boundary a support holds */
+        if (p->contact.nclamped > 0)
+            snprintf(clamped, sizeof clamped, ", %d clamped", p->contact.nclamped);
+        fprintf(w->out, "%s: %dD, %d dofs, %d contact points%s; %s%s, friction %s\n", title, p->dim, p->n, p->m,
+                clamped, cx_session_method(s)->id, is_auto ? " (auto)" : "",
+                cx_friction_name(cx_session_friction(s)->law));
+        fprintf(w->out, "  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
+        fflush(w->out);          /* the run may be long: show where it is */
+        cli_progress_start();   /* until the first iteration's line */
+    }
+    int rc = cx_solver_solve(s, solve_print_step, w, d);
+    cli_progress_stop();
+    solve_running = NULL;
+    return rc;
+}
+
+int cli_exit_status(int reason)
+{
+    return reason == CX_CONVERGED_KKT ? CX_EXIT_OK : reason == CX_CANCELLED ? CX_EXIT_INTERRUPTED
+                                                                          : CX_EXIT_NOT_CONVERGED;
 }
 
 int cli_solve(int argc, char **argv)
@@ -322,7 +337,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     cx_param_values pv;
     if (!is_auto && !a.backend) {
         m = cx_method_find(a.s.method);
-        if (solve_method_params(m, "", &a, &pv, &d))
+        if (cli_method_params(m, "", &a.s, &pv, &d))
             return cli_usage(cmd, d.msg);   /* --set names a key or a value the method has not */
     }
 
@@ -356,7 +371,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     if (is_auto) {
         const char *auto_sets;
         m = cx_method_find(cx_scene_auto_method(&sc, a.s.level, p, (cx_friction)law, &auto_sets));
-        if (!m || solve_method_params(m, auto_sets, &a, &pv, &d)) {
+        if (!m || cli_method_params(m, auto_sets, &a.s, &pv, &d)) {
             cx_problem_destroy(&p);
             return m ? cli_usage(cmd, d.msg) : cli_fail(cmd, "--method auto: no method");
         }
@@ -378,32 +393,17 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         goto done;
     }
     const cx_problem *cp = cx_session_problem(s);
-    solve_running = s;   /* from here Ctrl-C cancels the run (the header may be seen first) */
-    if (!a.json && !a.quiet) {
-        cli_progress_stop();
-        char clamped[32] = "";   /* points of the contact boundary a support holds */
-        if (cp->contact.nclamped > 0)
-            snprintf(clamped, sizeof clamped, ", %d clamped", cp->contact.nclamped);
-        fprintf(summary, "%s level %d: %dD, %d dofs, %d contact points%s; %s%s, friction %s\n", sc.id,
-                a.s.level > 0 ? a.s.level : sc.level, cp->dim, cp->n, cp->m, clamped, m->id,
-                is_auto ? " (auto)" : "", cx_friction_name(cx_session_friction(s)->law));
-        fprintf(summary, "  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
-        fflush(summary);   /* the run may be long: show where it is */
-    }
-    cx_diag series_d = {0};
-    solve_watch w = {a.json || a.quiet, summary, a.json ? &history : NULL, a.vtu_series, s, &sc,
-                     a.s.level, 0, &series_d};
     if (a.vtu_series && mkdir(a.vtu_series, 0777) != 0 && errno != EEXIST) {
         cx_diag_set(&d, CX_EIO, "--vtu-series %s: %s", a.vtu_series, strerror(errno));
         cli_fail(cmd, d.msg);
         goto done;
     }
-    if (!a.json && !a.quiet)
-        cli_progress_start();   /* until the first iteration's line */
-    int solved = cx_solver_solve(s, solve_print_step, &w, &d);
-    cli_progress_stop();
-    solve_running = NULL;
-    if (solved) {
+    cx_diag series_d = {0};
+    cli_watch w = {a.json || a.quiet, summary, a.json ? &history : NULL, a.vtu_series, s, &sc,
+                   a.s.level, 0, &series_d};
+    char title[CX_SCENE_NAMELEN + 32];
+    snprintf(title, sizeof title, "%s level %d", sc.id, a.s.level > 0 ? a.s.level : sc.level);
+    if (cli_solve_run(s, title, is_auto, &w, &d)) {
         cli_fail(cmd, d.msg);
         goto done;
     }
@@ -444,9 +444,7 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
             fprintf(summary, "; METIS %.3g nnz(L) %.3g Gflop %.3f s", o->lnz[1], o->flops[1] * 1e-9, o->seconds[1]);
         fprintf(summary, "\n");
     }
-    code = res->run.converged                   ? CX_EXIT_OK
-           : res->run.reason == CX_CANCELLED ? CX_EXIT_INTERRUPTED
-                                               : CX_EXIT_NOT_CONVERGED;
+    code = cli_exit_status(res->run.reason);
     if (cli_render_outputs(&a.render, &sc, s, res, a.json, &d))
         code = cli_fail(cmd, d.msg);
     cx_result_destroy(&res);

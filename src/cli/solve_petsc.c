@@ -100,7 +100,7 @@ int cli_solve_petsc(const char *cmd, const cx_scene *sc, const cx_problem *p, co
         return rank == 0 ? cli_fail(cmd, d.msg) : CX_EXIT_ERROR;
     }
     double t_total = a->t_assemble + (cx_clock_now() - t1);
-    int code = r.reason > 0 ? CX_EXIT_OK : r.reason == CX_CANCELLED ? CX_EXIT_INTERRUPTED : CX_EXIT_NOT_CONVERGED;
+    int code = cli_exit_status(r.reason);
     if (rank != 0) {
         cx_petsc_result_clear(&r);
         return code;

@@ -11,24 +11,6 @@
 #include <stdio.h>
 #include <string.h>
 
-typedef struct {
-    FILE *out;
-    int quiet;
-    cx_history *history;
-} sp_watch;
-
-static int sp_step(void *ctx, const cx_session *s, const cx_iterate *it)
-{
-    (void)s;
-    sp_watch *w = ctx;
-    if (w->history && cx_history_add(w->history, it))
-        return 1;
-    if (!w->quiet)
-        fprintf(w->out, "%6d  %10.3e  %10.3e  %7d %6d %6d %7d  %9.4f\n", it->iter, it->kkt, it->own,
-                it->ncontact + it->nstick + it->nslip, it->nstick, it->nslip, it->nchanged, it->time);
-    return 0;
-}
-
 static void sp_json(const cx_problem_file *pf, const char *path, const cx_session *s, const cx_history *h)
 {
     const cx_iterate *it = cx_session_iterate(s);
@@ -60,19 +42,7 @@ static void sp_json(const cx_problem_file *pf, const char *path, const cx_sessio
     cx_json_int(&j, "matvecs", it->counters.matvecs);
     cx_json_end_object(&j);
     cx_json_num(&j, "time", it->time);
-    cx_json_array(&j, "history");
-    for (int k = 0; h && k < h->n; k++) {
-        const cx_history_row *r = &h->rows[k];
-        cx_json_object(&j, NULL);
-        cx_json_int(&j, "iter", r->iter);
-        cx_json_num(&j, "kkt", r->kkt);
-        cx_json_num(&j, "own", r->own);
-        cx_json_int(&j, "contact", r->ncontact);
-        cx_json_int(&j, "changed", r->nchanged);
-        cx_json_num(&j, "time", r->time);
-        cx_json_end_object(&j);
-    }
-    cx_json_end_array(&j);
+    cx_history_write_json(&j, h);
     cx_json_end_object(&j);
     fputc('\n', stdout);
 }
@@ -100,9 +70,9 @@ int cli_solve_problem(const char *cmd, const char *path, const cx_solve_args *a,
         fr.slip_bound = a->slip;
         fr.s = NULL;
     }
-    const char *id = a->method && strcmp(a->method, "auto") != 0 ? a->method : NULL;
-    const char *auto_sets = "";
-    if (!id) {
+    int is_auto = !a->method || strcmp(a->method, "auto") == 0;
+    const char *id = a->method, *auto_sets = "";
+    if (is_auto) {
         /* --method auto: the choice for the scene it came from, when that
          * scene is here (the same method and parameters as 'solve SCENE'),
          * else the rule from the problem's properties */
@@ -113,24 +83,13 @@ int cli_solve_problem(const char *cmd, const char *path, const cx_solve_args *a,
     }
     const cx_method *m = cx_method_find(id);
     cx_param_values pv;
-    cx_param_default(&pv, m->params);
-    char owner[64];
-    snprintf(owner, sizeof owner, "method '%s'", m->id);
-    char buf[256];
-    snprintf(buf, sizeof buf, "%s", auto_sets);
-    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok; tok = strtok_r(NULL, " ", &save))
-        if (cx_param_set_pair(&pv, tok, owner, &d)) {
-            cx_problem_file_clear(&pf);
-            return cli_fail(cmd, d.msg);
-        }
-    for (int k = 0; k < a->sets.n; k++)
-        if (cli_param_set_for(&pv, a->sets.v[k], a->methods.n, owner, &d)) {
-            cx_problem_file_clear(&pf);
-            return cli_usage(cmd, d.msg);
-        }
-    int level = pf.level;
-    char source[256];
-    snprintf(source, sizeof source, "%s", pf.source[0] ? pf.source : "?");
+    if (cli_method_params(m, auto_sets, a, &pv, &d)) {   /* --set names a key or a value the method has not */
+        cx_problem_file_clear(&pf);
+        return cli_usage(cmd, d.msg);
+    }
+    char title[4096 + 512];
+    snprintf(title, sizeof title, "problem %s (%s, from %s level %d)", path, pf.format,
+             pf.source[0] ? pf.source : "?", pf.level);
     cx_session *s = NULL;
     int code = CX_EXIT_ERROR;
     cx_history history = {0};
@@ -140,15 +99,8 @@ int cli_solve_problem(const char *cmd, const char *path, const cx_solve_args *a,
         goto done;
     }
     const cx_problem *p = cx_session_problem(s);
-    if (!json && !quiet) {
-        printf("problem %s (%s, from %s level %d): %dD, %d dofs, %d contact points; %s%s, friction %s\n", path,
-               pf.format, source, level, p->dim, p->n, p->m, m->id, a->method && strcmp(a->method, "auto") ? ""
-               : " (auto)", cx_friction_name(cx_session_friction(s)->law));
-        printf("  iter  kkt error   own crit.   contact  stick   slip changed   time (s)\n");
-        fflush(stdout);
-    }
-    sp_watch w = {stdout, json || quiet, json ? &history : NULL};
-    if (cx_solver_solve(s, sp_step, &w, &d)) {
+    cli_watch w = {json || quiet, stdout, json ? &history : NULL, NULL, s, NULL, 0, 0, NULL};
+    if (cli_solve_run(s, title, is_auto, &w, &d)) {
         cli_fail(cmd, d.msg);
         goto done;
     }
@@ -164,9 +116,7 @@ int cli_solve_problem(const char *cmd, const char *path, const cx_solve_args *a,
         printf("work:    %ld factorisations, %ld solves, %ld products with K\n", it->counters.factorizations,
                it->counters.solves, it->counters.matvecs);
     }
-    code = it->reason == CX_CONVERGED_KKT ? CX_EXIT_OK
-           : it->reason == CX_CANCELLED   ? CX_EXIT_INTERRUPTED
-                                          : CX_EXIT_NOT_CONVERGED;
+    code = cli_exit_status(it->reason);
 done:
     cx_history_clear(&history);
     cx_session_destroy(&s);

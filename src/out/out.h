@@ -46,6 +46,9 @@ typedef struct cx_history {
  * zeroed cx_history is empty. */
 int cx_history_add(cx_history *h, const cx_iterate *it);
 void cx_history_clear(cx_history *h);
+/* The history as the array member "history" of the object j is in (a
+ * non-finite kkt or own criterion is null). */
+void cx_history_write_json(cx_json *j, const cx_history *h);
 /* cx_result_write_json with the history (h may be NULL: none). */
 int cx_result_write_json_history(const cx_result *r, const cx_history *h, FILE *out);
 

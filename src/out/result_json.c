@@ -41,24 +41,15 @@ void cx_history_clear(cx_history *h)
     h->n = h->cap = 0;
 }
 
-/* A number, or null when it is not finite (JSON has no NaN or Inf). */
-static void rj_num(cx_json *j, const char *key, double v)
-{
-    if (isfinite(v))
-        cx_json_num(j, key, v);
-    else
-        cx_json_null(j, key);
-}
-
-static void rj_history(cx_json *j, const cx_history *h)
+void cx_history_write_json(cx_json *j, const cx_history *h)
 {
     cx_json_array(j, "history");
     for (int k = 0; k < h->n; k++) {
         const cx_history_row *row = &h->rows[k];
         cx_json_object(j, NULL);
         cx_json_int(j, "iter", row->iter);
-        rj_num(j, "kkt", row->kkt);
-        rj_num(j, "own", row->own);
+        cx_json_num(j, "kkt", row->kkt);   /* null when not finite */
+        cx_json_num(j, "own", row->own);
         cx_json_int(j, "contact", row->ncontact);
         cx_json_int(j, "stick", row->nstick);
         cx_json_int(j, "slip", row->nslip);
@@ -179,7 +170,7 @@ int cx_result_write_json_history(const cx_result *r, const cx_history *h, FILE *
         cx_json_end_object(&j);
     }
     if (h)
-        rj_history(&j, h);
+        cx_history_write_json(&j, h);
     cx_json_str(&j, "version", CX_VERSION);
     cx_json_end_object(&j);
     return ferror(out) ? CX_EIO : CX_OK;

@@ -6,6 +6,7 @@
 #include "render/render_impl.h"
 
 #include <math.h>
+#include <string.h>
 
 double cx_render_font_px(int w, int h, double font_scale)
 {
@@ -139,9 +140,10 @@ static void cam_add(cam_box *b, const double *R, const double *x)
     }
 }
 
-static void cam_add_array(cam_box *b, const double *R, const cx_render_array *a)
+/* Vertices from..to-1 of a. */
+static void cam_add_array(cam_box *b, const double *R, const cx_render_array *a, long from, long to)
 {
-    for (long i = 0; i < a->n; i++) {
+    for (long i = from; i < to; i++) {
         double x[3] = {a->v[CX_RENDER_VFLOATS * i], a->v[CX_RENDER_VFLOATS * i + 1], a->v[CX_RENDER_VFLOATS * i + 2]};
         cam_add(b, R, x);
     }
@@ -169,9 +171,30 @@ static int cam_contact_down(const cx_render_scene *sc)
     return cs->m > 0 && nz < -0.5 * cs->m;
 }
 
+/* The obstacle contact point i is against: with one, that one (for every
+ * point, as body-to-body rows have none); with several, the one whose gap
+ * at the point is the point's own. */
+static int cam_point_obstacle(const cx_render_scene *sc, int i)
+{
+    const cx_result *r = sc->r;
+    const cx_contact_set *cs = &r->contact;
+    int best = 0;
+    double dbest = INFINITY;
+    for (int j = 0; j < sc->nobst && sc->nobst > 1; j++) {
+        double g, nrm[3];
+        if (cx_obstacle_gap(&r->obstacles[j], sc->dim, cs->x + sc->dim * i, &g, nrm) == CX_OK &&
+            fabs(g - cs->gap[i]) < dbest) {
+            dbest = fabs(g - cs->gap[i]);
+            best = j;
+        }
+    }
+    return best;
+}
+
 void cx_render_camera_orient(cx_render_scene *sc)
 {
-    const cx_obstacle *ob = sc->obstacle;
+    const cx_obstacle *ob = sc->nobst ? &sc->obstacles[0] : NULL;
+    memset(sc->ghost, 0, sizeof sc->ghost);
     const cx_render_opts *o = sc->o;
     if (sc->dim == 2) {
         const double e[3] = {0, 0, 1}, up[3] = {0, 1, 0};
@@ -225,14 +248,17 @@ void cx_render_camera_orient(cx_render_scene *sc)
             up[2] = 0;
         }
         cam_rotation(sc->R, e, up);
-        /* the eye on the obstacle's side of the contact faces: the
-         * obstacle would hide them */
+        /* the eye on an obstacle's side of the contact faces against it:
+         * that obstacle would hide them */
         const cx_contact_set *cs = &sc->r->contact;
-        double towards = 0;
-        for (int i = 0; i < cs->m; i++)
+        double towards[CX_RESULT_MAX_OBSTACLES] = {0};
+        for (int i = 0; i < cs->m && sc->nobst; i++) {
+            int j = cam_point_obstacle(sc, i);
             for (int k = 0; k < 3; k++)
-                towards += cs->normal[3 * i + k] * sc->R[6 + k];
-        sc->obstacle_ghost = ob && towards > 0;
+                towards[j] += cs->normal[3 * i + k] * sc->R[6 + k];
+        }
+        for (int j = 0; j < sc->nobst; j++)
+            sc->ghost[j] = towards[j] > 0;
     }
 }
 
@@ -287,7 +313,6 @@ void cx_render_camera(cx_render_scene *sc)
 {
     cx_render_layout l;
     cx_render_draw_area(sc, l.area);
-    const cx_obstacle *ob = sc->obstacle;
     cam_box b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
     if (sc->dim == 2) {
         const cx_mesh *m = sc->r->mesh;
@@ -302,28 +327,32 @@ void cx_render_camera(cx_render_scene *sc)
         /* a disc obstacle is shown whole when it is not much larger than
          * the body; a plane is seen as the strip below the body */
         double size = fmax(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
-        if (ob && ob->kind == CX_OBST_DISC && ob->radius < 1.5 * size) {
-            double q[3] = {ob->point[0] - ob->radius, ob->point[1] - ob->radius, 0};
-            cam_add(&b, sc->R, q);
-            q[0] += 2 * ob->radius;
-            q[1] += 2 * ob->radius;
-            cam_add(&b, sc->R, q);
-        } else if (ob && ob->kind == CX_OBST_PLANE) {
-            double lo[2] = {b.lo[0], b.lo[1]}, hi[2] = {b.hi[0], b.hi[1]};
-            for (int c = 0; c < 4; c++) {
-                double q[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], 0}, dist = 0;
-                for (int k = 0; k < 2; k++)
-                    dist += (q[k] - ob->point[k]) * ob->normal[k];
-                for (int k = 0; k < 2; k++)
-                    q[k] -= (dist + 0.06 * size) * ob->normal[k];
+        double lo[2] = {b.lo[0], b.lo[1]}, hi[2] = {b.hi[0], b.hi[1]};   /* the bodies' */
+        for (int j = 0; j < sc->nobst; j++) {
+            const cx_obstacle *ob = &sc->obstacles[j];
+            if (ob->kind == CX_OBST_DISC && ob->radius < 1.5 * size) {
+                double q[3] = {ob->point[0] - ob->radius, ob->point[1] - ob->radius, 0};
                 cam_add(&b, sc->R, q);
+                q[0] += 2 * ob->radius;
+                q[1] += 2 * ob->radius;
+                cam_add(&b, sc->R, q);
+            } else if (ob->kind == CX_OBST_PLANE) {
+                for (int c = 0; c < 4; c++) {
+                    double q[3] = {c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], 0}, dist = 0;
+                    for (int k = 0; k < 2; k++)
+                        dist += (q[k] - ob->point[k]) * ob->normal[k];
+                    for (int k = 0; k < 2; k++)
+                        q[k] -= (dist + 0.06 * size) * ob->normal[k];
+                    cam_add(&b, sc->R, q);
+                }
             }
         }
     } else {
-        cam_add_array(&b, sc->R, &sc->tris);
+        cam_add_array(&b, sc->R, &sc->tris, 0, sc->tris.n);
         /* a plane seen from its side is not drawn (overlay.c): not framed */
-        if (!(sc->obstacle_ghost && sc->obstacle->kind == CX_OBST_PLANE))
-            cam_add_array(&b, sc->R, &sc->obst);
+        for (int j = 0; j < sc->nobst; j++)
+            if (!(sc->ghost[j] && sc->obstacles[j].kind == CX_OBST_PLANE))
+                cam_add_array(&b, sc->R, &sc->obst, sc->obst_range[j][0], sc->obst_range[j][1]);
     }
     if (sc->o->crop_contact)
         cam_crop(sc, &b, fmax(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]));

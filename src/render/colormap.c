@@ -35,18 +35,24 @@ static void cmap_viridis(double t, unsigned char rgb[3])
     }
 }
 
+/* Piecewise-linear through n + 1 control points, every 1/n (rgb 0..255). */
+static void cmap_points(const double (*pts)[3], int n, double t, unsigned char rgb[3])
+{
+    double s = t * n;
+    int i = (int)floor(s);
+    if (i > n - 1)
+        i = n - 1;
+    double f = s - i;
+    for (int k = 0; k < 3; k++)
+        rgb[k] = cmap_byte(((1 - f) * pts[i][k] + f * pts[i + 1][k]) / 255.0);
+}
+
 static void cmap_coolwarm(double t, unsigned char rgb[3])
 {
     static const double pts[9][3] = {
         {59, 76, 192}, {98, 130, 234}, {141, 176, 254}, {184, 208, 249}, {221, 221, 221},
         {245, 196, 173}, {244, 154, 123}, {222, 96, 77}, {180, 4, 38}};
-    double s = t * 8.0;
-    int i = (int)floor(s);
-    if (i > 7)
-        i = 7;
-    double f = s - i;
-    for (int k = 0; k < 3; k++)
-        rgb[k] = cmap_byte(((1 - f) * pts[i][k] + f * pts[i + 1][k]) / 255.0);
+    cmap_points(pts, 8, t, rgb);
 }
 
 void cx_colormap(int diverging, double t, unsigned char rgb[3])
@@ -86,18 +92,6 @@ int cx_cmap_from_name(const char *name)
     return -2;
 }
 
-/* Piecewise-linear through control points every 1/16 (rgb 0..255). */
-static void cmap_points(const double pts[17][3], double t, unsigned char rgb[3])
-{
-    double s = t * 16.0;
-    int i = (int)floor(s);
-    if (i > 15)
-        i = 15;
-    double f = s - i;
-    for (int k = 0; k < 3; k++)
-        rgb[k] = cmap_byte(((1 - f) * pts[i][k] + f * pts[i + 1][k]) / 255.0);
-}
-
 void cx_colormap_named(int cmap, int diverging, double t, unsigned char rgb[3])
 {
     if (!(t >= 0))
@@ -118,8 +112,8 @@ void cx_colormap_named(int cmap, int diverging, double t, unsigned char rgb[3])
         {252, 253, 191}};
     switch (cmap) {
     case CX_CMAP_VIRIDIS: cmap_viridis(t, rgb); break;
-    case CX_CMAP_CIVIDIS: cmap_points(cividis, t, rgb); break;
-    case CX_CMAP_MAGMA: cmap_points(magma, t, rgb); break;
+    case CX_CMAP_CIVIDIS: cmap_points(cividis, 16, t, rgb); break;
+    case CX_CMAP_MAGMA: cmap_points(magma, 16, t, rgb); break;
     case CX_CMAP_COOLWARM: cmap_coolwarm(t, rgb); break;
     case CX_CMAP_GRAY: rgb[0] = rgb[1] = rgb[2] = cmap_byte(0.08 + 0.88 * t); break;
     default: cx_colormap(diverging, t, rgb); break;

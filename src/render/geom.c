@@ -316,29 +316,33 @@ static int geom_quad(cx_render_array *a, const double *c, const double *e1, cons
     return CX_OK;
 }
 
-/* A plane patch under the body, or the sphere / cylinder surface. */
-static int geom_obstacle3d(cx_render_scene *sc)
+/* The centre c and the diagonal of the drawn bodies' box (with --mirror,
+ * of every copy). */
+static double geom_body_box(const cx_render_scene *sc, double c[3])
 {
-    const cx_obstacle *ob = sc->obstacle;
-    if (!ob)
-        return CX_OK;
     const cx_mesh *m = sc->r->mesh;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (int c = 0; c < sc->ncopies; c++)   /* the whole body with --mirror */
+    for (int cp = 0; cp < sc->ncopies; cp++)
         for (int i = 0; i < m->nnodes; i++) {
             double x[3];
-            cx_render_mirror(sc, c, sc->xd + 3 * i, x);
+            cx_render_mirror(sc, cp, sc->xd + 3 * i, x);
             for (int k = 0; k < 3; k++) {
                 lo[k] = fmin(lo[k], x[k]);
                 hi[k] = fmax(hi[k], x[k]);
             }
         }
-    double c[3], diag = 0;
+    double diag = 0;
     for (int k = 0; k < 3; k++) {
         c[k] = 0.5 * (lo[k] + hi[k]);
         diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
     }
-    diag = sqrt(diag);
+    return sqrt(diag);
+}
+
+/* Obstacle ob into a: a plane patch under the bodies, or the sphere /
+ * cylinder surface, sized by their box (centre c, diagonal diag). */
+static int geom_obstacle3d(cx_render_array *a, const cx_obstacle *ob, const double c[3], double diag)
+{
     if (ob->kind == CX_OBST_PLANE) {
         const double *n = ob->normal;
         double t[6], pc[3], dist = 0;
@@ -352,7 +356,7 @@ static int geom_obstacle3d(cx_render_scene *sc)
             e1[k] = r * t[k];
             e2[k] = r * t[3 + k];
         }
-        return geom_quad(&sc->obst, pc, e1, e2, n);
+        return geom_quad(a, pc, e1, e2, n);
     }
     if (ob->kind == CX_OBST_SPHERE || ob->kind == CX_OBST_CYLINDER) {
         /* parameterised surface: sphere (theta, phi), cylinder (angle, axial) */
@@ -390,8 +394,29 @@ static int geom_obstacle3d(cx_render_scene *sc)
                 }
                 static const int tt[6] = {0, 1, 2, 0, 2, 3};
                 for (int z = 0; z < 6; z++)
-                    CX_TRY(cx_render_array_push(&sc->obst, P[tt[z]], N[tt[z]], 0));
+                    CX_TRY(cx_render_array_push(a, P[tt[z]], N[tt[z]], 0));
             }
+    }
+    return CX_OK;
+}
+
+/* Every obstacle of the result: those drawn first, then the ghosts
+ * (sc->ghost), each one's vertices in sc->obst_range. */
+static int geom_obstacles3d(cx_render_scene *sc)
+{
+    if (sc->nobst == 0)
+        return CX_OK;
+    double c[3], diag = geom_body_box(sc, c);
+    for (int ghosts = 0; ghosts < 2; ghosts++) {
+        for (int j = 0; j < sc->nobst; j++) {
+            if (!sc->ghost[j] != !ghosts)
+                continue;
+            sc->obst_range[j][0] = sc->obst.n;
+            CX_TRY(geom_obstacle3d(&sc->obst, &sc->obstacles[j], c, diag));
+            sc->obst_range[j][1] = sc->obst.n;
+        }
+        if (!ghosts)
+            sc->obst_drawn = sc->obst.n;
     }
     return CX_OK;
 }
@@ -403,7 +428,7 @@ int cx_render_geometry(cx_render_scene *sc)
     } else {
         CX_TRY(geom_3d(sc));
         if (sc->o->view != CX_VIEW_CONTACT)
-            CX_TRY(geom_obstacle3d(sc));
+            CX_TRY(geom_obstacles3d(sc));
     }
     CX_TRY(geom_mirror(sc, &sc->tris));
     CX_TRY(geom_mirror(sc, &sc->overlay));

@@ -27,16 +27,21 @@
  * made it, and a thread holds one at a time. */
 static pthread_mutex_t glctx_lock = PTHREAD_MUTEX_INITIALIZER;
 
-#if CX_GL_EGL
-
+/* A context of either backend, and the RGBA buffer of its pixels. */
 struct cx_gl {
+#if CX_GL_EGL
     EGLDisplay dpy;
     EGLContext ctx;
     EGLSurface surf;
-    unsigned char *buf;   /* read back from the pbuffer by cx_gl_pixels */
+#else
+    OSMesaContext ctx;
+#endif
+    unsigned char *buf;   /* OSMesa draws into it; EGL's pbuffer is read back into it */
     int w, h;
     const char *version;
 };
+
+#if CX_GL_EGL
 
 /* Mesa's surfaceless platform through EGL_EXT_platform_base (EGL 1.4
  * names it eglGetPlatformDisplayEXT; the core eglGetPlatformDisplay of
@@ -68,57 +73,26 @@ static EGLContext glctx_try(EGLDisplay dpy, EGLConfig cfg, int major, int minor)
     return eglCreateContext(dpy, cfg, EGL_NO_CONTEXT, attribs);
 }
 
-/* Frees what c holds and releases the lock; the status given. */
-static int glctx_fail(struct cx_gl *c, int st)
+/* The context of c (w, h and buf set), made current; on an error what
+ * was made stays in c for glctx_close. */
+static int glctx_open(cx_gl *c, cx_diag *d)
 {
-    if (c->dpy != EGL_NO_DISPLAY) {
-        eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        if (c->ctx != EGL_NO_CONTEXT)
-            eglDestroyContext(c->dpy, c->ctx);
-        if (c->surf != EGL_NO_SURFACE)
-            eglDestroySurface(c->dpy, c->surf);
-        eglTerminate(c->dpy);
-        eglReleaseThread();
-    }
-    pthread_mutex_unlock(&glctx_lock);
-    cx_free(c->buf);
-    cx_free(c);
-    return st;
-}
-
-int cx_gl_create(cx_gl **g, int w, int h, cx_diag *d)
-{
-    *g = NULL;
-    if (w < 1 || h < 1 || w > 16384 || h > 16384)
-        return cx_diag_set(d, CX_EINVAL, "image size %dx%d: expected 1..16384 pixels each way", w, h);
-    cx_gl *c = CX_NEW(cx_gl, 1);
-    if (!c)
-        return CX_ENOMEM;
-    c->buf = cx_malloc((size_t)w * h * 4);
-    if (!c->buf) {
-        cx_free(c);
-        return CX_ENOMEM;
-    }
     c->dpy = EGL_NO_DISPLAY;
     c->ctx = EGL_NO_CONTEXT;
     c->surf = EGL_NO_SURFACE;
-    c->w = w;
-    c->h = h;
-    pthread_mutex_lock(&glctx_lock);
     if ((c->dpy = glctx_display(d)) == EGL_NO_DISPLAY)
-        return glctx_fail(c, CX_EEXTERNAL);
+        return CX_EEXTERNAL;
     const EGLint cattr[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
                             EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
                             EGL_DEPTH_SIZE, 24, EGL_STENCIL_SIZE, 8, EGL_NONE};
     EGLConfig cfg;
     EGLint ncfg = 0;
     if (!eglBindAPI(EGL_OPENGL_API) || !eglChooseConfig(c->dpy, cattr, &cfg, 1, &ncfg) || ncfg < 1)
-        return glctx_fail(c, cx_diag_set(d, CX_EEXTERNAL,
-                                          "EGL: no RGBA8 pbuffer configuration with a 24-bit depth buffer"));
-    const EGLint sattr[] = {EGL_WIDTH, w, EGL_HEIGHT, h, EGL_NONE};
+        return cx_diag_set(d, CX_EEXTERNAL, "EGL: no RGBA8 pbuffer configuration with a 24-bit depth buffer");
+    const EGLint sattr[] = {EGL_WIDTH, c->w, EGL_HEIGHT, c->h, EGL_NONE};
     if ((c->surf = eglCreatePbufferSurface(c->dpy, cfg, sattr)) == EGL_NO_SURFACE)
-        return glctx_fail(c, cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot create a %dx%d pbuffer (error 0x%x)",
-                                          w, h, (unsigned)eglGetError()));
+        return cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot create a %dx%d pbuffer (error 0x%x)", c->w, c->h,
+                           (unsigned)eglGetError());
     c->version = "4.5";
     c->ctx = glctx_try(c->dpy, cfg, 4, 5);
     if (c->ctx == EGL_NO_CONTEXT) {
@@ -126,19 +100,24 @@ int cx_gl_create(cx_gl **g, int w, int h, cx_diag *d)
         c->ctx = glctx_try(c->dpy, cfg, 3, 3);
     }
     if (c->ctx == EGL_NO_CONTEXT)
-        return glctx_fail(c, cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot create an OpenGL 3.3 core context"));
+        return cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot create an OpenGL 3.3 core context");
     if (!eglMakeCurrent(c->dpy, c->surf, c->surf, c->ctx))
-        return glctx_fail(c, cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot make the context current"));
-    *g = c;
+        return cx_diag_set(d, CX_EEXTERNAL, "EGL: cannot make the context current");
     return CX_OK;
 }
 
-void cx_gl_destroy(cx_gl **g)
+/* Releases what glctx_open made. */
+static void glctx_close(cx_gl *c)
 {
-    if (!g || !*g)
+    if (c->dpy == EGL_NO_DISPLAY)
         return;
-    glctx_fail(*g, CX_OK);
-    *g = NULL;
+    eglMakeCurrent(c->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (c->ctx != EGL_NO_CONTEXT)
+        eglDestroyContext(c->dpy, c->ctx);
+    if (c->surf != EGL_NO_SURFACE)
+        eglDestroySurface(c->dpy, c->surf);
+    eglTerminate(c->dpy);
+    eglReleaseThread();
 }
 
 /* The pbuffer is GL memory, not ours (OSMesa draws into our buffer): read
@@ -151,19 +130,7 @@ const unsigned char *cx_gl_pixels(const cx_gl *g)
     return g->buf;
 }
 
-const char *cx_gl_version(const cx_gl *g)
-{
-    return g->version;
-}
-
 #else /* OSMesa */
-
-struct cx_gl {
-    OSMesaContext ctx;
-    unsigned char *buf;
-    int w, h;
-    const char *version;
-};
 
 static OSMesaContext glctx_try(int major, int minor)
 {
@@ -174,6 +141,39 @@ static OSMesaContext glctx_try(int major, int minor)
                            OSMESA_CONTEXT_MINOR_VERSION, minor, 0};
     return OSMesaCreateContextAttribs(attribs, NULL);
 }
+
+/* The context of c (w, h and buf set), made current; on an error what
+ * was made stays in c for glctx_close. */
+static int glctx_open(cx_gl *c, cx_diag *d)
+{
+    c->version = "4.5";
+    c->ctx = glctx_try(4, 5);
+    if (!c->ctx) {
+        c->version = "3.3";
+        c->ctx = glctx_try(3, 3);
+    }
+    if (!c->ctx)
+        return cx_diag_set(d, CX_EEXTERNAL, "OSMesa: cannot create an OpenGL 3.3 core context");
+    if (!OSMesaMakeCurrent(c->ctx, c->buf, GL_UNSIGNED_BYTE, c->w, c->h))
+        return cx_diag_set(d, CX_EEXTERNAL, "OSMesa: cannot make the context current");
+    return CX_OK;
+}
+
+/* Releases what glctx_open made. */
+static void glctx_close(cx_gl *c)
+{
+    if (!c->ctx)
+        return;
+    OSMesaMakeCurrent(NULL, NULL, GL_UNSIGNED_BYTE, 0, 0);
+    OSMesaDestroyContext(c->ctx);
+}
+
+const unsigned char *cx_gl_pixels(const cx_gl *g)
+{
+    return g->buf;
+}
+
+#endif
 
 int cx_gl_create(cx_gl **g, int w, int h, cx_diag *d)
 {
@@ -188,27 +188,13 @@ int cx_gl_create(cx_gl **g, int w, int h, cx_diag *d)
         cx_free(c);
         return CX_ENOMEM;
     }
-    pthread_mutex_lock(&glctx_lock);
     c->w = w;
     c->h = h;
-    c->version = "4.5";
-    c->ctx = glctx_try(4, 5);
-    if (!c->ctx) {
-        c->version = "3.3";
-        c->ctx = glctx_try(3, 3);
-    }
-    if (!c->ctx) {
-        pthread_mutex_unlock(&glctx_lock);
-        cx_free(c->buf);
-        cx_free(c);
-        return cx_diag_set(d, CX_EEXTERNAL, "OSMesa: cannot create an OpenGL 3.3 core context");
-    }
-    if (!OSMesaMakeCurrent(c->ctx, c->buf, GL_UNSIGNED_BYTE, w, h)) {
-        OSMesaDestroyContext(c->ctx);
-        pthread_mutex_unlock(&glctx_lock);
-        cx_free(c->buf);
-        cx_free(c);
-        return cx_diag_set(d, CX_EEXTERNAL, "OSMesa: cannot make the context current");
+    pthread_mutex_lock(&glctx_lock);
+    int st = glctx_open(c, d);
+    if (st) {
+        cx_gl_destroy(&c);   /* what was made, the lock, the memory */
+        return st;
     }
     *g = c;
     return CX_OK;
@@ -218,22 +204,14 @@ void cx_gl_destroy(cx_gl **g)
 {
     if (!g || !*g)
         return;
-    OSMesaMakeCurrent(NULL, NULL, GL_UNSIGNED_BYTE, 0, 0);
-    OSMesaDestroyContext((*g)->ctx);
+    glctx_close(*g);
     pthread_mutex_unlock(&glctx_lock);
     cx_free((*g)->buf);
     cx_free(*g);
     *g = NULL;
 }
 
-const unsigned char *cx_gl_pixels(const cx_gl *g)
-{
-    return g->buf;
-}
-
 const char *cx_gl_version(const cx_gl *g)
 {
     return g->version;
 }
-
-#endif

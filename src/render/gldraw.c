@@ -186,7 +186,11 @@ static void gl_draw_scene(const cx_render_scene *sc, GLuint prog, int *calls)
     gl_upload(&body, &sc->tris);
     gl_upload(&over, &sc->overlay);
     gl_upload(&lines, &sc->lines);
-    gl_upload(&obst, &sc->obst);
+    /* the obstacles seen from their side (halfball from below) would hide
+     * the contact zone: overlay.c draws their outline; the others are
+     * obst's first vertices */
+    const cx_render_array drawn = {sc->obst.v, sc->obst_drawn, sc->obst_drawn};
+    gl_upload(&obst, &drawn);
     gl_upload(&feat, &sc->feature);
 
     /* 3D lighting: the body's colours within 12 % of the colour bar's
@@ -198,9 +202,6 @@ static void gl_draw_scene(const cx_render_scene *sc, GLuint prog, int *calls)
     static const float obst_col[4] = {0.62f, 0.58f, 0.52f, 1};
     static const float edge2d[4] = {0.10f, 0.10f, 0.10f, 0.45f}, edge3d[4] = {0.05f, 0.05f, 0.05f, 0.6f};
     static const float feat_col[4] = {0.08f, 0.08f, 0.08f, 0.85f};
-    /* seen from the obstacle's side (halfball from below), the obstacle
-     * would hide the contact zone: not drawn here */
-    int see_through = sc->obstacle_ghost;   /* drawn by overlay.c as its outline */
     if (sc->o->crop_contact) {   /* the zoomed drawing stays in its area */
         double a[4];
         cx_render_draw_area(sc, a);
@@ -213,8 +214,7 @@ static void gl_draw_scene(const cx_render_scene *sc, GLuint prog, int *calls)
     }
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);
-    if (!see_through)
-        gl_draw(&obst, GL_TRIANGLES, &u, 0, obst_col, 2, calls);
+    gl_draw(&obst, GL_TRIANGLES, &u, 0, obst_col, 2, calls);
     gl_draw(&body, GL_TRIANGLES, &u, sc->colored, lit ? grey3d : grey2d, lit, calls);
     glPolygonOffset(-1.0f, -1.0f);
     gl_draw(&over, GL_TRIANGLES, &u, 1, NULL, lit, calls);

@@ -60,13 +60,6 @@ double cx_render_auto_scale(const cx_result *r)
     return r->m > 0 ? fmax(s, 1.0) : s;
 }
 
-/* The obstacle where the drawn bodies meet it. A point in contact with
- * initial gap g moves by g towards the obstacle, and is drawn moved by
- * s g: a plane whose nearest points all start at the gap g (masonry's
- * settlement) is drawn moved by (1 - s) g along its normal, so that they
- * touch it at any scale s. Where the points in contact start at other
- * gaps (a curved body) and s != 1, the image says that the contact is not
- * drawn exactly. */
 /* One obstacle ob (the result's, moved in place as drawn); the uniform
  * gap of its plane's nearest points in *gap. */
 static void img_obstacle_one(cx_render_scene *sc, cx_obstacle *ob, double *gap)
@@ -117,24 +110,18 @@ static void img_obstacle_one(cx_render_scene *sc, cx_obstacle *ob, double *gap)
  * settlement) is drawn moved by (1 - s) g along its normal, so that they
  * touch it at any scale s. Where the points in contact start at other
  * gaps (a curved body) and s != 1, the image says that the contact is not
- * drawn exactly. The first obstacle is drawn in 2D and 3D, the others
- * (a ring between two plates) in 2D. */
+ * drawn exactly. Every obstacle of the result is drawn, in 2D and 3D. */
 static void img_obstacle(cx_render_scene *sc)
 {
     const cx_result *r = sc->r;
-    sc->obstacle = NULL;
-    sc->nextra = 0;
-    if (!r->has_obstacle)
-        return;
-    sc->drawn_obstacle = r->obstacle;
-    sc->obstacle = &sc->drawn_obstacle;
-    img_obstacle_one(sc, &sc->drawn_obstacle, &sc->obstacle_gap);
-    sc->obstacle_shift = (1 - sc->scale) * sc->obstacle_gap;
-    for (int j = 1; j < r->nobstacles && sc->dim == 2; j++) {
+    /* r->obstacle is the first (a result made by hand may set it alone) */
+    sc->nobst = !r->has_obstacle ? 0 : r->nobstacles > 1 ? r->nobstacles : 1;
+    for (int j = 0; j < sc->nobst; j++) {
         double g;
-        sc->drawn_extra[sc->nextra] = r->obstacles[j];
-        img_obstacle_one(sc, &sc->drawn_extra[sc->nextra], &g);
-        sc->nextra++;
+        sc->obstacles[j] = j ? r->obstacles[j] : r->obstacle;
+        img_obstacle_one(sc, &sc->obstacles[j], &g);
+        if (j == 0)
+            sc->obstacle_gap = g;
     }
 }
 

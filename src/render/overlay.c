@@ -287,8 +287,6 @@ static void ov_colorbar(const cx_render_scene *sc, cairo_t *cr, double s)
 /* 2D obstacle ob: a hatched strip beyond the plane, or the disc. */
 static void ov_obstacle2d(const cx_render_scene *sc, const cx_obstacle *ob, cairo_t *cr, double s)
 {
-    if (!ob)
-        return;
     cx_render_layout l;
     cx_render_layout_image(sc->r, sc->o, &l);
     cairo_save(cr);
@@ -670,11 +668,8 @@ void cx_render_underlay(const cx_render_scene *sc, cairo_t *cr)
 {
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
-    if (sc->dim == 2) {
-        ov_obstacle2d(sc, sc->obstacle, cr, ov_scale(sc));
-        for (int j = 0; j < sc->nextra; j++)
-            ov_obstacle2d(sc, &sc->drawn_extra[j], cr, ov_scale(sc));
-    }
+    for (int j = 0; j < sc->nobst && sc->dim == 2; j++)
+        ov_obstacle2d(sc, &sc->obstacles[j], cr, ov_scale(sc));
 }
 
 /* 3D: the undeformed shape as a thin wireframe of its feature edges
@@ -696,13 +691,14 @@ static void ov_wire0(const cx_render_scene *sc, cairo_t *cr, double s)
     cairo_set_dash(cr, NULL, 0, 0);
 }
 
-/* 3D, seen from the obstacle's side: a sphere or cylinder as its outline
+/* 3D, obstacle j seen from its side: a sphere or cylinder as its outline
  * (dashed), so that it does not hide the contact zone behind it; a plane
  * not at all (it would only frame the picture). */
-static void ov_obstacle_ghost(const cx_render_scene *sc, cairo_t *cr, double s)
+static void ov_obstacle_ghost(const cx_render_scene *sc, int j, cairo_t *cr, double s)
 {
-    const cx_obstacle *ob = sc->obstacle;
-    if (!sc->obstacle_ghost || !ob || sc->obst.n == 0)
+    const cx_obstacle *ob = &sc->obstacles[j];
+    long from = sc->obst_range[j][0], to = sc->obst_range[j][1];
+    if (!sc->ghost[j] || from == to)
         return;
     cairo_save(cr);
     cairo_set_source_rgba(cr, 0.35, 0.32, 0.28, 0.9);
@@ -719,7 +715,7 @@ static void ov_obstacle_ghost(const cx_render_scene *sc, cairo_t *cr, double s)
         const double *ax = ob->normal, *e = sc->R + 6;
         double w[3] = {ax[1] * e[2] - ax[2] * e[1], ax[2] * e[0] - ax[0] * e[2], ax[0] * e[1] - ax[1] * e[0]};
         double wl = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]), t0 = INFINITY, t1 = -INFINITY;
-        for (long i = 0; i < sc->obst.n; i++) {
+        for (long i = from; i < to; i++) {
             double t = 0;
             for (int k = 0; k < 3; k++)
                 t += (v[CX_RENDER_VFLOATS * i + k] - ob->point[k]) * ax[k];
@@ -742,6 +738,15 @@ static void ov_obstacle_ghost(const cx_render_scene *sc, cairo_t *cr, double s)
     cairo_restore(cr);
 }
 
+/* Is some obstacle drawn as its outline (a ghost that is not a plane)? */
+static int ov_outlined(const cx_render_scene *sc)
+{
+    for (int j = 0; j < sc->nobst; j++)
+        if (sc->ghost[j] && sc->obstacles[j].kind != CX_OBST_PLANE)
+            return 1;
+    return 0;
+}
+
 /* 3D: the axis triad in the lower left corner of the drawing area, the
  * axes further from the viewer first. */
 static void ov_triad(const cx_render_scene *sc, cairo_t *cr, double s)
@@ -762,7 +767,7 @@ static void ov_triad(const cx_render_scene *sc, cairo_t *cr, double s)
     char line[160];
     snprintf(line, sizeof line, "from %s: az %g°, el %g°%s%s", sc->from_below ? "below" : "above", sc->az,
              sc->el, sc->nfeat0 > 0 ? " · dashed: undeformed" : "",
-             sc->obstacle_ghost && sc->obstacle->kind != CX_OBST_PLANE ? ", obstacle outline" : "");
+             ov_outlined(sc) ? ", obstacle outline" : "");
     for (int q = 0; q < 3; q++) {
         int k = order[q];
         double d[2] = {sc->R[k], -sc->R[3 + k]}, len = hypot(d[0], d[1]);
@@ -989,8 +994,8 @@ void cx_render_overlay(const cx_render_scene *sc, cairo_t *cr)
             if (f == CX_FIELD_PRESSURE || f == CX_FIELD_STATUS)
                 ov_band2d(&cp, cr, s);
         } else if (sc->o->view != CX_VIEW_CONTACT) {
-            if (c == 0)
-                ov_obstacle_ghost(sc, cr, s);
+            for (int j = 0; j < sc->nobst && c == 0; j++)
+                ov_obstacle_ghost(sc, j, cr, s);
             ov_wire0(&cp, cr, s);
         }
         if (markers)

@@ -22,13 +22,13 @@ void cx_render_array_clear(cx_render_array *a);
 /* Everything one image needs, in world coordinates (z = 0 in 2D). */
 typedef struct cx_render_scene {
     cx_result *r;        /* what is drawn (borrowed) */
-    const cx_obstacle *obstacle;   /* the obstacle as drawn (&drawn_obstacle), or NULL */
-    cx_obstacle drawn_obstacle;    /* r's obstacle, a plane moved by obstacle_shift */
-    double obstacle_gap;           /* plane: the uniform initial gap g of the nearest points */
-    double obstacle_shift;         /* plane: moved by this along its normal, (1 - s) g */
+    /* every rigid obstacle of r as drawn (a ring's two plates, a block
+     * between a plane and a ball): a plane moved by (1 - s) g along its
+     * normal, g the uniform initial gap of the points against it */
+    int nobst;
+    cx_obstacle obstacles[CX_RESULT_MAX_OBSTACLES];
+    double obstacle_gap;           /* the first's g (a plane's; else 0) */
     int contact_inexact;           /* points in contact drawn off the obstacle by the scale */
-    int nextra;                    /* 2D: the result's other obstacles (a ring's second plate), */
-    cx_obstacle drawn_extra[CX_RESULT_MAX_OBSTACLES - 1];   /* moved as drawn_obstacle is */
     const cx_render_opts *o;
     int dim;
     const double *uall;  /* dim * nnodes: r->u */
@@ -41,7 +41,10 @@ typedef struct cx_render_scene {
     cx_render_array tris;       /* body (or contact faces) */
     cx_render_array overlay;    /* 3D: contact faces coloured on the body */
     cx_render_array lines;      /* edges */
-    cx_render_array obst;       /* 3D obstacle triangles */
+    cx_render_array obst;       /* 3D obstacle triangles: first those drawn (obst_drawn vertices),
+                                   then the ghosts' (framed, outlined by overlay.c) */
+    long obst_drawn;
+    long obst_range[CX_RESULT_MAX_OBSTACLES][2];   /* obstacle j's vertices in obst: [from, to) */
     int *bedges;         /* 2D boundary edges: 3 node ids (a, mid or -1, b) */
     int nbedges;
     int *feat0;          /* 3D: feature edges of the undeformed surface (node pairs) */
@@ -49,8 +52,10 @@ typedef struct cx_render_scene {
     cx_render_array feature;    /* 3D: feature edges of the deformed surface */
     int diverging;       /* the colormap is diverging (a signed field of both signs) */
     int from_below;      /* 3D body view: the eye is below the xy plane */
-    int obstacle_ghost;  /* 3D: seen from the obstacle's side, it is drawn as its
-                            outline (overlay.c), not as a surface hiding the contact */
+    /* 3D body view: obstacle j seen from its side (the eye beyond the
+     * contact faces against it) is drawn as its outline (overlay.c), not
+     * as a surface hiding them */
+    int ghost[CX_RESULT_MAX_OBSTACLES];
     double az, el;       /* 3D body view: the camera (degrees) */
     /* --mirror: the copies across the symmetry planes (1, 2, 4 or 8); copy
      * c reflects across plane j when bit j of c is set; the overlays are

@@ -21,17 +21,8 @@ import sys
 import tempfile
 import time
 
-exe = os.path.abspath(sys.argv[1])
-failures = 0
-checks = 0
-
-
-def check(cond, what):
-    global failures, checks
-    checks += 1
-    if not cond:
-        failures += 1
-        print(f"FAIL: {what}")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from clicheck import check, exe, finish, one_line_error, run  # noqa: E402
 
 
 # Every run's default reference cache ($XDG_CACHE_HOME/signorini) goes to
@@ -39,12 +30,6 @@ def check(cond, what):
 xdg_default = tempfile.mkdtemp(prefix="signorini-test-xdg-")
 os.environ["XDG_CACHE_HOME"] = xdg_default
 scenes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scenes")
-
-
-def run(*args, cwd=None, env=None, stdin=None):
-    r = subprocess.run([exe, *args], capture_output=True, text=True, timeout=120, cwd=cwd,
-                       env=None if env is None else {**os.environ, **env}, stdin=stdin)
-    return r.returncode, r.stdout, r.stderr
 
 
 def read_csv(path):
@@ -59,12 +44,20 @@ def read_csv(path):
     return meta, rows
 
 
-def one_line_error(code, err, *needles, status=1):
-    lines = err.strip().splitlines()
-    check(code == status, f"exit {status} for an error, got {code}: {err!r}")
-    check(len(lines) == 1, f"one line on stderr, got {lines!r}")
-    for n in needles:
-        check(n in err, f"{n!r} in {err!r}")
+def drain(master):
+    """What is left to read on a pty's master side (the program has
+    exited; EOF or EIO ends it); the master is closed."""
+    out = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:
+            break
+        if not chunk:
+            break
+        out += chunk
+    os.close(master)
+    return out
 
 
 methods = json.loads(run("list", "--json")[1])["methods"]
@@ -223,15 +216,7 @@ with tempfile.TemporaryDirectory() as tmp:
                         "ssn-tresca", "--cache", cache], stdout=subprocess.PIPE, stderr=slave, timeout=60)
     os.close(slave)
     bar = b""
-    while True:
-        try:
-            chunk = os.read(master, 4096)
-        except OSError:
-            break
-        if not chunk:
-            break
-        bar += chunk
-    os.close(master)
+    bar += drain(master)
     check(r.returncode == 0 and b"] 1/6 ssn-tresca rho=0.0001 tol 1e-04" in bar and b"s left" in bar,
           f"a progress bar with the case and the time left: {bar[:200]!r}")
 
@@ -324,15 +309,7 @@ with tempfile.TemporaryDirectory() as tmp:
     check(b"] 1/" in bar, f"the first case started: {bar[:200]!r}")
     p.send_signal(signal.SIGINT)
     out, _ = p.communicate(timeout=60)
-    while True:
-        try:
-            chunk = os.read(master, 4096)
-        except OSError:
-            break
-        if not chunk:
-            break
-        bar += chunk
-    os.close(master)
+    bar += drain(master)
     check(p.returncode == 130, f"exit 130 after Ctrl-C in a case, got {p.returncode} ({bar[-300:]!r})")
     check(b"interrupted" in bar, "the note on stderr")
     check(b"# interrupted: yes" in out, f"the table printed, marked interrupted: {out[-200:]!r}")
@@ -385,5 +362,4 @@ with tempfile.TemporaryDirectory() as tmp:
     one_line_error(code, err, "cannot write")
 
 shutil.rmtree(xdg_default, ignore_errors=True)
-print(f"{checks - failures} of {checks} checks passed")
-sys.exit(1 if failures else 0)
+finish("bench")

@@ -20,10 +20,9 @@ import struct
 import subprocess
 import sys
 import tempfile
-import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, exe, finish, one_line_error, run  # noqa: E402
+from clicheck import check, exe, finish, one_line_error, png_read, run  # noqa: E402
 
 SCENES = os.environ.get("SIGNORINI_SCENES", "")
 MESHER = os.path.join(os.path.dirname(os.path.abspath(exe)), "src", "mesh", "signorini-mesh")
@@ -58,41 +57,21 @@ def vtu_points(path):
     return int(m.group(1)) if m else -1
 
 
-def rgb_rows(path):
-    """The rows of an 8-bit RGB PNG, unfiltered."""
-    with open(path, "rb") as f:
-        data = f.read()
-    pos, idat, w, h = 8, b"", 0, 0
-    while pos + 8 <= len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        if kind == b"IHDR":
-            w, h = struct.unpack(">II", data[pos + 8:pos + 16])
-        elif kind == b"IDAT":
-            idat += data[pos + 8:pos + 8 + n]
-        pos += 12 + n
-    raw, stride, out = zlib.decompress(idat), 3 * w, []
-    prev = bytearray(stride)
-    for y in range(h):
-        kind, cur = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            left = cur[i - 3] if i >= 3 else 0
-            up, upleft = prev[i], prev[i - 3] if i >= 3 else 0
-            if kind == 1:
-                pred = left
-            elif kind == 2:
-                pred = up
-            elif kind == 3:
-                pred = (left + up) // 2
-            elif kind == 4:
-                est = left + up - upleft
-                da, db, dc = abs(est - left), abs(est - up), abs(est - upleft)
-                pred = left if da <= db and da <= dc else (up if db <= dc else upleft)
-            else:
-                pred = 0
-            cur[i] = (cur[i] + pred) & 255
-        out.append(bytes(cur))
-        prev = cur
-    return out
+def render_rows(scene):
+    """The RGB rows of 'render SCENE --level 1' (it exits 0), or None in a
+    build without the renderer."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, scene + ".png")
+        code, out, err = run("render", scene, "--level", "1", "--png", path)
+        if code == 1 and "render" in err and "not" in err:
+            print("render: not in this build, skipped")
+            return None
+        check(code == 0, f"render {scene} exits 0 ({err.strip()})")
+        if code != 0:
+            return []
+        png = png_read(path)
+        check(png.channels == 3, f"{path}: 8-bit RGB")
+        return png.rows
 
 
 def solve_json(*args):
@@ -257,35 +236,23 @@ with tempfile.TemporaryDirectory() as tmp:
         check(b["iterations"] == a["iterations"], "the same run")
 
 # ---- a render of a .geo scene is not blank -----------------------------------
-with tempfile.TemporaryDirectory() as tmp:
-    png = os.path.join(tmp, "sphere.png")
-    code, out, err = run("render", "sphere", "--level", "1", "--png", png)
-    if code == 1 and "render" in err and "not" in err:
-        print("render: not in this build, skipped")
-    else:
-        check(code == 0, f"render sphere exits 0 ({err.strip()})")
-        check(len(rgb_rows(png)) > 0, "the PNG decodes")
-        rows = rgb_rows(png)
-        # blank renders are one flat colour: count saturated (coloured) pixels
-        coloured = sum(max(r[i:i + 3]) - min(r[i:i + 3]) > 40 for r in rows for i in range(0, len(r), 3))
-        check(coloured > 2000, f"the render is not blank ({coloured} coloured pixels)")
+rows = render_rows("sphere")
+if rows is not None:
+    check(len(rows) > 0, "the PNG decodes")
+    # blank renders are one flat colour: count saturated (coloured) pixels
+    coloured = sum(max(r[i:i + 3]) - min(r[i:i + 3]) > 40 for r in rows for i in range(0, len(r), 3))
+    check(coloured > 2000, f"the render is not blank ({coloured} coloured pixels)")
 
 # ---- the ring's two plates are both drawn -------------------------------------
 # The obstacle's fill (0.86, 0.84, 0.80: 220 215 204 as cairo rounds) must appear above the
 # ring and below it: the plate at y = 1 and the plate at y = -1.
-with tempfile.TemporaryDirectory() as tmp:
-    png = os.path.join(tmp, "ring.png")
-    code, out, err = run("render", "ring", "--level", "1", "--png", png)
-    if code == 1 and "render" in err and "not" in err:
-        print("render: not in this build, skipped")
-    else:
-        check(code == 0, f"render ring exits 0 ({err.strip()})")
-        rows = rgb_rows(png)
-        fill = bytes((220, 215, 204))
-        hit = [y for y, r in enumerate(rows) if r.count(fill) > 100]
-        h = len(rows)
-        check(any(y < h // 4 for y in hit), f"the upper plate is drawn (rows with its fill: {hit[:3]}...)")
-        check(any(y > h // 2 for y in hit), f"the lower plate is drawn (rows with its fill: {hit[-3:]})")
+rows = render_rows("ring")
+if rows is not None:
+    fill = bytes((220, 215, 204))
+    hit = [y for y, r in enumerate(rows) if r.count(fill) > 100]
+    h = len(rows)
+    check(any(y < h // 4 for y in hit), f"the upper plate is drawn (rows with its fill: {hit[:3]}...)")
+    check(any(y > h // 2 for y in hit), f"the lower plate is drawn (rows with its fill: {hit[-3:]})")
 
 # ---- bad inputs: one line each, exit 1 ---------------------------------------
 SCENE = """[scene]

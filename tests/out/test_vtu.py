@@ -15,17 +15,8 @@ import tempfile
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
-exe = os.path.abspath(sys.argv[1])
-failures = 0
-checks = 0
-
-
-def check(ok, what):
-    global failures, checks
-    checks += 1
-    if not ok:
-        failures += 1
-        print("FAIL:", what)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from clicheck import check, exe, finish  # noqa: E402
 
 
 def solve(tmp, scene, name, *extra):
@@ -216,5 +207,4 @@ with tempfile.TemporaryDirectory() as tmp:
             d = abs(point(gk, "displacement") - point(g, "displacement")).max()
             check(d == 0, f"the series' last iterate is the solution (max difference {d})")
 
-print(f"vtu: {checks} checks, {failures} failed")
-sys.exit(1 if failures else 0)
+finish("vtu")

@@ -10,61 +10,14 @@ measured: identical). argv[1] is the EGL program; the OSMesa one is
 $SIGNORINI_OSMESA_PROGRAM, else build/signorini in the source tree (the
 default build): without it the test is skipped (exit 77)."""
 import os
-import struct
 import subprocess
 import sys
 import tempfile
-import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, exe, finish, run  # noqa: E402
+from clicheck import check, exe, finish, png_read, run  # noqa: E402
 
 SRC = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-
-def png_pixels(path):
-    """(width, height, channels, bytes) of an 8-bit RGB or RGBA PNG, unfiltered."""
-    with open(path, "rb") as f:
-        data = f.read()
-    check(data[:8] == b"\x89PNG\r\n\x1a\n", f"{path}: PNG signature")
-    pos, idat = 8, b""
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        if kind == b"IHDR":
-            w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
-        elif kind == b"IDAT":
-            idat += body
-        pos += 12 + n
-    if depth != 8 or ctype not in (2, 6):
-        check(False, f"{path}: 8-bit RGB(A) expected, got depth {depth} type {ctype}")
-        return w, h, 4, b""
-    ch = 4 if ctype == 6 else 3
-    raw = zlib.decompress(idat)
-    stride = w * ch
-    out = bytearray(h * stride)
-    prev = bytearray(stride)
-    for y in range(h):
-        ft = raw[y * (stride + 1)]
-        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for x in range(stride):
-            a = line[x - ch] if x >= ch else 0
-            b = prev[x]
-            c = prev[x - ch] if x >= ch else 0
-            if ft == 1:
-                line[x] = (line[x] + a) & 255
-            elif ft == 2:
-                line[x] = (line[x] + b) & 255
-            elif ft == 3:
-                line[x] = (line[x] + (a + b) // 2) & 255
-            elif ft == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                pred = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
-                line[x] = (line[x] + pred) & 255
-        out[y * stride:(y + 1) * stride] = line
-        prev = line
-    return w, h, ch, bytes(out)
 
 
 def linked(program):
@@ -90,8 +43,9 @@ def main():
             check(r.returncode == 0, f"OSMesa render {scene} ({r.returncode}, {r.stderr[-300:]})")
             if code or r.returncode:
                 continue
-            wa, ha, ca, pa = png_pixels(a)
-            wb, hb, cb, pb = png_pixels(b)
+            ia, ib = png_read(a), png_read(b)
+            wa, ha, ca, pa = ia.width, ia.height, ia.channels, b"".join(ia.rows)
+            wb, hb, cb, pb = ib.width, ib.height, ib.channels, b"".join(ib.rows)
             check((wa, ha, ca) == (wb, hb, cb) == (480, 360, ca), f"{scene}: sizes {wa}x{ha}x{ca} {wb}x{hb}x{cb}")
             if (wa, ha, ca) != (wb, hb, cb) or not pa:
                 continue

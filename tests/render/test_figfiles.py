@@ -17,7 +17,7 @@ import xml.etree.ElementTree as ET
 import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, finish, one_line_error, run, usage_error  # noqa: E402
+from clicheck import check, finish, one_line_error, png_read, run, usage_error  # noqa: E402
 
 SVG = "{http://www.w3.org/2000/svg}"
 
@@ -98,22 +98,6 @@ def gif_read(path):
     return g
 
 
-def png_text(path):
-    """(width, height, {tEXt key: value}) of a PNG."""
-    d = open(path, "rb").read()
-    pos, text, w, h = 8, {}, 0, 0
-    while pos < len(d):
-        n, kind = struct.unpack(">I4s", d[pos:pos + 8])
-        body = d[pos + 8:pos + 8 + n]
-        if kind == b"IHDR":
-            w, h = struct.unpack(">II", body[:8])
-        elif kind == b"tEXt":
-            k, v = body.split(b"\0", 1)
-            text[k.decode("latin-1")] = v.decode("latin-1")
-        pos += 12 + n
-    return w, h, text
-
-
 def crop(frame, x0, y0, x1, y1):
     w, h, px, _ = frame
     return b"".join(px[y * w + x0:y * w + x1] for y in range(y0, y1))
@@ -181,7 +165,8 @@ with tempfile.TemporaryDirectory() as tmp:
     check(names == [f"frame_{k:04d}.png" for k in range(n + 1)], f"frames 0..{n}: {names}")
     ranges, iters = set(), []
     for k, name in enumerate(names):
-        w, h, text = png_text(os.path.join(frames, name))
+        png = png_read(os.path.join(frames, name), pixels=False)
+        w, h, text = png.width, png.height, png.text
         ranges.add(text.get("colour range"))
         iters.append(int(text.get("iterations", "-1")))
         check((w, h) == (400, 300) and text.get("frame") == str(k), f"{name}: size and frame chunk")
@@ -199,7 +184,7 @@ with tempfile.TemporaryDirectory() as tmp:
     frames2 = os.path.join(tmp, "every")
     code, out, err = run("render", "slider", "--size", "400x300", "--frames", frames2, "--every", "2")
     want = sorted(set(range(0, n + 1, 2)) | {n})
-    got = [int(png_text(os.path.join(frames2, f))[2].get("iterations", "-1")) for f in sorted(os.listdir(frames2))]
+    got = [int(png_read(os.path.join(frames2, f), pixels=False).text.get("iterations", "-1")) for f in sorted(os.listdir(frames2))]
     check(code == 0 and got == want, f"--every 2 draws iterations {want}: {got}")
 
     # a GIF in a missing directory: one line, nothing left
@@ -257,7 +242,7 @@ with tempfile.TemporaryDirectory() as tmp:
     code, out, err = run("render", "twoblocks-paper", "--level", "4", "--log", "--png", png, "--svg", svg)
     check(code in (0, 3), f"--log ({err})")
     if os.path.exists(png):
-        rng = png_text(png)[2].get("colour range", "")
+        rng = png_read(png, pixels=False).text.get("colour range", "")
         check(rng.endswith("(log)"), f"the range is logarithmic: {rng}")
         lo, hi = (float(x) for x in rng.split()[0].split(":"))
         check(0 < lo < hi and hi / lo <= 1e6 * (1 + 1e-9), f"a positive range of at most 6 decades: {rng}")

@@ -11,9 +11,7 @@
 
 #include "check.h"
 #include "out/palette.h"
-#include "pngread.h"
-#include "render/render.h"
-#include "scene/scene.h"
+#include "render_fixture.h"
 
 static const char *OUT = "test_figures.png";
 
@@ -27,25 +25,10 @@ typedef struct solved {
  * limit) and take the result. */
 static void solve_scene(solved *o, const char *id, int level, int max_iter)
 {
-    char path[512];
     cx_diag d;
-    cx_problem *p = NULL;
-    cx_friction_state fr;
     memset(o, 0, sizeof *o);
-    if (cx_scene_resolve(id, path, sizeof path, &d) || cx_scene_load(&o->sc, path, &d) ||
-        cx_scene_build(&o->sc, level, &p, &fr, &d) || cx_session_create(&o->s, &p, &d) ||
-        cx_session_set_friction(o->s, &fr, &d) ||
-        cx_session_set_method(o->s, cx_method_find(o->sc.methods[0]), NULL, NULL, &d)) {
-        fprintf(stderr, "%s level %d: %s\n", id, level, d.msg);
-        exit(2);
-    }
-    if (max_iter > 0) {
-        cx_options opt = *cx_session_options(o->s);
-        opt.max_iter = max_iter;
-        cx_session_set_options(o->s, &opt);
-    }
-    if (cx_solver_solve(o->s, NULL, NULL, &d) ||
-        cx_result_from_session(&o->r, o->s, &o->sc, level, &d)) {
+    fixture_solve_scene(&o->sc, &o->s, id, level, max_iter);
+    if (cx_result_from_session(&o->r, o->s, &o->sc, level, &d)) {
         fprintf(stderr, "%s level %d: %s\n", id, level, d.msg);
         exit(2);
     }
@@ -55,16 +38,6 @@ static void solved_free(solved *o)
 {
     cx_result_destroy(&o->r);
     cx_session_destroy(&o->s);
-}
-
-static int render_read(cx_result *r, const cx_render_opts *o, test_png *img)
-{
-    cx_diag d;
-    if (cx_render_png(r, o, OUT, NULL, &d) != CX_OK) {
-        fprintf(stderr, "render: %s\n", d.msg);
-        return -1;
-    }
-    return test_png_read(img, OUT);
 }
 
 /* The pixel row of the world point (x, y) of a 2D image. */
@@ -93,7 +66,7 @@ static void test_masonry(const char *id, int touches)
     /* the solver's obstacle in the result: the lowered plane */
     CX_CHECK_NEAR(o.r->obstacle.point[1], -g, 1e-12, 1e-15);
     test_png img;
-    if (render_read(o.r, &opt, &img) != 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) != 0) {
         CX_CHECK(0);
         solved_free(&o);
         return;
@@ -153,7 +126,7 @@ static void test_hertz_contact(void)
     double s = cx_render_auto_scale(r);
     CX_CHECK(s >= 1);
     test_png img;
-    if (render_read(r, &opt, &img) != 0) {
+    if (fixture_render_read(r, &opt, OUT, &img, NULL) != 0) {
         CX_CHECK(0);
         solved_free(&o);
         return;
@@ -207,7 +180,7 @@ static void test_unconverged(void)
     for (int pass = 0; pass < 2; pass++) {
         solved *x = pass ? &ok : &o;
         test_png img;
-        if (render_read(x->r, &opt, &img) != 0) {
+        if (fixture_render_read(x->r, &opt, OUT, &img, NULL) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -355,7 +328,7 @@ static void test_legible(void)
     int hgt[2] = {0, 0};
     for (int k = 0; k < 2; k++) {
         opt.font_scale = k ? 1.5 : 1;
-        if (render_read(o.r, &opt, &img) != 0) {
+        if (fixture_render_read(o.r, &opt, OUT, &img, NULL) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -384,7 +357,7 @@ static void test_legible(void)
              memcmp(cx_palette_status[CX_PT_FREE], cx_palette_status[CX_PT_CONTACT], 3) != 0);
     cx_render_opts_default(&opt);
     opt.field = CX_FIELD_STATUS;
-    if (render_read(o.r, &opt, &img) == 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         cx_result *r = o.r;
         int n = r->contact.node[0];
         double s = cx_render_auto_scale(r), x[2] = {r->mesh->x[2 * n] + s * r->u[2 * n],
@@ -426,7 +399,7 @@ static void test_control(void)
     opt.range_hi = 1000;
     opt.no_title = 1;
     test_png img;
-    if (render_read(o.r, &opt, &img) == 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         cx_render_layout l;
         cx_render_layout_image(o.r, &opt, &l);
         CX_CHECK(l.area[1] < l.font);   /* the drawing takes the title's room */
@@ -504,7 +477,7 @@ static void test_camera(void)
     cx_render_layout l;
     cx_render_layout_image(o.r, &opt, &l);
     long peak_below = -1, peak_above = -1;
-    if (render_read(o.r, &opt, &img) == 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         const char *t = test_png_text(&img, "camera");
         CX_CHECK(t && strcmp(t, "az 35 el -35") == 0);
         peak_below = count_cmap(&img, &l, 0.8, 30);
@@ -520,7 +493,7 @@ static void test_camera(void)
         CX_CHECK(0);
     }
     opt.view = CX_VIEW_ABOVE;
-    if (render_read(o.r, &opt, &img) == 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         const char *t = test_png_text(&img, "camera");
         CX_CHECK(t && strcmp(t, "az 35 el 30") == 0);
         peak_above = count_cmap(&img, &l, 0.8, 30);
@@ -552,7 +525,7 @@ static void test_camera(void)
     CX_CHECK_OK(cx_render_project(o.r, &opt, a, pa, NULL));
     CX_CHECK_OK(cx_render_project(o.r, &opt, b, pb, NULL));
     CX_CHECK(pb[0] > pa[0] + 50 && fabs(pb[1] - pa[1]) < 1);
-    if (render_read(o.r, &opt, &img) == 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         const char *t = test_png_text(&img, "camera");
         CX_CHECK(t && strcmp(t, "az 0 el -90") == 0);
         CX_CHECK(count_cmap(&img, &l, 0.8, 30) > peak_below / 2);
@@ -566,7 +539,7 @@ static void test_camera(void)
     /* uz < 0 everywhere: a sequential map over [min, 0], not half of a
      * diverging one; 0 at the bar's top in viridis' yellow */
     opt.field = CX_FIELD_UZ;
-    if (render_read(o.r, &opt, &img) == 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         double lo = 0, hi = 1;
         const char *t = test_png_text(&img, "colour range");
         CX_CHECK(t && sscanf(t, "%lf:%lf", &lo, &hi) == 2 && lo < -0.1 && hi == 0);
@@ -582,7 +555,7 @@ static void test_camera(void)
      * bar's top colour */
     opt.field = CX_FIELD_PRESSURE;
     opt.view = CX_VIEW_CONTACT;
-    if (render_read(o.r, &opt, &img) == 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         CX_CHECK(test_png_colours(&img) > 20);
         int bad = 0;
         for (int k = 0; k <= 8; k++) {
@@ -639,7 +612,7 @@ static void test_mirror_crop(void)
     for (int mirror = 0; mirror < 2; mirror++) {
         opt.mirror = mirror;
         test_png img;
-        if (render_read(o.r, &opt, &img) != 0) {
+        if (fixture_render_read(o.r, &opt, OUT, &img, NULL) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -696,7 +669,7 @@ static void test_mirror_crop(void)
     CX_CHECK(k[1] > 1.8 * k[0]);
     opt.field = CX_FIELD_PRESSURE;
     test_png img;
-    if (render_read(o.r, &opt, &img) == 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         cx_render_layout l;
         cx_render_layout_image(o.r, &opt, &l);
         const cx_contact_set *cs = &o.r->contact;
@@ -739,7 +712,7 @@ static void test_mirror3d(void)
         opt.mirror = mirror;
         test_png img;
         body[mirror] = -1;
-        if (render_read(o.r, &opt, &img) == 0) {
+        if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
             /* the point (-0.5, -0.5, 0.5) of the mirrored top: coloured or white */
             double x[3] = {-0.5, -0.5, 0.5}, px[2];
             CX_CHECK_OK(cx_render_project(o.r, &opt, x, px, NULL));
@@ -758,7 +731,7 @@ static void test_mirror3d(void)
     test_png img;
     const cx_mesh *m = o.r->mesh;
     double *val = CX_NEW(double, m->nnodes);
-    if (val && cx_field_nodal(o.r, CX_FIELD_UZ, val, NULL) == CX_OK && render_read(o.r, &opt, &img) == 0) {
+    if (val && cx_field_nodal(o.r, CX_FIELD_UZ, val, NULL) == CX_OK && fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         double lo = 0, hi = 0, s = cx_render_auto_scale(o.r);
         const char *t = test_png_text(&img, "colour range");
         CX_CHECK(t && sscanf(t, "%lf:%lf", &lo, &hi) == 2 && hi > lo);
@@ -812,7 +785,7 @@ static void test_supports(void)
     for (int with = 0; with < 2; with++) {
         opt.scene = with ? &o.sc : NULL;
         test_png img;
-        if (render_read(o.r, &opt, &img) != 0) {
+        if (fixture_render_read(o.r, &opt, OUT, &img, NULL) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -831,7 +804,7 @@ static void test_supports(void)
     solve_scene(&o, "laminae", 5, 0);
     opt.scene = &o.sc;
     test_png img;
-    if (render_read(o.r, &opt, &img) == 0) {
+    if (fixture_render_read(o.r, &opt, OUT, &img, NULL) == 0) {
         /* 3 px inside the lowest strip's left edge, half-way up: the body's
          * flat grey (as 20 px in), not a status band */
         double H = 0.2, x[2] = {0, 0.5 * H}, px[2];
@@ -876,7 +849,7 @@ static void test_subtitle(void)
         opt.width = sizes[k][0];
         opt.height = sizes[k][1];
         test_png img;
-        if (render_read(o.r, &opt, &img) != 0) {
+        if (fixture_render_read(o.r, &opt, OUT, &img, NULL) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -912,7 +885,7 @@ static void test_subtitle(void)
         cx_render_opts_default(&opt);
         opt.title = "Prism (paper 001): clamped prism pressed onto a rigid plane, Tresca (E, nu, loads chosen)";
         test_png img;
-        if (render_read(h.r, &opt, &img) == 0) {
+        if (fixture_render_read(h.r, &opt, OUT, &img, NULL) == 0) {
             cx_render_layout l, l0;
             cx_render_layout_image(h.r, &opt, &l);
             cx_render_layout_get(img.w, img.h, &l0);
@@ -944,7 +917,7 @@ static void test_subtitle(void)
         cx_render_opts opt;
         cx_render_opts_default(&opt);
         test_png img;
-        if (render_read(sb.r, &opt, &img) == 0) {
+        if (fixture_render_read(sb.r, &opt, OUT, &img, NULL) == 0) {
             cx_render_layout l;
             cx_render_layout_image(sb.r, &opt, &l);
             /* the ink below the drawing area spans two lines of the note
@@ -980,7 +953,7 @@ static void test_subtitle(void)
     opt.width = 600;
     opt.height = 450;
     test_png img;
-    if (render_read(h.r, &opt, &img) == 0) {
+    if (fixture_render_read(h.r, &opt, OUT, &img, NULL) == 0) {
         cx_render_layout l;
         cx_render_layout_image(h.r, &opt, &l);
         CX_CHECK(l.banner[3] > 10);

@@ -11,9 +11,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "pngread.h"
-#include "render/render.h"
-#include "scene/scene.h"
+#include "render_fixture.h"
 
 enum { W = 400, H = 300 };
 static const char *OUT = "test_image.png";
@@ -28,19 +26,9 @@ typedef struct solved {
 
 static void solve_scene(solved *o, const char *id, int level)
 {
-    char path[512];
     cx_diag d;
-    cx_problem *p = NULL;
-    cx_friction_state fr;
     memset(o, 0, sizeof *o);
-    if (cx_scene_resolve(id, path, sizeof path, &d) || cx_scene_load(&o->sc, path, &d) ||
-        cx_scene_build(&o->sc, level, &p, &fr, &d) || cx_session_create(&o->s, &p, &d) ||
-        cx_session_set_friction(o->s, &fr, &d) ||
-        cx_session_set_method(o->s, cx_method_find(o->sc.methods[0]), NULL, NULL, &d) ||
-        cx_solver_solve(o->s, NULL, NULL, &d)) {
-        fprintf(stderr, "%s level %d: %s\n", id, level, d.msg);
-        exit(2);
-    }
+    fixture_solve_scene(&o->sc, &o->s, id, level, 0);
     const cx_problem *cp = cx_session_problem(o->s);
     const cx_iterate *it = cx_session_iterate(o->s);
     CX_CHECK(it->reason > 0);
@@ -57,19 +45,6 @@ static void solved_free(solved *o)
     cx_free(o->uall);
     cx_result_destroy(&o->st);
     cx_session_destroy(&o->s);
-}
-
-static int render_read(cx_result *st, const cx_render_opts *o, test_png *img,
-                       cx_render_timing *t)
-{
-    cx_diag d;
-    cx_diag_clear(&d);
-    int rc = cx_render_png(st, o, OUT, t, &d);
-    if (rc != CX_OK) {
-        fprintf(stderr, "render %s: %s\n", cx_field_name(o->field), d.msg);
-        return rc;
-    }
-    return test_png_read(img, OUT);
 }
 
 static int colour_dist(const unsigned char *a, const unsigned char *b)
@@ -163,7 +138,7 @@ static void test_hertz(void)
             continue;
         }
         cx_render_timing t;
-        if (render_read(o.st, &opt, &img, &t) != 0) {
+        if (fixture_render_read(o.st, &opt, OUT, &img, &t) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -224,7 +199,7 @@ static void test_hertz(void)
 
     /* text chunks */
     opt.field = CX_FIELD_VON_MISES;
-    CX_CHECK_OK(render_read(o.st, &opt, &img, NULL));
+    CX_CHECK_OK(fixture_render_read(o.st, &opt, OUT, &img, NULL));
     const char *t;
     CX_CHECK((t = test_png_text(&img, "scene")) && strcmp(t, "hertz") == 0);
     CX_CHECK((t = test_png_text(&img, "level")) && strcmp(t, "8") == 0);
@@ -275,7 +250,7 @@ static void test_block3d(void)
     int node = nearest_node(p->mesh, top);
     for (int f = 0; f < CX_FIELD_COUNT; f++) {
         opt.field = f;
-        if (render_read(o.st, &opt, &img, NULL) != 0) {
+        if (fixture_render_read(o.st, &opt, OUT, &img, NULL) != 0) {
             CX_CHECK(0);
             continue;
         }
@@ -295,7 +270,7 @@ static void test_block3d(void)
     /* the contact faces on their own: the uniform pressure 10 fills them */
     opt.view = CX_VIEW_CONTACT;
     opt.field = CX_FIELD_PRESSURE;
-    CX_CHECK_OK(render_read(o.st, &opt, &img, NULL));
+    CX_CHECK_OK(fixture_render_read(o.st, &opt, OUT, &img, NULL));
     double mid[3] = {0.5, 0.5, 0.0}, px[2];
     cx_render_project(o.st, &opt, mid, px, NULL);
     unsigned char want[3];
@@ -387,7 +362,7 @@ static void test_multibody(void)
     opt.edges = 1;
     test_png img;
     cx_render_timing t;
-    CX_CHECK_OK(render_read(st, &opt, &img, &t));
+    CX_CHECK_OK(fixture_render_read(st, &opt, OUT, &img, &t));
     CX_CHECK(t.draw_calls == 2);   /* all six bodies, then all their edges */
     double umax = 0;
     for (int k = 0; k < p->n; k++)
@@ -412,7 +387,7 @@ static void test_multibody(void)
         if (cx_field_check(fld, 2, NULL) != CX_OK)
             continue;
         opt.field = fld;
-        if (render_read(st, &opt, &img, &t) != 0) {
+        if (fixture_render_read(st, &opt, OUT, &img, &t) != 0) {
             CX_CHECK(0);
             continue;
         }

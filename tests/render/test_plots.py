@@ -4,58 +4,21 @@
 drawn are the ones named (read back from the PNG's text chunks, "methods"
 and "Series"), several --method give one series each, a Coulomb
 convergence plot is drawn, the series differ by (colour, marker), and the
-pixels are not blank (decoded here: zlib + PNG row filters)."""
+pixels are not blank (decoded by tests/clicheck.py)."""
 import os
-import struct
 import sys
 import tempfile
-import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, finish, run, usage_error  # noqa: E402
+from clicheck import check, finish, png_read, run, usage_error  # noqa: E402
 
 
-def png_read(path):
+def png_rgb(path):
     """(width, height, rows of RGB bytes, {tEXt key: value}) of an 8-bit
     RGB PNG."""
-    with open(path, "rb") as f:
-        data = f.read()
-    check(data[:8] == b"\x89PNG\r\n\x1a\n", f"{path}: PNG signature")
-    pos, text, idat, w, h = 8, {}, b"", 0, 0
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        if kind == b"IHDR":
-            w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
-            check(depth == 8 and ctype == 2, f"{path}: 8-bit RGB")
-        elif kind == b"IDAT":
-            idat += body
-        elif kind == b"tEXt":
-            k, v = body.split(b"\0", 1)
-            text[k.decode("latin-1")] = v.decode("latin-1")
-        pos += 12 + n
-    raw = zlib.decompress(idat)
-    bpp, stride, rows, prev = 3, 3 * w, [], bytearray(3 * w)
-    for y in range(h):
-        ft = raw[y * (stride + 1)]
-        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0
-            b = prev[i]
-            c = prev[i - bpp] if i >= bpp else 0
-            if ft == 1:
-                line[i] = (line[i] + a) & 255
-            elif ft == 2:
-                line[i] = (line[i] + b) & 255
-            elif ft == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif ft == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(bytes(line))
-        prev = line
-    return w, h, rows, text
+    png = png_read(path)
+    check(png.channels == 3, f"{path}: 8-bit RGB")
+    return png.width, png.height, png.rows, png.text
 
 
 def coloured_pixels(rows):
@@ -89,7 +52,7 @@ with tempfile.TemporaryDirectory() as tmp:
     code, err, p = plot(tmp, "mprgp.png", "slider", "--method", "mprgp", "--plot", "convergence")
     check(code in (0, 3) and os.path.exists(p), f"--method mprgp convergence plot ({code}: {err})")
     if os.path.exists(p):
-        w, h, rows, text = png_read(p)
+        w, h, rows, text = png_rgb(p)
         s = series(text)
         check([x[0] for x in s] == ["mprgp"], f"the series is mprgp alone: {s}")
         check("ssn-tresca" not in text.get("methods", "x"), f"no ssn-tresca: {text.get('methods')}")
@@ -100,7 +63,7 @@ with tempfile.TemporaryDirectory() as tmp:
                         "rho=0.01", "--plot", "convergence")
     check(code == 0 and os.path.exists(p), f"--set rho convergence plot ({err})")
     if os.path.exists(p):
-        s = series(png_read(p)[3])
+        s = series(png_rgb(p)[3])
         check([x[0] for x in s] == ["ssn-tresca rho=0.01"], f"the legend names the parameter: {s}")
 
     # two --method: two series, each its own (colour, marker)
@@ -108,7 +71,7 @@ with tempfile.TemporaryDirectory() as tmp:
                         "--plot", "convergence")
     check(code in (0, 3) and os.path.exists(p), f"two --method ({code}: {err})")
     if os.path.exists(p):
-        s = series(png_read(p)[3])
+        s = series(png_rgb(p)[3])
         check([x[0] for x in s] == ["mprgp", "ssn-tresca"], f"two series in order: {s}")
         check(len({(c, m) for _, c, m in s}) == 2 and len({c for _, c, _ in s}) == 2
               and len({m for _, _, m in s}) == 2, f"distinct colours and markers: {s}")
@@ -127,7 +90,7 @@ with tempfile.TemporaryDirectory() as tmp:
                         "--plot", "convergence")
     check(code == 0 and os.path.exists(p), f"Coulomb convergence plot ({err})")
     if os.path.exists(p):
-        w, h, rows, text = png_read(p)
+        w, h, rows, text = png_rgb(p)
         check((w, h) == (400, 300), "size")
         check(text.get("friction") == "coulomb" and len(series(text)) >= 1, f"Coulomb series: {text}")
         check(coloured_pixels(rows) > 100, "the Coulomb curve is drawn (not blank)")
@@ -136,7 +99,7 @@ with tempfile.TemporaryDirectory() as tmp:
     code, err, p = plot(tmp, "work.png", "twoblocks", "--level", "4", "--plot", "work")
     check(code == 0 and os.path.exists(p), f"work plot ({err})")
     if os.path.exists(p):
-        s = series(png_read(p)[3])
+        s = series(png_rgb(p)[3])
         check(len(s) >= 3, f"several methods: {s}")
         check(len({(c, m) for _, c, m in s}) == len(s), f"distinct (colour, marker): {s}")
         check(len({m for _, _, m in s}) == len(s), f"distinct markers: {s}")
@@ -147,7 +110,7 @@ with tempfile.TemporaryDirectory() as tmp:
     code, err, p = plot(tmp, "p3d.png", "block3d", "--level", "2", "--plot", "pressure")
     check(code == 0 and os.path.exists(p), f"3D pressure plot ({err})")
     if os.path.exists(p):
-        w, h, rows, text = png_read(p)
+        w, h, rows, text = png_rgb(p)
         check(text.get("field") == "pressure", f"the pressure field: {text.get('field')}")
         check(text.get("camera", "").startswith("contact view"), f"the contact view: {text.get('camera')}")
         check("profile" not in text, "no profile chunk")

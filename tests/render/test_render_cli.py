@@ -11,30 +11,16 @@ import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
-import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from clicheck import check, exe, finish, run, one_line_error, usage_error  # noqa: E402
+from clicheck import check, exe, finish, one_line_error, png_read, run, usage_error  # noqa: E402
 
 
 def png_info(path):
-    """(width, height, {tEXt key: value}) of a PNG, chunk by chunk."""
-    with open(path, "rb") as f:
-        data = f.read()
-    check(data[:8] == b"\x89PNG\r\n\x1a\n", "PNG signature")
-    pos, text, size = 8, {}, None
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        crc = struct.unpack(">I", data[pos + 8 + n:pos + 12 + n])[0]
-        check(zlib.crc32(kind + body) == crc, f"CRC of {kind}")
-        if kind == b"IHDR":
-            size = struct.unpack(">II", body[:8])
-        if kind == b"tEXt":
-            k, v = body.split(b"\0", 1)
-            text[k.decode("latin-1")] = v.decode("latin-1")
-        pos += 12 + n
-    return size[0], size[1], text
+    """(width, height, {tEXt key: value}) of a PNG, chunk by chunk (CRCs
+    checked)."""
+    png = png_read(path, pixels=False)
+    return png.width, png.height, png.text
 
 
 def vtu_arrays(path):
@@ -180,6 +166,34 @@ with tempfile.TemporaryDirectory() as tmp:
     code, out, err = run("render", "halfball", "--level", "4", "--quiet", "--png", png, "--camera", "-20,-60",
                          "--size", "300x225")
     check(code == 0 and os.path.exists(png), f"--camera -20,-60 ({err})")
+    # 3D, two obstacles: block3d squeezed from its sides grows in z between
+    # its plane and a rigid ball touching its top corner. Seen from below,
+    # the plane (on the eye's side) is left out and the ball, above the
+    # block, is drawn: its shaded warm grey fills much of the upper half
+    # (before, only the first obstacle was drawn: none of it from below)
+    with open(os.path.join(REPO_SCENES, "block3d.ini")) as f:
+        block_ini = f.read()
+    squeezed = os.path.join(tmp, "squeezed.ini")
+    with open(squeezed, "w") as f:
+        f.write(block_ini.replace("[traction top]\nboundary = zmax\nt = 0 0 -10",
+                                  "[traction sx]\nboundary = xmax\nt = -10 0 0\n\n"
+                                  "[traction sy]\nboundary = ymax\nt = 0 -10 0")
+                .replace("[contact]", "[contact floor]")
+                .replace("[methods]", "[contact ball]\nboundary = zmax\nobstacle = sphere\npoint = 0 0 1.5\n"
+                                      "radius = 1\n\n[methods]"))
+    code, out, err = run("render", squeezed, "--level", "2", "--view", "below", "--quiet", "--png", png,
+                         "--size", "480x360")
+    check(code == 0, f"render of a block between a plane and a ball ({err})")
+    if code == 0:
+        img = png_read(png)
+        ball = [0, 0]   # obstacle-coloured pixels in the upper, lower half
+        for y, row in enumerate(img.rows):
+            for i in range(0, len(row), img.channels):
+                r, g, b = row[i:i + 3]
+                if r >= g >= b and 12 <= r - b <= 70 and 50 < r < 235:
+                    ball[2 * y >= img.height] += 1
+        check(ball[0] > 0.1 * img.width * img.height and ball[0] > 3 * ball[1],
+              f"the second obstacle (the ball above) is drawn: {ball} pixels of its colour")
     code, out, err = run("render", "--help")
     check(code == 0 and "--field" in out, "render --help")
 
