@@ -473,6 +473,18 @@ static void test_pdas_closed_start(void)
              * iteration but the last (the set repeats) */
             CX_CHECK(fact[0] == 1);
             CX_CHECK(fact[1] >= iters[1] - 1);
+            if (level == 10) {
+                /* the reduced LCP's slots (schur = 1) take the closed start too */
+                cx_session *s2 = fixture_session(scenes[g], level, &sc);
+                CX_CHECK_OK(fixture_run(s2, "pdas", "start=closed schur=1", 1, 1e-10, 200, &d));
+                const cx_iterate *it2 = cx_session_iterate(s2);
+                double e = fixture_energy_diff(cx_session_problem(s0), it2->u, it0->u);
+                fprintf(stderr, "%s 1/%d pdas start=closed schur=1: %d iterations, energy difference %.2e\n",
+                        scenes[g], level, it2->iter, e);
+                CX_CHECK(it2->reason > 0 && it2->kkt <= 1e-10 && e <= 1e-10);
+                CX_CHECK(it2->iter <= bands[g][1]);
+                cx_session_destroy(&s2);
+            }
             cx_session_destroy(&s0);
         }
 }
