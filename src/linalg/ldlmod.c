@@ -60,7 +60,8 @@ static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
     return CX_OK;
 }
 
-static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, cx_counters *cnt, cx_diag *d)
+static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod *like, cx_counters *cnt,
+                      cx_diag *d)
 {
     int n = A->ncol;
     cx_ldlmod *f = CX_NEW(cx_ldlmod, 1);
@@ -82,9 +83,17 @@ static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, cx_counters *cn
         cx_ldlmod_destroy(&f);
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
-    cholmod_sparse s = cx_cholmod_view(A, 1);
-    f->sym = cholmod_analyze(&s, &f->c);
-    int st = cx_cholmod_check(&f->c, f->sym, "analyse (ldlmod)", d);
+    int st;
+    if (like) {
+        /* the same pattern: the other factor's analysis (ordering and
+         * supernodes) instead of a new one */
+        f->sym = cholmod_copy_factor(like->sym, &f->c);
+        st = cx_cholmod_check(&f->c, f->sym, "copy of an analysis (ldlmod)", d);
+    } else {
+        cholmod_sparse s = cx_cholmod_view(A, 1);
+        f->sym = cholmod_analyze(&s, &f->c);
+        st = cx_cholmod_check(&f->c, f->sym, "analyse (ldlmod)", d);
+    }
     if (st == CX_OK)
         st = ldlmod_factor(f, A, d);
     if (st != CX_OK) {
@@ -99,12 +108,19 @@ static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, cx_counters *cn
 
 int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
 {
-    return ldlmod_new(F, A, 0, cnt, d);
+    return ldlmod_new(F, A, 0, NULL, cnt, d);
 }
 
 int cx_ldlmod_create_super(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
 {
-    return ldlmod_new(F, A, 1, cnt, d);
+    return ldlmod_new(F, A, 1, NULL, cnt, d);
+}
+
+int cx_ldlmod_create_like(cx_ldlmod **F, const cx_ldlmod *like, const cx_csc *A, cx_counters *cnt, cx_diag *d)
+{
+    if (like->n != A->ncol)
+        return cx_diag_set(d, CX_EINVAL, "ldlmod: the matrix is not of the other factor's order");
+    return ldlmod_new(F, A, like->super, like, cnt, d);
 }
 
 int cx_ldlmod_check(cx_ldlmod *f, double amax, cx_diag *d)
@@ -121,6 +137,16 @@ int cx_ldlmod_check(cx_ldlmod *f, double amax, cx_diag *d)
                                dk, cx_cholmod_column(f->L, k));
     }
     return CX_OK;
+}
+
+double cx_ldlmod_min_pivot(const cx_ldlmod *f)
+{
+    const int *lp = f->L->p;
+    const double *lx = f->L->x;
+    double m = INFINITY;
+    for (int k = 0; k < f->n; k++)
+        m = fmin(m, lx[lp[k]]);
+    return m;
 }
 
 int cx_ldlmod_refactor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)

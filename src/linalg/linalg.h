@@ -167,11 +167,17 @@ typedef struct cx_ldlmod cx_ldlmod;
 int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d);
 /* The same, factorised supernodal and converted (faster on large meshes). */
 int cx_ldlmod_create_super(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d);
+/* The same for a matrix of the pattern of like's (not checked beyond the
+ * order): like's analysis is copied, not redone. */
+int cx_ldlmod_create_like(cx_ldlmod **F, const cx_ldlmod *like, const cx_csc *A, cx_counters *cnt,
+                          cx_diag *d);
 void cx_ldlmod_destroy(cx_ldlmod **F);
 /* A new numeric factorisation of A (same pattern), the analysis kept. */
 int cx_ldlmod_refactor(cx_ldlmod *F, const cx_csc *A, cx_diag *d);
 /* CX_ENUMERIC if a pivot of D is below CX_PIVOT_RTOL amax (singular). */
 int cx_ldlmod_check(cx_ldlmod *F, double amax, cx_diag *d);
+/* The smallest entry of D. */
+double cx_ldlmod_min_pivot(const cx_ldlmod *F);
 /* Row and column k become the identity's. */
 int cx_ldlmod_delete(cx_ldlmod *F, int k, cx_diag *d);
 /* Row and column k (now the identity's) become A's column k on the rows

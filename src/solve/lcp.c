@@ -213,8 +213,9 @@ int cx_lcp_solver_init(cx_lcp_solver *s, const cx_lcp *L, cx_counters *cnt, cx_d
     }
     if (cx_csc_copy(&s->M, &L->A))
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
-    CX_TRY(cx_fact_create(&s->F, CX_FACT_CHOLESKY, cnt, d));
-    return cx_fact_analyze(s->F, &s->M, d);
+    /* analysed on its first use: a solver whose factors are all ldlmod's
+     * (updates) never needs it */
+    return cx_fact_create(&s->F, CX_FACT_CHOLESKY, cnt, d);
 }
 
 int cx_lcp_solver_updates(cx_lcp_solver *s, int update_max, cx_diag *d)
@@ -229,6 +230,8 @@ int cx_lcp_solver_updates(cx_lcp_solver *s, int update_max, cx_diag *d)
 
 void cx_lcp_solver_clear(cx_lcp_solver *s)
 {
+    cx_free(s->pmask);
+    cx_free(s->pwork);
     cx_ldlmod_destroy(&s->ldl);
     cx_free(s->fkeep);
     cx_fact_destroy(&s->F);
@@ -237,12 +240,94 @@ void cx_lcp_solver_clear(cx_lcp_solver *s)
     memset(s, 0, sizeof *s);
 }
 
+static int lcp_refactor(cx_lcp_solver *s, double eps, const unsigned char *zero, cx_diag *d);
+
+/* Whether the masked system (eps, zero) can be solved by CG with like's
+ * factor (cx_lcp_solver.pre): like's factor is valid, of the same LCP,
+ * its mask differs in few unknowns, and it has no pivot near its eps (a
+ * pivot of order eps is a motion the mask leaves free: the unregularised
+ * system is singular there, and the factorisation's fallback decides). */
+static int lcp_pcg_ok(cx_lcp_solver *s, double eps, const unsigned char *zero)
+{
+    const cx_lcp_solver *o = s->like;
+    if (!o || o->L != s->L || !o->ldl || !o->fvalid || o->feps < eps)
+        return 0;
+    int n = s->L->n, k = 0;
+    for (int i = 0; i < n && k <= CX_LCP_PCG_ROWS; i++)
+        k += o->fkeep[i] != !(zero && zero[i]);
+    if (k > CX_LCP_PCG_ROWS)
+        return 0;
+    if (cx_ldlmod_min_pivot(o->ldl) <= 1e3 * o->feps)
+        return 0;
+    if (!s->pmask && !(s->pmask = CX_NEW(unsigned char, n)))
+        return 0;
+    if (!s->pwork && !(s->pwork = CX_NEW(double, 5 * (size_t)n)))
+        return 0;
+    for (int i = 0; i < n; i++)
+        s->pmask[i] = zero && zero[i];
+    return 1;
+}
+
+/* y = M x for the masked M of (s->peps, s->pmask); t: n doubles */
+static void lcp_pcg_apply(const cx_lcp_solver *s, const double *x, double *y, double *t)
+{
+    const cx_lcp *L = s->L;
+    for (int i = 0; i < L->n; i++)
+        t[i] = s->pmask[i] ? 0 : x[i];
+    cx_csc_gemv(&L->A, 1.0, t, 0.0, y);
+    for (int i = 0; i < L->n; i++)
+        y[i] = s->pmask[i] ? x[i] : y[i] + s->peps * x[i];
+}
+
+/* x = M^-1 b by CG preconditioned with like's factor, to roundoff:
+ * ||b - M x|| <= 1e-14 (||b|| + amax ||x||), the accuracy of a direct
+ * solve. CX_ENUMERIC if not reached in CX_LCP_PCG_MAXIT steps. */
+static int lcp_pcg_solve(cx_lcp_solver *s, const double *b, double *x, cx_diag *d)
+{
+    int n = s->L->n;
+    double *r = s->pwork, *z = r + n, *p = z + n, *q = p + n, *t = q + n;
+    double amax = s->L->amax + s->peps, nb = cx_vec_norminf(n, b);
+    memset(x, 0, sizeof(double) * (size_t)n);
+    memcpy(r, b, sizeof(double) * (size_t)n);
+    if (nb == 0)
+        return CX_OK;
+    CX_TRY(cx_ldlmod_solve(s->like->ldl, r, z, d));
+    memcpy(p, z, sizeof(double) * (size_t)n);
+    double rz = cx_vec_dot(n, r, z);
+    s->pcg_solves++;
+    for (int k = 0; k < CX_LCP_PCG_MAXIT; k++) {
+        lcp_pcg_apply(s, p, q, t);
+        double pq = cx_vec_dot(n, p, q);
+        if (!(pq > 0))
+            break;
+        double a = rz / pq;
+        cx_vec_axpy(n, a, p, x);
+        cx_vec_axpy(n, -a, q, r);
+        s->pcg_iters++;
+        /* the true residual at the end: the recursion's drifts below roundoff */
+        if (cx_vec_norminf(n, r) <= 1e-14 * (nb + amax * cx_vec_norminf(n, x))) {
+            lcp_pcg_apply(s, x, q, t);
+            for (int i = 0; i < n; i++)
+                r[i] = b[i] - q[i];
+            if (cx_vec_norminf(n, r) <= 1e-14 * (nb + amax * cx_vec_norminf(n, x)))
+                return CX_OK;
+        }
+        CX_TRY(cx_ldlmod_solve(s->like->ldl, r, z, d));
+        double rz1 = cx_vec_dot(n, r, z);
+        for (int i = 0; i < n; i++)
+            p[i] = z[i] + rz1 / rz * p[i];
+        rz = rz1;
+    }
+    return cx_diag_set(d, CX_ENUMERIC, "CG with the previous factor did not reach roundoff");
+}
+
 /* The masked factor by row changes from the last one, or anew (update_max). */
 static int lcp_factor_mod(cx_lcp_solver *s, double eps, const unsigned char *zero, cx_diag *d)
 {
     const cx_lcp *L = s->L;
     int n = L->n;
     double amax = fmax(1.0, L->amax + eps);
+    s->pre = 0;
     if (s->ldl && s->fvalid && s->feps == eps) {
         int nch = 0;
         for (int i = 0; i < n; i++)
@@ -271,10 +356,28 @@ static int lcp_factor_mod(cx_lcp_solver *s, double eps, const unsigned char *zer
              * recovers from the rounding of the updates) */
         }
     }
+    if (lcp_pcg_ok(s, eps, zero)) {
+        s->pre = 1;
+        s->peps = eps;
+        return CX_OK;
+    }
+    return lcp_refactor(s, eps, zero, d);
+}
+
+/* A new masked factor (ldlmod), the analysis kept or like's copied. */
+static int lcp_refactor(cx_lcp_solver *s, double eps, const unsigned char *zero, cx_diag *d)
+{
+    const cx_lcp *L = s->L;
+    int n = L->n;
+    double amax = fmax(1.0, L->amax + eps);
+    s->pre = 0;
     cx_lcp_factor_values(s, eps, zero, NULL);
     s->fvalid = 0;
     if (!s->ldl) {
-        CX_TRY(cx_ldlmod_create_super(&s->ldl, &s->M, s->cnt, d));
+        if (s->like && s->like->L == s->L && s->like->ldl)
+            CX_TRY(cx_ldlmod_create_like(&s->ldl, s->like->ldl, &s->M, s->cnt, d));
+        else
+            CX_TRY(cx_ldlmod_create_super(&s->ldl, &s->M, s->cnt, d));
         CX_TRY(cx_ldlmod_check(s->ldl, amax, d));
     } else {
         CX_TRY(cx_ldlmod_refactor(s->ldl, &s->M, d));
@@ -306,6 +409,10 @@ int cx_lcp_factor(cx_lcp_solver *s, double eps, const unsigned char *zero, const
         return lcp_factor_mod(s, eps, zero, d);
     s->fvalid = 0;
     cx_lcp_factor_values(s, eps, zero, dadd);
+    if (!s->analysed) {
+        CX_TRY(cx_fact_analyze(s->F, &s->M, d));
+        s->analysed = 1;
+    }
     return cx_fact_factorize(s->F, &s->M, d);
 }
 
@@ -331,6 +438,15 @@ int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs,
         if (s->cnt)
             s->cnt->solves++;
         memcpy(x, work, sizeof(double) * (size_t)n);
+    } else if (s->update_max > 0 && s->pre) {
+        int st = lcp_pcg_solve(s, work, x, d);
+        if (st == CX_ENUMERIC) {
+            /* CG did not converge: factorise after all (the masked rhs in
+             * work is intact: CG reads it only) */
+            CX_TRY(lcp_refactor(s, s->peps, s->pmask, d));
+            st = cx_ldlmod_solve(s->ldl, work, x, d);
+        }
+        CX_TRY(st);
     } else if (s->update_max > 0 && s->fvalid) {
         CX_TRY(cx_ldlmod_solve(s->ldl, work, x, d));
     } else {
@@ -349,26 +465,31 @@ static int pdas_solve_set(cx_lcp_solver *s, double eps, double *v, double *lam,
 {
     const cx_lcp *L = s->L;
     int n = L->n;
-    int st = cx_lcp_factor(s, eps, act, NULL, d);
-    if (st == CX_ENUMERIC && eps == 0 && g->eps_fallback > 0) {
-        /* a motion the set leaves free (a brick between open head joints
-         * slides): the consistent singular system, nearly its minimum-norm
-         * solution */
-        eps = g->eps_fallback;
-        g->fallbacks++;
-        st = cx_lcp_factor(s, eps, act, NULL, d);
-    }
-    CX_TRY(st);
-    /* the correction from the current v (v = 0 on the active set): where
-     * the system is singular the free motion keeps its current value */
     double *r = work + n;
     for (int i = 0; i < n; i++)
         if (act[i])
             v[i] = 0;
-    cx_lcp_apply(L, v, r);
-    for (int i = 0; i < n; i++)
-        r[i] = L->b[i] - r[i] - eps * v[i];
-    CX_TRY(cx_lcp_solve(s, act, r, r, work, d));
+    for (int fallback = 0;; fallback = 1) {
+        int st = cx_lcp_factor(s, eps, act, NULL, d);
+        /* the correction from the current v (v = 0 on the active set):
+         * where the system is singular the free motion keeps its value */
+        if (st == CX_OK) {
+            cx_lcp_apply(L, v, r);
+            for (int i = 0; i < n; i++)
+                r[i] = L->b[i] - r[i] - eps * v[i];
+            st = cx_lcp_solve(s, act, r, r, work, d);   /* CG's fallback can find it singular */
+        }
+        if (st == CX_ENUMERIC && !fallback && eps == 0 && g->eps_fallback > 0) {
+            /* a motion the set leaves free (a brick between open head
+             * joints slides): the consistent singular system, nearly its
+             * minimum-norm solution */
+            eps = g->eps_fallback;
+            g->fallbacks++;
+            continue;
+        }
+        CX_TRY(st);
+        break;
+    }
     cx_vec_axpy(n, 1.0, r, v);
     cx_lcp_apply(L, v, work);
     for (int i = 0; i < n; i++)

@@ -72,7 +72,24 @@ typedef struct cx_lcp_solver {
     unsigned char *fkeep;   /* n: 1 where the factored matrix is A's (not masked) */
     double feps;            /* the eps it was factored with */
     int fvalid;             /* the factor is of (fkeep, feps) */
+    int analysed;           /* F analysed (lazily: unused when every factorisation updates) */
+    const struct cx_lcp_solver *like;   /* a solver on the same LCP whose analysis the
+                                           first factor copies (NULL: its own) */
+    /* no factor of its own (pre): the masked system is solved by CG
+     * preconditioned with like's factor, when like's mask differs from this
+     * one in at most CX_LCP_PCG_ROWS unknowns (a perturbation of rank 2k
+     * and of eps: CG ends in a few steps), e.g. the projection's first set,
+     * which is the regularised stage's last with eps = 0. When CG does not
+     * reach roundoff the system is factorised after all. */
+    int pre;
+    double peps;            /* pre: the eps of the masked system */
+    unsigned char *pmask;   /* pre: n, its mask */
+    double *pwork;          /* pre: 5 n doubles */
+    long pcg_iters;         /* CG steps taken (each one solve with like's factor) */
+    int pcg_solves;         /* systems solved by CG */
 } cx_lcp_solver;
+#define CX_LCP_PCG_ROWS 16
+#define CX_LCP_PCG_MAXIT 40
 
 int cx_lcp_solver_init(cx_lcp_solver *s, const cx_lcp *L, cx_counters *cnt, cx_diag *d);
 void cx_lcp_solver_clear(cx_lcp_solver *s);
