@@ -28,7 +28,7 @@ COMMANDS = [
     (["tui"], {"level", "method", "friction", "mono", "ascii", "export-dir", "keys", "frames", "stats", "present"},
      ["--frames", "0"], "--frames '0'"),
     (["bench", "wp"], BENCH | {"level", "tols", "sweep"}, ["hertz", "--repeat", "0"], "[1, 1000]"),
-    (["bench", "scaling"], BENCH | {"levels", "tol", "no-reference"}, ["hertz", "--levels", "4", "--tol", "0"],
+    (["bench", "scaling"], BENCH | {"levels", "tol", "no-reference", "backend"}, ["hertz", "--levels", "4", "--tol", "0"],
      "(0, 1)"),
     (["bench", "stress"], BENCH | {"level", "cases"}, ["--threads", "0"], "[1, 1024]"),
     (["bench", "paper", "000"], {"rows", "all", "first", "slip", "slip-nodal", "abar", "scene", "repeat"}, ["--rows", "22"], "[1, 21]"),
