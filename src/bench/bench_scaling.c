@@ -13,6 +13,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 static const char scaling_usage[] =
     "usage: signorini bench scaling SCENE --levels a..b [options]\n"
@@ -269,15 +272,35 @@ static void scaling_row_level(bench_table *t, int r, const cx_scene *sc, const b
 #if CX_HAVE_PETSC
 /* The process's peak resident memory starts again from what it holds now
  * (Linux: /proc/self/clear_refs "5"), so that a PETSc run's peak is its
- * own, not the direct path's run before it on rank 0. Where the kernel
- * refuses, the peak is that of the process so far (the header says so). */
+ * own, not the direct path's run before it on rank 0 (its freed heap
+ * given back first). Where the kernel refuses, the peak is that of the
+ * process so far (the header says so). */
 static int scaling_reset_peak(void)
 {
+#ifdef __GLIBC__
+    malloc_trim(0);   /* the direct path's freed heap back to the system first */
+#endif
     FILE *f = fopen("/proc/self/clear_refs", "w");
     if (!f)
         return 0;
     int ok = fputs("5", f) >= 0;
     return fclose(f) == 0 && ok;
+}
+
+/* This process's peak resident memory since the last reset (VmHWM, in
+ * bytes), or -1. Not getrusage's ru_maxrss, which keeps the peak of the
+ * threads that have ended (the direct path's) across the reset. */
+static double scaling_own_peak(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    double kb = -1;
+    while (f && fgets(line, sizeof line, f))
+        if (strncmp(line, "VmHWM:", 6) == 0)
+            kb = atof(line + 6);
+    if (f)
+        fclose(f);
+    return kb >= 0 ? 1024.0 * kb : -1;
 }
 
 static int scaling_petsc_observer(void *ctx, const cx_petsc_step *st)
@@ -323,9 +346,11 @@ static void scaling_petsc_rows(bench_table *t, const cx_scene *sc, const bench_p
             }
             if (r.reason == CX_CANCELLED)
                 break;
-            double mem = 0;
+            /* rank 0's own peak from VmHWM (it ran the direct path before),
+             * the others' as the backend measured them */
+            double mem = 0, own = *peak_reset ? scaling_own_peak() : -1;
             for (int q = 0; q < r.nranks; q++)
-                mem += r.mem_peak[q];
+                mem += q == rank && own >= 0 ? own : r.mem_peak[q];
             peak = fmax(peak, mem / 1048576.0);
             ts[runs] = r.t_setup;
             tv[runs] = r.t_solve;

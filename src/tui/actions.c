@@ -912,7 +912,7 @@ static const tui_binding tui_keys[] = {
     {'l', NULL, act_right, NULL},
     {TUI_KEY_ENTER, "Enter", act_edit, "type a value for the row"},
     {'m', "m", act_next_method, "next method that fits"},
-    {'b', "b", act_backend, "backend: direct, PETSc's methods"},
+    {'b', "b", act_backend, "backend: direct or PETSc"},
     {'f', "f", act_friction, "friction none/Tresca/Coulomb"},
     {'+', "+ -", act_coef_up, "friction coefficient up/down"},
     {'-', NULL, act_coef_down, NULL},
