@@ -4,6 +4,7 @@
  * time as a ratio to it, iterations and peak memory against the factor's;
  * the slope of log time against log dofs per method. */
 #include "bench/bench.h"
+#include "out/outfile.h"
 #include "cx_config.h"
 
 #if CX_HAVE_PETSC
@@ -611,6 +612,13 @@ static int bench_scaling_run(scaling_args *a, int rank, int nranks)
             code = bench_fail("bench scaling", d.msg);
         else if (a->c.png && bench_scaling_plot(&t, a->c.png, &d))
             code = bench_fail("bench scaling", d.msg);
+        else if (!a->c.json)
+            /* the answer the comparison is for, again under the table (the
+             * header's copy goes into the CSV and JSON) */
+            for (int k = 0; k < t.nmeta; k++)
+                if (strncmp(t.meta[k][0], "crossover", 9) == 0)
+                    fprintf(cx_outfile_is_stdout(a->c.csv) || cx_outfile_is_stdout(a->c.png) ? stderr : stdout,
+                            "%s: %s\n", t.meta[k][0], t.meta[k][1]);
     }
     bench_table_clear(&t);
     return bench_interrupted() ? CX_EXIT_INTERRUPTED : code;

@@ -105,6 +105,9 @@ with tempfile.TemporaryDirectory() as tmp:
                                           r.stdout, re.M)
           and len(re.findall(r"^hertz\s+(8|16)\s+none\s+(direct|petsc)\s", r.stdout, re.M)) == 4,
           "hertz 8,16 text table: four rows and the crossover line", r)
+    head = re.search(r"^# (crossover \(ssn-tresca\): .*)$", r.stdout, re.M)
+    check(r.returncode == 0 and head and r.stdout.rstrip().splitlines()[-1] == head.group(1),
+          "the crossover line again at the end, under the table", r)
     # petsc alone: no baseline, no crossover
     r = run(["bench", "scaling", "hertz", "--levels", "8..16", "--backend", "petsc"] + common)
     check(r.returncode == 0, "hertz 8..16, petsc alone", r)
