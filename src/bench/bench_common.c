@@ -9,6 +9,9 @@
 #if CX_HAVE_RENDER
 #include "render/plot.h"
 #endif
+#if CX_HAVE_PETSC
+#include "petsc/petsc.h"
+#endif
 
 #include <dlfcn.h>
 #include <math.h>
@@ -17,14 +20,19 @@
 #include <string.h>
 #include <unistd.h>
 
-/* --methods a,b,...: every id in the registry. */
+/* --methods a,b,...: every id in the registry or, in a build with the
+ * PETSc backend, in its table (bench scaling --backend petsc runs those). */
 static int common_check_methods(const char *text, cx_diag *d)
 {
     char buf[512];
     if (snprintf(buf, sizeof buf, "%s", text) >= (int)sizeof buf)
         return cx_diag_set(d, CX_EINVAL, "--methods: list too long");
     for (char *save = NULL, *id = strtok_r(buf, ",", &save); id; id = strtok_r(NULL, ",", &save))
-        if (!cx_method_find(id))
+        if (!cx_method_find(id)
+#if CX_HAVE_PETSC
+            && !cx_petsc_method_find(id)
+#endif
+        )
             return cx_diag_set(d, CX_EINVAL, "--methods: unknown method '%s' (see 'signorini list')", id);
     return CX_OK;
 }

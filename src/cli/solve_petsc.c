@@ -46,32 +46,6 @@ static int petsc_print_step(void *ctx, const cx_petsc_step *st)
     return 0;
 }
 
-/* The per-point status of a solution, as the direct path's methods set it. */
-static void petsc_status(const cx_problem *p, const cx_friction_state *fr, const double *lN, const double *lT,
-                         unsigned char *st)
-{
-    int dt = p->dim - 1;
-    double lmax = 0;   /* a force recovered from a residual is in contact above its noise */
-    for (int i = 0; i < p->m; i++)
-        lmax = fmax(lmax, lN[i]);
-    for (int i = 0; i < p->m; i++) {
-        if (lN[i] <= 1e-9 * lmax) {
-            st[i] = CX_PT_FREE;
-            continue;
-        }
-        if (fr->law != CX_FRICTION_TRESCA) {
-            st[i] = CX_PT_CONTACT;
-            continue;
-        }
-        double n2 = 0, s = fr->slip_bound * p->contact.weight[i];
-        for (int c = 0; c < dt; c++)
-            n2 += lT[dt * i + c] * lT[dt * i + c];
-        st[i] = sqrt(n2) < s * (1 - 1e-9) ? CX_PT_STICK
-                : (dt == 1 && lT[i] < 0)  ? CX_PT_SLIP_NEG
-                                          : CX_PT_SLIP_POS;
-    }
-}
-
 int cli_solve_petsc(const char *cmd, const cx_scene *sc, const cx_problem *p, const cx_friction_state *fr,
                     const cx_options *opt, const cli_petsc_args *a, FILE *summary)
 {
@@ -114,7 +88,7 @@ int cli_solve_petsc(const char *cmd, const cx_scene *sc, const cx_problem *p, co
     }
     unsigned char *st = CX_NEW(unsigned char, p->m + 1);
     cx_result *res = NULL;
-    if (!st || cx_result_create(&res, p, fr, r.u, r.lN, r.lT, (petsc_status(p, fr, r.lN, r.lT, st), st), &d)) {
+    if (!st || cx_result_create(&res, p, fr, r.u, r.lN, r.lT, (cx_petsc_point_status(p, fr, r.lN, r.lT, st), st), &d)) {
         cx_free(st);
         cx_petsc_result_clear(&r);
         cx_history_clear(&history);

@@ -86,4 +86,11 @@ int cx_petsc_solve(const cx_problem *p, const cx_friction_state *fr, const char 
                    const cx_options *opt, cx_petsc_observer obs, void *ctx, cx_petsc_result *r,
                    cx_diag *d);
 
+/* The status of each contact point (CX_PT_*) of a solution's forces, as
+ * the direct path's methods set it: free where lN is at the noise of a
+ * force recovered from a residual (1e-9 of the largest), stick inside the
+ * Tresca bound, else slip. st has p->m entries. */
+void cx_petsc_point_status(const cx_problem *p, const cx_friction_state *fr, const double *lN, const double *lT,
+                           unsigned char *st);
+
 #endif

@@ -136,3 +136,30 @@ fail:
     cx_petsc_result_clear(r);
     return status;
 }
+
+/* The per-point status of a solution, as the direct path's methods set it
+ * (cli/solve_petsc.c and the explorer draw it). */
+void cx_petsc_point_status(const cx_problem *p, const cx_friction_state *fr, const double *lN, const double *lT,
+                         unsigned char *st)
+{
+    int dt = p->dim - 1;
+    double lmax = 0;   /* a force recovered from a residual is in contact above its noise */
+    for (int i = 0; i < p->m; i++)
+        lmax = fmax(lmax, lN[i]);
+    for (int i = 0; i < p->m; i++) {
+        if (lN[i] <= 1e-9 * lmax) {
+            st[i] = CX_PT_FREE;
+            continue;
+        }
+        if (fr->law != CX_FRICTION_TRESCA) {
+            st[i] = CX_PT_CONTACT;
+            continue;
+        }
+        double n2 = 0, s = fr->slip_bound * p->contact.weight[i];
+        for (int c = 0; c < dt; c++)
+            n2 += lT[dt * i + c] * lT[dt * i + c];
+        st[i] = sqrt(n2) < s * (1 - 1e-9) ? CX_PT_STICK
+                : (dt == 1 && lT[i] < 0)  ? CX_PT_SLIP_NEG
+                                          : CX_PT_SLIP_POS;
+    }
+}

@@ -652,7 +652,7 @@ static int act_run(tui_state *st)
         return TUI_REDRAW;
     }
     const tui_run *run = tui_state_run(st);
-    if (run && run->reason != CX_ITERATING) {
+    if (tui_state_run_ended(st)) {
         tui_msg(st, run->reason < 0, "run ended (%s); x starts again", cx_reason_str(run->reason));
         return TUI_REDRAW;
     }
@@ -674,12 +674,34 @@ static int act_cancel(tui_state *st)
     if (tui_state_busy(st) && st->job.kind == TUI_JOB_STEP && st->session) {
         cx_session_cancel(st->session);
         tui_msg(st, 0, "cancelling the step in progress");
+    } else if (tui_state_busy(st) && st->job.kind == TUI_JOB_PETSC) {
+        tui_backend_cancel(st);
+        tui_msg(st, 0, "stopping the PETSc run at its next step");
     } else if (tui_state_busy(st) && st->job.kind == TUI_JOB_BUILD && st->job.box) {
         tui_state_abandon_build(st);
     } else if (tui_state_busy(st))
         tui_msg(st, 2, "a switch cannot be cancelled before it ends; q quits");
     else if (had)
         tui_msg(st, 0, "paused (r runs on)");
+    return TUI_REDRAW;
+}
+
+/* 'b': the direct path, then each method of the PETSc backend in turn. */
+static int act_backend(tui_state *st)
+{
+    if (!tui_backend_available()) {
+        tui_msg(st, 1, "this build has no PETSc backend (meson setup -Dpetsc=enabled)");
+        return TUI_REDRAW;
+    }
+    int n = 0;
+    while (tui_backend_method(n))
+        n++;
+    st->sel_backend = (st->sel_backend + 1) % (n + 1);
+    if (st->sel_backend)
+        tui_msg(st, 0, "backend petsc, method %s (1 rank): s or r runs it to the end; b changes",
+                tui_backend_method(st->sel_backend - 1));
+    else
+        tui_msg(st, 0, "backend direct: the setup's method, step by step");
     return TUI_REDRAW;
 }
 
@@ -890,6 +912,7 @@ static const tui_binding tui_keys[] = {
     {'l', NULL, act_right, NULL},
     {TUI_KEY_ENTER, "Enter", act_edit, "type a value for the row"},
     {'m', "m", act_next_method, "next method that fits"},
+    {'b', "b", act_backend, "backend: direct or PETSc"},
     {'f', "f", act_friction, "friction none/Tresca/Coulomb"},
     {'+', "+ -", act_coef_up, "friction coefficient up/down"},
     {'-', NULL, act_coef_down, NULL},

@@ -79,6 +79,10 @@ static void draw_header(const tui_state *st, int cols)
         const char *sep = named ? bar : "";
         if (!st->have_info)
             snprintf(left, sizeof left, "%s%s %s %s building level %d", me, sep, st->scene.id, bar, st->sel_level);
+        else if (st->sel_backend)   /* what s and r run: the PETSc backend's method */
+            snprintf(left, sizeof left, "%s%s %s L%d %dD %d dofs %d pts %s petsc %s %s", me, sep, st->scene.id,
+                     st->level, st->info->dim, st->info->n, st->info->m, bar, tui_backend_method(st->sel_backend - 1),
+                     cx_friction_name(st->cur_law));
         else
             snprintf(left, sizeof left, "%s%s %s L%d %dD %d dofs %d pts %s %s %s", me, sep, st->scene.id, st->level,
                      st->info->dim, st->info->n, st->info->m, bar, run ? run->method : "-",
@@ -148,7 +152,7 @@ static int draw_wrap(const char *text, int w, const char **at, int *len, int max
 static void draw_keybar(const tui_state *st, int y, int cols)
 {
     static const char *const usual[] = {"s step", "r run", "m method", "f friction", "n scene", "v view",
-                                        "e export", "p png", "? help", "q quit", "x reset", NULL};
+                                        "e export", "p png", "? help", "q quit", "x reset", "b backend", NULL};
     /* presentation: the pace keys in the bar, the file keys go */
     static const char *const present[] = {"s step", "r run", "m method", "f friction", "n scene", "{ } pace",
                                           "x reset", "? help", "P leave", "q quit", "v view", NULL};
@@ -182,6 +186,12 @@ static void draw_status(const tui_state *st, int rows, int cols)
         char q[64] = "";
         if (st->queued_steps)
             snprintf(q, sizeof q, " %d step%s queued", st->queued_steps, st->queued_steps > 1 ? "s" : "");
+        if (st->job.kind == TUI_JOB_PETSC) {   /* a whole run, its steps drawn as they come */
+            const tui_run *run = tui_state_run(st);
+            tui_put(y, 0, TUI_C_WARN, cols, "%s petsc %s level %d: iteration %d... %.1f s (keys still work), Esc stops it",
+                spin, run ? run->method : "-", st->level, run && run->nsteps ? run->steps[run->nsteps - 1].iter : 0, t);
+            return;
+        }
         tui_put(y, 0, TUI_C_WARN, cols, "%s %s level %d: %s... %.1f s (keys still work)%s%s", spin,
             st->job.kind == TUI_JOB_BUILD ? st->scene.id : st->job.kind == TUI_JOB_STEP ? "stepping" : "switching",
             st->job.kind == TUI_JOB_STEP ? st->level : st->job.level, what, t, q,

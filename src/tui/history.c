@@ -50,8 +50,10 @@ void tui_history_keep_current(tui_history *h)
 
 tui_run *tui_history_new_run(tui_history *h)
 {
-    /* an empty current run gives its number (and colour) to its successor */
-    if (h->nruns && h->runs[h->nruns - 1].nsteps == 0) {
+    /* an empty current run gives its number (and colour) to its successor;
+     * one that ended without a step (a PETSc run refused or broken down at
+     * its start) stays, with its outcome */
+    if (h->nruns && h->runs[h->nruns - 1].nsteps == 0 && h->runs[h->nruns - 1].reason == CX_ITERATING) {
         run_free(&h->runs[--h->nruns]);
         h->next_serial--;
     }
@@ -132,5 +134,6 @@ void tui_run_legend(const tui_run *r, char *buf, size_t len)
 
 int tui_run_cached(const tui_run *r)
 {
-    return r->nsteps > 0 && r->factorizations == 0;
+    /* a PETSc run (state.c) factorises nothing: no cache served it */
+    return r->nsteps > 0 && r->factorizations == 0 && strncmp(r->changed, "petsc", 5) != 0;
 }

@@ -229,6 +229,17 @@ void tui_job_start(tui_state *st, int kind)
     if (kind == TUI_JOB_BUILD && !j->refused)
         j->refused = tui_xalloc(NULL, sizeof j->refused[0] * (size_t)(cx_method_count() + 1));
     atomic_store(&j->phase, TUI_PHASE_IDLE);
+    if (kind == TUI_JOB_PETSC) {
+        /* on the backend's own thread, never on a job thread (backend.c) */
+        const char *id = tui_backend_method(st->sel_backend - 1);
+        atomic_store(&j->phase, TUI_PHASE_STEP);
+        cx_diag_clear(&j->diag);
+        j->status = tui_backend_start(st, cx_session_problem(st->session), cx_session_friction(st->session),
+                                      id ? id : "ssn-tresca", &st->sel_opt, &j->diag);
+        if (j->status != CX_OK || st->sync)
+            tui_state_poll(st);
+        return;
+    }
     /* 'running' is kept: a run asked for during the job starts after it */
     if (!st->sync && kind == TUI_JOB_BUILD) {
         job_box *b = calloc(1, sizeof *b);
@@ -326,6 +337,12 @@ int tui_job_ended(tui_state *st)
         job_unbox(j);
         return 1;
     }
+    if (j->kind == TUI_JOB_PETSC) {
+        if (j->status == CX_OK && !tui_backend_done(st))
+            return 0;
+        atomic_store(&j->phase, TUI_PHASE_DONE);
+        return 1;
+    }
     if (atomic_load(&j->phase) != TUI_PHASE_DONE)
         return 0;
     if (j->worker) {
@@ -341,6 +358,8 @@ void tui_job_clear(tui_state *st)
     tui_job *j = &st->job;
     /* a build on its worker is left to finish on its own */
     tui_job_abandon(st);
+    if (j->kind == TUI_JOB_PETSC)   /* a PETSc run stops at its next step */
+        tui_backend_cancel(st);
     if (j->worker) {
         /* a step or a switch uses the session: wait for it */
         pthread_join(*(pthread_t *)j->worker, NULL);

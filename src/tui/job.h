@@ -10,7 +10,7 @@
 
 #include <stdatomic.h>
 
-enum { TUI_JOB_NONE, TUI_JOB_BUILD, TUI_JOB_RESOLVE, TUI_JOB_STEP };
+enum { TUI_JOB_NONE, TUI_JOB_BUILD, TUI_JOB_RESOLVE, TUI_JOB_STEP, TUI_JOB_PETSC };
 enum { TUI_PHASE_IDLE, TUI_PHASE_ASSEMBLE, TUI_PHASE_FACTORISE, TUI_PHASE_STEP, TUI_PHASE_DONE };
 
 typedef struct tui_job {
@@ -67,5 +67,47 @@ int tui_job_ended(tui_state *st);
 /* Abandon a build, wait for a step's or a switch's worker, and drop a
  * built session nobody took. */
 void tui_job_clear(tui_state *st);
+
+/* ---- the PETSc backend (backend.c) ---------------------------------------- */
+
+/* One rank of the PETSc backend on a thread of its own, started at the
+ * first PETSc run and ended by tui_backend_stop: PETSc's start, every
+ * PETSc call and its end happen on that thread (PETSc is not
+ * thread-safe). A run (TUI_JOB_PETSC) goes to its end as one job; the
+ * main thread takes its steps as they come. */
+typedef struct tui_backend tui_backend;
+
+/* What a finished PETSc run gives the main thread; u, lN, lT are the
+ * backend's (valid until the next run). */
+typedef struct tui_backend_outcome {
+    int reason, iterations, nranks, pc_setups;
+    long krylov;
+    double kkt, t_setup, t_solve, mem_peak;
+    char message[CX_DIAG_LEN];
+    const double *u, *lN, *lT;
+} tui_backend_outcome;
+
+/* 1 if this build has the backend. */
+int tui_backend_available(void);
+/* The backend's method k (NULL past the end). */
+const char *tui_backend_method(int k);
+/* Start a run of method on p under fr (the thread started if need be);
+ * waits for its end when the state is sync (tests). */
+int tui_backend_start(tui_state *st, const cx_problem *p, const cx_friction_state *fr, const char *method,
+                      const cx_options *opt, cx_diag *d);
+/* Append the steps that came since the last call to run (m contact
+ * points); the number appended. */
+int tui_backend_take(tui_state *st, tui_run *run, int m);
+/* 1 once the run has ended (or there is none). */
+int tui_backend_done(const tui_state *st);
+/* The ended run: its status (an error: the message in d) and outcome. */
+int tui_backend_result(tui_state *st, tui_backend_outcome *out, cx_diag *d);
+/* The points' statuses of a solution's forces (cx_petsc_point_status). */
+void tui_backend_point_status(const cx_problem *p, const cx_friction_state *fr, const double *lN,
+                              const double *lT, unsigned char *status);
+/* Ask the run in progress to stop at its next step. */
+void tui_backend_cancel(tui_state *st);
+/* Stop a run in progress, end PETSc on its thread, join it. */
+void tui_backend_stop(tui_state *st);
 
 #endif

@@ -39,6 +39,7 @@ static void loop_fatal(const char *msg)
 typedef struct {
     const char *scene, *method, *keys, *export_dir;
     int friction, level, frames, mono, ascii, stats, present;
+    int backend;   /* --backend: 0 direct, 1 petsc */
 } loop_args;
 
 static const cx_opt loop_opts[] = {
@@ -46,6 +47,9 @@ static const cx_opt loop_opts[] = {
     {"method", 0, CX_OPT_STRING, 0, 0, 0, NULL, "ID", "method (default: the scene's first)",
      offsetof(loop_args, method), NULL},
     CX_OPT_ROW_FRICTION(loop_args, friction),
+    {"backend", 0, CX_OPT_CHOICE, 0, 0, 0, "direct|petsc", "NAME",
+     "the runs' backend: petsc runs ssn-tresca on the PETSc backend, one rank ('b' changes it)",
+     offsetof(loop_args, backend), NULL},
     {"mono", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no colours (also when NO_COLOR is set)",
      offsetof(loop_args, mono), NULL},
     {"ascii", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "ASCII only (automatic when the locale is not UTF-8)",
@@ -129,6 +133,15 @@ int tui_main(int argc, char **argv)
         tui_state_set_export_dir(st, a.export_dir);
     if (a.present)
         tui_state_set_present(st, 1);
+    if (a.backend) {
+        if (!tui_backend_available()) {
+            tui_state_destroy(&st);
+            fprintf(stderr, "signorini tui: --backend petsc: this build has no PETSc backend "
+                            "(meson setup -Dpetsc=enabled)\n");
+            return 1;
+        }
+        st->sel_backend = 1;   /* ssn-tresca, the backend's first method */
+    }
 
     if (tui_term_open(a.mono, a.ascii) != 0) {
         tui_state_destroy(&st);

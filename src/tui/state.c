@@ -278,14 +278,13 @@ static void state_new_run(tui_state *st)
 
 /* ---- snapshot ------------------------------------------------------------ */
 
-/* Copy what the panels draw out of the session (main thread, no job). */
-static void state_snapshot(tui_state *st)
+/* Copy what the panels draw out of a solution (u on the free dofs, the
+ * forces, the statuses; main thread, no job). */
+static void state_snapshot_of(tui_state *st, const double *u, const double *lN, const double *lT,
+                              const unsigned char *status, const unsigned char *changed)
 {
     const cx_session *s = st->session;
-    if (!s)
-        return;
     const cx_problem *p = cx_session_problem(s);
-    const cx_iterate *it = cx_session_iterate(s);
     const cx_contact_set *c = &p->contact;
     int m = p->m, dim = p->dim, nall = p->map.nall;
     if (m != st->m || !st->status) {
@@ -300,9 +299,9 @@ static void state_snapshot(tui_state *st)
     }
     st->uall = tui_xalloc(st->uall, sizeof(double) * ((size_t)nall + 1));
     for (int i = 0; i < m; i++) {
-        st->status[i] = it->status[i];
-        st->changed[i] = it->changed[i];
-        st->pressure[i] = c->weight[i] > 0 ? it->lN[i] / c->weight[i] : 0;
+        st->status[i] = status[i];
+        st->changed[i] = changed[i];
+        st->pressure[i] = c->weight[i] > 0 ? lN[i] / c->weight[i] : 0;
         st->hertz[i] = st->scene.has_hertz && dim == 2 ? cx_scene_hertz_pressure(&st->scene, c->x[2 * i])
                                                        : NAN;
         /* the friction force on the body, -lT t, in the x, y plane */
@@ -310,18 +309,27 @@ static void state_snapshot(tui_state *st)
         if (cx_session_friction(s)->law != CX_FRICTION_NONE)
             for (int r = 0; r < dim - 1; r++) {
                 const double *t = c->tangent + dim * ((dim - 1) * i + r);
-                fx -= it->lT[(dim - 1) * i + r] * t[0];
-                fy -= it->lT[(dim - 1) * i + r] * t[1];
+                fx -= lT[(dim - 1) * i + r] * t[0];
+                fy -= lT[(dim - 1) * i + r] * t[1];
             }
         st->slip_dir[2 * i] = fx;
         st->slip_dir[2 * i + 1] = fy;
     }
     for (int k = 0; k < nall; k++) {
         int f = p->map.free_of[k];
-        st->uall[k] = f >= 0 ? it->u[f] : p->map.value[k];
+        st->uall[k] = f >= 0 ? u[f] : p->map.value[k];
     }
     st->cache = *cx_session_cache_counters(s);
     st->cache_size = cx_session_cache_size(s);
+}
+
+/* Copy what the panels draw out of the session's iterate. */
+static void state_snapshot(tui_state *st)
+{
+    if (!st->session)
+        return;
+    const cx_iterate *it = cx_session_iterate(st->session);
+    state_snapshot_of(st, it->u, it->lN, it->lT, it->status, it->changed);
 }
 
 /* After a job: what the session now is. */
@@ -383,13 +391,59 @@ static void state_build_target(tui_state *st)
     st->pending |= TUI_REASSEMBLE;
 }
 
+/* A PETSc run has ended (main thread): its outcome into the run, its
+ * solution into the panels. */
+static void state_after_petsc(tui_state *st)
+{
+    tui_job *j = &st->job;
+    tui_run *run = &st->history->runs[st->history->nruns - 1];
+    tui_backend_take(st, run, st->info->m);
+    tui_backend_outcome o;
+    cx_diag d;
+    cx_diag_clear(&d);
+    int status = j->status != CX_OK ? j->status : tui_backend_result(st, &o, &d);
+    if (status != CX_OK) {
+        const cx_diag *why = j->status != CX_OK ? &j->diag : &d;
+        run->reason = CX_REFUSED;
+        snprintf(run->outcome, sizeof run->outcome, "%s", cx_diag_msg(why, status));
+        tui_msg(st, 1, "petsc: %s", cx_diag_msg(why, status));
+        return;
+    }
+    run->reason = o.reason;
+    run->setup = o.t_setup;
+    snprintf(run->reason_msg, sizeof run->reason_msg, "%.150s", o.message);
+    cx_reason_format(o.reason, o.iterations, o.kkt, st->sel_opt.tol, o.message, run->outcome, sizeof run->outcome);
+    /* the Krylov work where the direct path's runs show their changed
+     * parameters */
+    snprintf(run->changed, sizeof run->changed, "petsc, %d rank%s, %ld Krylov it.", o.nranks, o.nranks > 1 ? "s" : "",
+             o.krylov);
+    const cx_problem *p = cx_session_problem(st->session);
+    const cx_friction_state *fr = cx_session_friction(st->session);
+    unsigned char *pts = tui_xalloc(NULL, (size_t)p->m + 1), *none = tui_xalloc(NULL, (size_t)p->m + 1);
+    tui_backend_point_status(p, fr, o.lN, o.lT, pts);
+    memset(none, 0, (size_t)p->m + 1);
+    state_snapshot_of(st, o.u, o.lN, o.lT, pts, none);
+    free(pts);
+    free(none);
+    tui_msg(st, o.reason < 0, "petsc %s (%d rank%s, CG + GAMG: %ld Krylov iterations, peak %.0f MB): %s", run->method,
+            o.nranks, o.nranks > 1 ? "s" : "", o.krylov, o.mem_peak / 1048576.0, run->outcome);
+}
+
 int tui_state_poll(tui_state *st)
 {
     tui_job *j = &st->job;
+    /* a PETSc run's steps, as they come */
+    int took = j->kind == TUI_JOB_PETSC && st->history->nruns > 0 &&
+               tui_backend_take(st, &st->history->runs[st->history->nruns - 1], st->info->m) > 0;
     if (!tui_job_ended(st))
-        return 0;
+        return took;
     int kind = j->kind;
     j->kind = TUI_JOB_NONE;
+    if (kind == TUI_JOB_PETSC) {
+        state_after_petsc(st);
+        state_after_job(st);
+        return 1;
+    }
     if (kind == TUI_JOB_STEP) {
         tui_state_after_step(st, j->status, &j->diag);
         state_after_job(st);
@@ -545,6 +599,54 @@ void tui_state_apply(tui_state *st, int r)
 
 /* ---- stepping ------------------------------------------------------------ */
 
+/* A run of the PETSc backend says so where a direct run lists its
+ * changed parameters ("petsc", then "petsc, 1 rank, ..." once ended). */
+static int state_run_is_petsc(const tui_run *r)
+{
+    return strncmp(r->changed, "petsc", 5) == 0;
+}
+
+int tui_state_run_ended(const tui_state *st)
+{
+    const tui_run *cur = tui_state_run(st);
+    if (!cur || cur->reason == CX_ITERATING)
+        return 0;
+    if (!st->sel_backend)
+        return !state_run_is_petsc(cur);   /* after a PETSc run, the direct path opens its own */
+    const char *id = tui_backend_method(st->sel_backend - 1);
+    return state_run_is_petsc(cur) && id && strcmp(cur->method, id) == 0;
+}
+
+/* A step or a run on the PETSc backend: its whole run, as one job on the
+ * backend's thread, in a run of its own in the table (the current run is
+ * reused while it has no step). */
+static void state_petsc_run(tui_state *st)
+{
+    const tui_run *cur = tui_state_run(st);
+    const char *id = tui_backend_method(st->sel_backend - 1);
+    /* the same method again needs x, as on the direct path; another ('b')
+     * opens its own run */
+    if (tui_state_run_ended(st)) {
+        st->running = 0;
+        st->queued_steps = 0;
+        tui_msg(st, cur->reason < 0, "run ended (%s); x starts again", cx_reason_str(cur->reason));
+        return;
+    }
+    if (!cur || cur->nsteps > 0 || cur->reason != CX_ITERATING)
+        state_new_run(st);
+    tui_run *run = &st->history->runs[st->history->nruns - 1];
+    snprintf(run->method, sizeof run->method, "%s", id ? id : "-");
+    run->params[0] = run->changed[0] = '\0';
+    snprintf(run->changed, sizeof run->changed, "petsc");
+    run->tol = st->sel_opt.tol;
+    st->queued_steps = 0;
+    tui_msg(st, 0, "petsc %s: running to the end on the PETSc backend (1 rank; Esc stops it)", run->method);
+    /* the job is the whole run: r (or s) pressed during it asks for the
+     * next one, with what 'b' selects by then */
+    st->running = 0;
+    tui_job_start(st, TUI_JOB_PETSC);
+}
+
 void tui_state_step(tui_state *st)
 {
     if (tui_state_busy(st) || !st->session)
@@ -553,6 +655,20 @@ void tui_state_step(tui_state *st)
         tui_msg(st, 1, "no method selected");
         st->running = 0;
         return;
+    }
+    if (st->sel_backend) {
+        state_petsc_run(st);
+        return;
+    }
+    const tui_run *cur = tui_state_run(st);
+    if (cur && state_run_is_petsc(cur)) {
+        /* back on the direct path after a PETSc run: a run of its own (r
+         * goes on running it) */
+        int running = st->running;
+        tui_state_reset(st);
+        st->running = running;
+        if (!st->session || !st->cur_method)
+            return;
     }
     const cx_iterate *it = cx_session_iterate(st->session);
     if (it->reason != CX_ITERATING) {
@@ -770,6 +886,7 @@ int tui_state_init(tui_state *st, const char *scene, int level, const char *meth
 void tui_state_clear(tui_state *st)
 {
     tui_job_clear(st);
+    tui_backend_stop(st);   /* PETSc ends on its thread */
     cx_session_destroy(&st->session);
     tui_history_destroy(&st->history);
     free(st->refused);

@@ -102,6 +102,11 @@ struct tui_state {
     cx_friction cur_law;
     double cur_coef;
 
+    /* the backend the runs use: 0 the direct path (the session's method),
+     * k + 1 the PETSc backend's method k on one rank (backend.c) */
+    int sel_backend;
+    tui_backend *backend;     /* its thread, once a PETSc run was asked for */
+
     /* running */
     int running;              /* run to convergence, one step per tick */
     int sync;                 /* run jobs inline (tests) */
@@ -177,6 +182,11 @@ void tui_size_text(double bytes, char *buf, size_t len);
 /* Esc during a build on a worker: abandon it (job.c) and go back to the
  * session's scene and level at once, saying so. */
 void tui_state_abandon_build(tui_state *st);
+
+/* 1 if the current run has ended and is the one s and r would go on
+ * with (x starts it again); a run of the other backend, or of another
+ * PETSc method, has ended for them only. */
+int tui_state_run_ended(const tui_state *st);
 
 /* After a step ends (state.c, called by tui_state_poll). */
 void tui_state_after_step(tui_state *st, int status, const cx_diag *d);
