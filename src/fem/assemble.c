@@ -193,9 +193,13 @@ static int pattern_build(const cx_mesh *m, const cx_dofmap *map, pattern *g, cx_
     K->nrow = K->ncol = ncol;
     K->p = CX_NEW(int, ncol + 1);
     K->i = CX_NEW(int, nnz ? nnz : 1);
-    K->x = CX_NEW(double, nnz ? nnz : 1);
+    /* zeroed by writing, not calloc: fresh pages from calloc are mapped
+     * to the zero page and the scatter's first += then faults twice on
+     * each (a read, then a copy on write) */
+    K->x = cx_malloc(sizeof(double) * (size_t)(nnz ? nnz : 1));
     if (!K->p || !K->i || !K->x)
         goto done;
+    memset(K->x, 0, sizeof(double) * (size_t)nnz);
     int col = 0;
     for (int b = 0; b < nn; b++) {
         int *ki = K->i + g->cbase[b], nf = popcount(g->fm[b]);
