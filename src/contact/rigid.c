@@ -56,8 +56,11 @@ static double mesh_size(const cx_mesh *m)
     for (int k = 0; k < m->dim; k++) {
         double lo = INFINITY, hi = -INFINITY;
         for (int i = 0; i < m->nnodes; i++) {
-            lo = fmin(lo, m->x[m->dim * i + k]);
-            hi = fmax(hi, m->x[m->dim * i + k]);
+            /* comparisons, not fmin/fmax calls (over every node): a NaN is
+             * passed over by both alike */
+            double v = m->x[m->dim * i + k];
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
         }
         diag += (hi - lo) * (hi - lo);
     }

@@ -3,17 +3,21 @@
  * kernel on gathered coordinates, scatter by dof = dim * node + c.
  *
  * The stiffness goes straight into its compressed-column pattern, computed
- * first from the mesh: nodes a and b are coupled when an element holds
- * both, and then so are all their dim x dim dof pairs, so K is made of
- * dim x dim blocks. Column (b, j) lists, for each neighbour a of b in
- * ascending order, the rows dim a .. dim a + dim - 1 (sorted, as cx_csc
- * requires); it starts at dim^2 p[b] + j dim deg(b), p the offsets of the
- * node graph. An element entry (a i, b j) lands at that start plus
- * dim k + i, k the place of a among the neighbours of b: a short search
- * (about 7 neighbours for TRI3, 27 for HEX8), which costs less than
- * storing npe^2 places per element would in memory. No triplets and no
- * sort; each entry is the sum of its element contributions in element
- * order. */
+ * first from the mesh, over all dofs or (cx_fem_assemble_free) over the
+ * free dofs of a Dirichlet map, so that no matrix over all dofs is made
+ * and reduced afterwards. Nodes a and b are coupled when an element holds
+ * both, and then so are all their free dof pairs. Every free column of
+ * node b holds the same rows: for each neighbour a of b in ascending
+ * order, a's free dofs (sorted, as cx_csc requires; with every dof free,
+ * dim a .. dim a + dim - 1). Its length len(b) is the sum of the free dofs
+ * of b's neighbours, and b's t-th free column starts at
+ * cbase(b) + t len(b). An element entry (a i, b j) lands there plus the
+ * offset of a's rows in b's columns, which the pattern's construction
+ * records per element and node pair (pos: npe^2 ints per element), plus
+ * the rank of i among a's free dofs: the scatter searches nothing. Each
+ * entry is the sum of its element contributions in element order, the
+ * same sums, bitwise, as the reduction of the matrix over all dofs
+ * (cx_fem_reduce) gives. */
 #include "fem/fem_impl.h"
 
 #include <limits.h>
@@ -59,41 +63,53 @@ static int check_material(const cx_material *mat, int k, int dim, cx_diag *d)
     return CX_OK;
 }
 
-/* The node graph of the mesh: the neighbours of each node through the
- * elements (itself included), ascending. */
-typedef struct node_graph {
-    int *p;       /* nnodes + 1 */
-    int *adj;     /* p[nnodes] */
-} node_graph;
+/* The pattern of K over the free dofs and where each element's entries
+ * go (header). */
+typedef struct pattern {
+    int *cbase;            /* nnodes: first entry of the node's first free column */
+    int *len;              /* nnodes: entries of each free column of the node */
+    unsigned char *fm;     /* nnodes: bit c set when dof (node, c) is free */
+    int *pos;              /* nelems npe^2: element e, column node b, row node a at
+                              npe (npe e + b) + a: offset of a's rows in b's columns */
+} pattern;
 
-static void node_graph_clear(node_graph *g)
+static void pattern_clear(pattern *g)
 {
-    cx_free(g->p);
-    cx_free(g->adj);
+    cx_free(g->cbase);
+    cx_free(g->len);
+    cx_free(g->fm);
+    cx_free(g->pos);
     memset(g, 0, sizeof *g);
 }
 
-/* Visit the nodes of the elements around node b (ep/el: the elements of
- * each node), each once (mark[c] == b once visited): count them, or, with
- * adj, write them there. Returns the count. */
-static int node_neighbours(const cx_mesh *m, const int *ep, const int *el, int b, int *mark,
+static int popcount(unsigned v)
+{
+    int n = 0;
+    for (; v; v &= v - 1)
+        n++;
+    return n;
+}
+
+/* The neighbours of node b (itself included) through its elements
+ * (incidences inc[ip[b] .. ip[b + 1]), each e npe + the node's place in
+ * e), each once (mark[c] == b once seen), ascending, into adj; returns
+ * their count. */
+static int node_neighbours(const int *conn, int npe, const int *ip, const int *inc, int b, int *mark,
                            int *adj)
 {
-    int deg = 0, npe = m->npe;
-    for (int q = ep[b]; q < ep[b + 1]; q++) {
-        const int *nodes = m->conn + npe * el[q];
+    int deg = 0;
+    for (int q = ip[b]; q < ip[b + 1]; q++) {
+        const int *nodes = conn + (inc[q] - inc[q] % npe);
         for (int a = 0; a < npe; a++) {
             int c = nodes[a];
             if (mark[c] != b) {
                 mark[c] = b;
-                if (adj)
-                    adj[deg] = c;
-                deg++;
+                adj[deg++] = c;
             }
         }
     }
     /* insertion sort: a few dozen at most */
-    for (int k = 1; adj && k < deg; k++) {
+    for (int k = 1; k < deg; k++) {
         int c = adj[k], l = k;
         for (; l > 0 && adj[l - 1] > c; l--)
             adj[l] = adj[l - 1];
@@ -102,133 +118,216 @@ static int node_neighbours(const cx_mesh *m, const int *ep, const int *el, int b
     return deg;
 }
 
-/* CX_EINVAL (message in d) if K would hold more than INT_MAX entries. */
-static int node_graph_build(const cx_mesh *m, node_graph *g, cx_diag *d)
+/* The pattern over the free dofs of map (NULL: every dof), K's p and i
+ * with zero values. One pass over the nodes finds each node's neighbours
+ * (kept, at most npe per incidence, for K's rows) and writes the offsets
+ * of its elements' entries. CX_EINVAL (message in d) if K would hold more
+ * than INT_MAX entries. */
+static int pattern_build(const cx_mesh *m, const cx_dofmap *map, pattern *g, cx_csc *K, cx_diag *d)
 {
     int nn = m->nnodes, npe = m->npe, dim = m->dim, status = CX_ENOMEM;
-    size_t ninc = (size_t)m->nelems * (size_t)npe;
-    int *ep = NULL, *el = NULL, *mark = NULL;
+    const unsigned full = (1u << dim) - 1;
+    size_t ninc = (size_t)m->nelems * (size_t)npe, npair = ninc * (size_t)npe;
+    int *ip = NULL, *inc = NULL, *mark = NULL, *off = NULL, *ap = NULL, *adj = NULL;
 
     memset(g, 0, sizeof *g);
-    if (ninc > INT_MAX)
+    memset(K, 0, sizeof *K);
+    if (npair > INT_MAX)
         return cx_diag_set(d, CX_EINVAL, "mesh too large to assemble: %d elements of %d nodes",
                            m->nelems, npe);
-    ep = CX_NEW(int, nn + 1);
-    el = CX_NEW(int, ninc);
+    ip = CX_NEW(int, nn + 1);
+    inc = CX_NEW(int, ninc ? ninc : 1);
     mark = CX_NEW(int, nn);
-    g->p = CX_NEW(int, nn + 1);
-    if (!ep || !el || !mark || !g->p)
+    off = CX_NEW(int, nn);
+    ap = CX_NEW(int, nn + 1);
+    adj = CX_NEW(int, npair ? npair : 1);
+    g->cbase = CX_NEW(int, nn);
+    g->len = CX_NEW(int, nn);
+    g->fm = CX_NEW(unsigned char, nn);
+    g->pos = CX_NEW(int, npair ? npair : 1);
+    if (!ip || !inc || !mark || !off || !ap || !adj || !g->cbase || !g->len || !g->fm || !g->pos)
         goto done;
-    /* the elements of each node */
+    for (int b = 0; b < nn; b++) {
+        unsigned f = full;
+        for (int c = 0; map && c < dim; c++)
+            if (map->free_of[dim * b + c] < 0)
+                f &= ~(1u << c);
+        g->fm[b] = (unsigned char)f;
+    }
+    /* the incidences of each node */
     for (size_t k = 0; k < ninc; k++)
-        ep[m->conn[k] + 1]++;
+        ip[m->conn[k] + 1]++;
     for (int b = 0; b < nn; b++)
-        ep[b + 1] += ep[b];
-    memcpy(mark, ep, sizeof(int) * (size_t)nn);
-    for (int e = 0; e < m->nelems; e++)
-        for (int a = 0; a < npe; a++)
-            el[mark[m->conn[npe * e + a]]++] = e;
-    /* count, then fill */
+        ip[b + 1] += ip[b];
+    memcpy(mark, ip, sizeof(int) * (size_t)nn);
+    for (size_t k = 0; k < ninc; k++)
+        inc[mark[m->conn[k]]++] = (int)k;
+    /* per node: its neighbours, the offsets of their rows in its columns
+     * (off, by node), its elements' entries, its columns' length */
     long long nnz = 0;
     for (int b = 0; b < nn; b++)
         mark[b] = -1;
     for (int b = 0; b < nn; b++) {
-        nnz += node_neighbours(m, ep, el, b, mark, NULL);
-        if (nnz * dim * dim > INT_MAX) {
+        int *nb = adj + ap[b];
+        int deg = node_neighbours(m->conn, npe, ip, inc, b, mark, nb), len = 0;
+        for (int k = 0; k < deg; k++) {
+            off[nb[k]] = len;
+            len += popcount(g->fm[nb[k]]);
+        }
+        for (int q = ip[b]; q < ip[b + 1]; q++) {
+            int e = inc[q] / npe, lb = inc[q] % npe;
+            const int *nodes = m->conn + (size_t)npe * (size_t)e;
+            int *pe = g->pos + (size_t)npe * ((size_t)npe * (size_t)e + (size_t)lb);
+            for (int a = 0; a < npe; a++)
+                pe[a] = off[nodes[a]];
+        }
+        ap[b + 1] = ap[b] + deg;
+        g->len[b] = len;
+        g->cbase[b] = (int)nnz;
+        nnz += (long long)len * popcount(g->fm[b]);
+        if (nnz > INT_MAX) {
             status = cx_diag_set(d, CX_EINVAL, "mesh too large to assemble: over %d entries in K",
                                  INT_MAX);
             goto done;
         }
-        g->p[b + 1] = (int)nnz;
     }
-    if (!(g->adj = CX_NEW(int, nnz)))
+    /* K's columns, in dof order: node b's free dofs, each the rows of its
+     * neighbours' free dofs */
+    int ncol = map ? map->nfree : dim * nn;
+    K->nrow = K->ncol = ncol;
+    K->p = CX_NEW(int, ncol + 1);
+    K->i = CX_NEW(int, nnz ? nnz : 1);
+    /* zeroed by writing, not calloc: fresh pages from calloc are mapped
+     * to the zero page and the scatter's first += then faults twice on
+     * each (a read, then a copy on write) */
+    K->x = cx_malloc(sizeof(double) * (size_t)(nnz ? nnz : 1));
+    if (!K->p || !K->i || !K->x)
         goto done;
-    for (int b = 0; b < nn; b++)
-        mark[b] = -1;
-    for (int b = 0; b < nn; b++)
-        node_neighbours(m, ep, el, b, mark, g->adj + g->p[b]);
-    status = CX_OK;
+    memset(K->x, 0, sizeof(double) * (size_t)nnz);
+    int col = 0;
+    for (int b = 0; b < nn; b++) {
+        int *ki = K->i + g->cbase[b], nf = popcount(g->fm[b]);
+        for (int k = ap[b]; nf > 0 && k < ap[b + 1]; k++) {   /* no column, no rows */
+            int a = adj[k];
+            for (int i = 0; i < dim; i++)
+                if ((g->fm[a] >> i) & 1u)
+                    *ki++ = map ? map->free_of[dim * a + i] : dim * a + i;
+        }
+        for (int t = 0; t < nf; t++) {
+            K->p[col++] = g->cbase[b] + t * g->len[b];
+            if (t > 0)
+                memcpy(K->i + g->cbase[b] + t * g->len[b], K->i + g->cbase[b],
+                       sizeof(int) * (size_t)g->len[b]);
+        }
+    }
+    K->p[ncol] = (int)nnz;
+    status = col == ncol ? CX_OK : CX_EINVAL;   /* a map not of this mesh */
 done:
-    if (status)
-        node_graph_clear(g);
-    cx_free(ep);
-    cx_free(el);
+    if (status) {
+        pattern_clear(g);
+        cx_csc_clear(K);
+    }
+    cx_free(ip);
+    cx_free(inc);
     cx_free(mark);
+    cx_free(off);
+    cx_free(ap);
+    cx_free(adj);
     return status;
 }
 
-/* K's pattern from the node graph, values zero. */
-static int pattern_alloc(const node_graph *g, int nn, int dim, cx_csc *K)
+/* The material of element e: its D (ns x ns) in the table of the
+ * materials' D (cx_mesh_elem_mat: the element's material, its body's
+ * where the mesh has no per-element materials). */
+static inline const double *element_D(const cx_mesh *m, const double *D, int ns, int e)
 {
-    size_t nnz = (size_t)dim * (size_t)dim * (size_t)g->p[nn];
-    int nall = dim * nn;
-    K->nrow = K->ncol = nall;
-    K->p = CX_NEW(int, nall + 1);
-    K->i = CX_NEW(int, nnz);
-    K->x = CX_NEW(double, nnz);
-    if (!K->p || !K->i || !K->x) {
-        cx_csc_clear(K);
-        return CX_ENOMEM;
-    }
-    for (int b = 0; b < nn; b++) {
-        int deg = g->p[b + 1] - g->p[b], q = dim * dim * g->p[b];
-        const int *adj = g->adj + g->p[b];
-        for (int j = 0; j < dim; j++) {
-            K->p[dim * b + j] = q;
-            for (int k = 0; k < deg; k++)
-                for (int i = 0; i < dim; i++)
-                    K->i[q++] = dim * adj[k] + i;
+    return D + ns * ns * cx_mesh_elem_mat(m, e);
+}
+
+/* Ke of node pair (a, b) with some dof prescribed: its free entries into
+ * K's block at blk (column stride L), and, for a prescribed column dof of
+ * b with a non-zero value, -Ke times the value into fd at the free rows. */
+static void scatter_partial(int dim, int nd, const double *restrict Ke, int a, int b, unsigned fa,
+                            unsigned fb, const int *restrict arow, const double *restrict bval,
+                            double *restrict blk, int L, double *restrict fd)
+{
+    for (int j = 0, t = 0; j < dim; j++) {
+        const double *kc = Ke + nd * (dim * b + j) + dim * a;   /* column (b j), Ke symmetric */
+        if ((fb >> j) & 1u) {
+            for (int i = 0, r = 0; i < dim; i++)
+                if ((fa >> i) & 1u)
+                    blk[t * L + r++] += kc[i];
+            t++;
+        } else if (fd && bval[j] != 0) {
+            for (int i = 0; i < dim; i++)
+                if ((fa >> i) & 1u)
+                    fd[arow[i]] -= kc[i] * bval[j];
         }
     }
-    K->p[nall] = (int)nnz;
-    return CX_OK;
 }
 
 /* K += Ke of every element (kernel, then scatter at the places the
  * pattern gives), inlined with constant dim and npe so that the gather
- * and the scatter are fixed-size loops. Returns the first element whose
- * kernel fails, or -1. */
+ * and the scatter of the nodes whose dofs are all free are fixed-size
+ * loops. Ke is exactly symmetric: column (b j) is read along its
+ * contiguous row. Returns the first element whose kernel fails, or -1. */
 static inline __attribute__((always_inline)) int
-assemble_elements(int dim, int npe, const cx_mesh *restrict m, const cx_fem_ref *restrict ref,
-                  const double *restrict D, const node_graph *restrict g, double *restrict Kx)
+assemble_elements(int dim, int npe, const cx_mesh *restrict m, const cx_dofmap *map,
+                  const cx_fem_ref *restrict ref, const double *restrict D, const pattern *restrict g,
+                  double *restrict Kx, double *restrict fd)
 {
     const int nd = dim * npe, ns = cx_fem_nstress(dim);
+    const unsigned full = (1u << dim) - 1;
     double xe[3 * CX_FEM_MAXNPE], Ke[CX_FEM_MAXDOF * CX_FEM_MAXDOF];
     for (int e = 0; e < m->nelems; e++) {
         const int *nodes = m->conn + npe * e;
+        const int *pe = g->pos + (size_t)npe * (size_t)npe * (size_t)e;
         for (int a = 0; a < npe; a++)
             for (int i = 0; i < dim; i++)
                 xe[dim * a + i] = m->x[dim * nodes[a] + i];
-        if (cx_fem_ref_stiffness(ref, xe, D + ns * ns * cx_mesh_elem_mat(m, e), Ke))
+        if (cx_fem_ref_stiffness(ref, xe, element_D(m, D, ns, e), Ke))
             return e;
         for (int b = 0; b < npe; b++) {
-            int nb = nodes[b], deg = g->p[nb + 1] - g->p[nb];
-            const int *adj = g->adj + g->p[nb];
-            double *col = Kx + (size_t)dim * (size_t)dim * (size_t)g->p[nb];
+            int nb = nodes[b], L = g->len[nb];
+            unsigned fb = g->fm[nb];
+            double *col = Kx + g->cbase[nb];
             for (int a = 0; a < npe; a++) {
-                int k = 0;
-                while (adj[k] != nodes[a])
-                    k++;
-                for (int j = 0; j < dim; j++)
+                unsigned fa = g->fm[nodes[a]];
+                double *restrict blk = col + pe[npe * b + a];
+                if ((fa & fb) == full) {
+                    for (int j = 0; j < dim; j++)
+                        for (int i = 0; i < dim; i++)
+                            blk[j * L + i] += Ke[nd * (dim * b + j) + dim * a + i];
+                } else {
+                    int arow[3];
                     for (int i = 0; i < dim; i++)
-                        col[dim * (j * deg + k) + i] += Ke[nd * (dim * a + i) + dim * b + j];
+                        arow[i] = map ? map->free_of[dim * nodes[a] + i] : dim * nodes[a] + i;
+                    scatter_partial(dim, nd, Ke, a, b, fa, fb, arow,
+                                    map ? map->value + dim * nb : NULL, blk, L, fd);
+                }
             }
         }
     }
     return -1;
 }
 
-int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc *K, cx_diag *d)
+/* The assembly over all dofs (map NULL) or the free dofs of map, fd as
+ * cx_fem_assemble_free states. */
+static int assemble(const cx_mesh *m, const cx_material *mats, const cx_dofmap *map, cx_csc *K,
+                    double *fd, cx_diag *d)
 {
     int dim = m->dim, ns = cx_fem_nstress(dim), status;
     double *D = NULL;
-    node_graph g = {0};
+    pattern g = {0};
     cx_fem_ref ref;
 
     memset(K, 0, sizeof *K);
     CX_TRY(check_mesh(m, d));
     for (int k = 0; k < cx_mesh_nmats(m); k++)
         CX_TRY(check_material(&mats[k], k, dim, d));
+    if (map && (map->nfree < 0 || map->nall != dim * m->nnodes))
+        return cx_diag_set(d, CX_EINVAL, "a Dirichlet map of %d dofs (%s) for a mesh of %d",
+                           map->nall, map->nfree < 0 ? "not finished" : "finished", dim * m->nnodes);
     if (cx_fem_ref_init(&ref, m->etype))
         return cx_diag_set(d, CX_EINVAL, "no stiffness kernel for %s elements", cx_elem_name(m->etype));
     D = CX_NEW(double, (size_t)cx_mesh_nmats(m) * (size_t)(ns * ns));
@@ -238,16 +337,16 @@ int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc 
     }
     for (int k = 0; k < cx_mesh_nmats(m); k++)
         cx_fem_elasticity(&mats[k], D + ns * ns * k);
-    if ((status = node_graph_build(m, &g, d)) || (status = pattern_alloc(&g, m->nnodes, dim, K)))
+    if ((status = pattern_build(m, map, &g, K, d)))
         goto fail;
 
     int bad;
     switch (m->etype) {
-    case CX_EL_TRI3: bad = assemble_elements(2, 3, m, &ref, D, &g, K->x); break;
-    case CX_EL_TRI6: bad = assemble_elements(2, 6, m, &ref, D, &g, K->x); break;
-    case CX_EL_QUAD4: bad = assemble_elements(2, 4, m, &ref, D, &g, K->x); break;
-    case CX_EL_HEX8: bad = assemble_elements(3, 8, m, &ref, D, &g, K->x); break;
-    case CX_EL_TET4: bad = assemble_elements(3, 4, m, &ref, D, &g, K->x); break;
+    case CX_EL_TRI3: bad = assemble_elements(2, 3, m, map, &ref, D, &g, K->x, fd); break;
+    case CX_EL_TRI6: bad = assemble_elements(2, 6, m, map, &ref, D, &g, K->x, fd); break;
+    case CX_EL_QUAD4: bad = assemble_elements(2, 4, m, map, &ref, D, &g, K->x, fd); break;
+    case CX_EL_HEX8: bad = assemble_elements(3, 8, m, map, &ref, D, &g, K->x, fd); break;
+    case CX_EL_TET4: bad = assemble_elements(3, 4, m, map, &ref, D, &g, K->x, fd); break;
     default: bad = 0;   /* refused by cx_fem_ref_init above */
     }
     if (bad >= 0)
@@ -258,9 +357,22 @@ fail:
         cx_diag_set(d, CX_ENOMEM, "out of memory assembling the stiffness (%d elements)", m->nelems);
     if (status)
         cx_csc_clear(K);
-    node_graph_clear(&g);
+    pattern_clear(&g);
     cx_free(D);
     return status;
+}
+
+int cx_fem_assemble_stiffness(const cx_mesh *m, const cx_material *mats, cx_csc *K, cx_diag *d)
+{
+    return assemble(m, mats, NULL, K, NULL, d);
+}
+
+int cx_fem_assemble_free(const cx_mesh *m, const cx_material *mats, const cx_dofmap *map, cx_csc *K,
+                         double *fd, cx_diag *d)
+{
+    if (!map)
+        return cx_diag_set(d, CX_EINVAL, "no Dirichlet map");
+    return assemble(m, mats, map, K, fd, d);
 }
 
 int cx_fem_add_traction(const cx_mesh *m, const cx_boundary *b, const cx_traction *t, double *f)

@@ -114,6 +114,19 @@ int cx_fem_reduce(const cx_csc *Kall, const double *fall, const cx_dofmap *map,
     return CX_OK;
 }
 
+int cx_fem_reduce_move(cx_csc *Kall, const double *fall, const cx_dofmap *map, cx_csc *K, double *f)
+{
+    int n = map->nfree;
+    if (n < 0 || Kall->nrow != n || Kall->ncol != n)
+        return cx_fem_reduce(Kall, fall, map, K, f);
+    /* over the free dofs already (or no dof prescribed): nothing to drop */
+    *K = *Kall;
+    memset(Kall, 0, sizeof *Kall);
+    for (int r = 0; r < n; r++)
+        f[r] = fall[map->all_of[r]];
+    return CX_OK;
+}
+
 void cx_fem_expand(const cx_dofmap *map, const double *u, double *uall)
 {
     for (int k = 0; k < map->nall; k++) {

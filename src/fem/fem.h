@@ -106,6 +106,19 @@ int cx_dofmap_finish(cx_dofmap *map);
  * finished or does not fit Kall, CX_ENOMEM (K left empty). */
 int cx_fem_reduce(const cx_csc *Kall, const double *fall, const cx_dofmap *map,
                   cx_csc *K, double *f);
+/* As cx_fem_reduce, or, when Kall is over the free dofs already (nfree x
+ * nfree: cx_fem_assemble_free, or no dof prescribed), its arrays move
+ * into K (Kall left empty) and f = fall(free): the prescribed values'
+ * part of f is then the caller's (cx_fem_assemble_free's fd). */
+int cx_fem_reduce_move(cx_csc *Kall, const double *fall, const cx_dofmap *map, cx_csc *K, double *f);
+/* K = Kall(free, free) and fd -= Kall(free, fixed) * value (nfree
+ * entries) as cx_fem_reduce gives them from cx_fem_assemble_stiffness (K
+ * bitwise), assembled straight onto the free dofs of the finished map:
+ * no matrix over all dofs (assemble.c). fd may be NULL when every
+ * prescribed value is 0. Failures as cx_fem_assemble_stiffness; CX_EINVAL
+ * also for a map not finished or not of this mesh. */
+int cx_fem_assemble_free(const cx_mesh *m, const cx_material *mats, const cx_dofmap *map, cx_csc *K,
+                         double *fd, cx_diag *d);
 /* uall = u on free dofs and the prescribed values elsewhere. */
 void cx_fem_expand(const cx_dofmap *map, const double *u, double *uall);
 

@@ -102,16 +102,16 @@ static int schur_shift(const cx_csc *A, const int *c, int nc, cx_csc *M, int *cm
     if (!(M->x = CX_NEW(double, nz)))
         return CX_ENOMEM;
     memcpy(M->x, A->x, sizeof(double) * nz);
+    /* the diagonal by bisection in the sorted columns, not a pass over A */
     double dmax = 0;
-    for (int j = 0; j < n; j++)
-        for (int q = A->p[j]; q < A->p[j + 1]; q++)
-            if (A->i[q] == j)
-                dmax = fmax(dmax, A->x[q]);
+    for (int j = 0; j < n; j++) {
+        int q = cx_csc_find(A, j, j);
+        if (q >= 0)
+            dmax = fmax(dmax, A->x[q]);
+    }
     for (int k = 0; k < nc; k++) {
-        int j = c[k], q;
-        for (q = M->p[j]; q < M->p[j + 1] && M->i[q] != j; q++)
-            ;
-        if (q == M->p[j + 1])
+        int j = c[k], q = cx_csc_find(M, j, j);
+        if (q < 0)
             return cx_diag_set(d, CX_EINVAL, "schur: no diagonal entry in column %d", j);
         dshift[k] = M->x[q] > 0 ? M->x[q] : (dmax > 0 ? dmax : 1);
         M->x[q] += dshift[k];

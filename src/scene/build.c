@@ -4,6 +4,7 @@
 #include "scene/scene.h"
 
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <math.h>
 #include <string.h>
@@ -13,7 +14,23 @@
 
 static int build_finite(const double *x, size_t n)
 {
-    for (size_t k = 0; k < n; k++)
+    /* x - x is +0 (all bits clear) for a finite x and NaN otherwise: the
+     * bits or'ed over blocks of a fixed length, without a branch per entry,
+     * which the compiler vectorises (K has millions of entries) */
+    enum { BLOCK = 256 };
+    size_t k = 0;
+    for (; k + BLOCK <= n; k += BLOCK) {
+        uint64_t bad = 0;
+        for (int q = 0; q < BLOCK; q++) {
+            double z = x[k + q] - x[k + q];
+            uint64_t u;
+            memcpy(&u, &z, sizeof u);
+            bad |= u;
+        }
+        if (bad)
+            return 0;
+    }
+    for (; k < n; k++)
         if (!isfinite(x[k]))
             return 0;
     return 1;
@@ -371,7 +388,7 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     cx_dofmap map = {0};
     cx_contact_set cs = {0};
     cx_csc K = {0};
-    double *f = NULL;
+    double *f = NULL, *fd = NULL;
     const cx_boundary *b;
     int st;
 
@@ -399,7 +416,25 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     if (s->generator == CX_GEN_FILE && s->nmaterials > 0 &&
         (st = build_file_materials(s, m, &groups, &mats, d)))
         goto fail;
-    if ((st = cx_fem_assemble_stiffness(m, mats, &K, d)))
+    /* the supports first: K is assembled over the free dofs only, the
+     * prescribed values' part of the load into fd (cx_fem_assemble_free) */
+    if ((st = cx_dofmap_init(&map, m->dim * m->nnodes)))
+        goto fail;
+    for (int k = 0; k < s->nsupports; k++) {
+        if ((st = build_boundary(s, m, s->supports[k].boundary, &b, d)))
+            goto fail;
+        for (int c = 0; c < m->dim; c++)
+            if ((s->supports[k].comps >> c) & 1u)
+                if ((st = cx_dofmap_fix(&map, m, b, c, s->supports[k].value[c])))
+                    goto fail;
+    }
+    if ((st = cx_dofmap_finish(&map)))
+        goto fail;
+    if (!(fd = CX_NEW(double, map.nfree > 0 ? map.nfree : 1))) {
+        st = cx_diag_set(d, CX_ENOMEM, "out of memory");
+        goto fail;
+    }
+    if ((st = cx_fem_assemble_free(m, mats, &map, &K, fd, d)))
         goto fail;
     if (!build_finite(K.x, cx_csc_nnz(&K))) {
         st = build_overflow(s, s->line_material, d, "section [material]: E = %g gives a stiffness "
@@ -436,19 +471,6 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
         }
     }
 
-    if ((st = cx_dofmap_init(&map, m->dim * m->nnodes)))
-        goto fail;
-    for (int k = 0; k < s->nsupports; k++) {
-        if ((st = build_boundary(s, m, s->supports[k].boundary, &b, d)))
-            goto fail;
-        for (int c = 0; c < m->dim; c++)
-            if ((s->supports[k].comps >> c) & 1u)
-                if ((st = cx_dofmap_fix(&map, m, b, c, s->supports[k].value[c])))
-                    goto fail;
-    }
-    if ((st = cx_dofmap_finish(&map)))
-        goto fail;
-
     if (s->generator == CX_GEN_MASONRY) {
         if ((st = build_masonry_contact(s, level, m, &cs, d)))
             goto fail;
@@ -471,6 +493,8 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     if ((st = cx_problem_create(pp, &m, &mats, &map, &cs, &K, f, d)))
         goto fail;
     cx_problem *p = *pp;
+    for (int r = 0; r < p->n; r++)
+        p->f[r] += fd[r];
     defaults.Fi = p->contact.Fpt;   /* several contacts: their own values */
     defaults.s = p->contact.spt;
     /* the prescribed displacements fold into f and g */
@@ -489,6 +513,7 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
         *fr = defaults;
     cx_csc_clear(&K);
     cx_free(f);
+    cx_free(fd);
     cx_mesh_groups_clear(&groups);
     return CX_OK;
 
@@ -502,5 +527,6 @@ fail:
     cx_contact_clear(&cs);
     cx_csc_clear(&K);
     cx_free(f);
+    cx_free(fd);
     return st;
 }

@@ -65,7 +65,7 @@ static int map_rows(const cx_triplet *R, const cx_dofmap *map, cx_csc *out, doub
 }
 
 int cx_problem_create(cx_problem **pp, cx_mesh **mesh, cx_material **mats, cx_dofmap *map,
-                      cx_contact_set *cs, const cx_csc *Kall, const double *fall, cx_diag *d)
+                      cx_contact_set *cs, cx_csc *Kall, const double *fall, cx_diag *d)
 {
     int status;
     double *shift = NULL;
@@ -95,7 +95,7 @@ int cx_problem_create(cx_problem **pp, cx_mesh **mesh, cx_material **mats, cx_do
         status = CX_ENOMEM;
         goto fail;
     }
-    if ((status = cx_fem_reduce(Kall, fall, &p->map, &p->K, p->f)))
+    if ((status = cx_fem_reduce_move(Kall, fall, &p->map, &p->K, p->f)))
         goto fail;
 
     /* N u_all - g <= 0 with u_all = u on free dofs, prescribed values
@@ -137,10 +137,11 @@ int cx_problem_create(cx_problem **pp, cx_mesh **mesh, cx_material **mats, cx_do
         if (touched[j])
             p->cdofs[k++] = j;
 
-    for (int j = 0; j < p->n; j++)
-        for (int q = p->K.p[j]; q < p->K.p[j + 1]; q++)
-            if (p->K.i[q] == j && p->K.x[q] > p->kscale)
-                p->kscale = p->K.x[q];
+    for (int j = 0; j < p->n; j++) {
+        int q = cx_csc_find(&p->K, j, j);   /* bisection, not a pass over K */
+        if (q >= 0 && p->K.x[q] > p->kscale)
+            p->kscale = p->K.x[q];
+    }
 
     /* resultant of the applied loads */
     for (int k = 0; k < p->map.nall; k++)

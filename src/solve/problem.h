@@ -72,13 +72,15 @@ typedef struct cx_problem {
     double f_applied[3];/* resultant of the applied loads (tractions + body forces) */
 } cx_problem;
 
-/* Build the problem from an assembled system over all dofs: takes ownership
- * of mesh, mats (cx_malloc'ed array), map and cs (their contents move in and
- * the arguments are zeroed); Kall and fall are only read. CX_ENOMEM,
- * CX_EINVAL (e.g. a contact point whose every dof is prescribed). */
+/* Build the problem from an assembled system: takes ownership of mesh,
+ * mats (cx_malloc'ed array), map and cs (their contents move in and the
+ * arguments are zeroed); fall (over all dofs) is only read, and so is Kall
+ * when it is over all dofs; a Kall over the free dofs (cx_fem_assemble_free)
+ * moves in (cx_fem_reduce_move). CX_ENOMEM, CX_EINVAL (e.g. a contact
+ * point whose every dof is prescribed). */
 int cx_problem_create(cx_problem **p, cx_mesh **mesh, cx_material **mats,
                       cx_dofmap *map, cx_contact_set *cs,
-                      const cx_csc *Kall, const double *fall, cx_diag *d);
+                      cx_csc *Kall, const double *fall, cx_diag *d);
 void cx_problem_destroy(cx_problem **p);
 
 /* ---- a problem from plain arrays (problem_arrays.c) ----------------------

@@ -330,12 +330,14 @@ static int ssn_nslip3d(const ssn_state *st, const cx_problem *p)
  * of order nc - na instead of a Bunch-Kaufman of order nc + na; the
  * multiplier of row r is what its dof's equilibrium row lacks,
  * (x_c - (M u)_c) / v_r. M, x: the top-left nc x nc block (leading
- * dimension ns) and the top nc entries of the saddle-point system, as
- * ssn_solve built them. The solution into uc, the multiplier of the a-th
- * active row into lam[a]. CX_EUNSUPPORTED if the rows are not all such, or
- * CX_ENUMERIC if the free block is not definite (the active set does not
- * hold the body): the caller then solves the whole system. */
-static int ssn_solve_pinned(ssn_state *st, const cx_problem *p, int na, int ns, double *lam)
+ * dimension ns; S itself, ns = nc, when no 3D slip point adds to it) and
+ * the top nc entries of the saddle-point system, as ssn_solve built them.
+ * The solution into uc, the multiplier of the a-th active row into
+ * lam[a]. CX_EUNSUPPORTED if the rows are not all such, or CX_ENUMERIC if
+ * the free block is not definite (the active set does not hold the body):
+ * the caller then solves the whole system. */
+static int ssn_solve_pinned(ssn_state *st, const cx_problem *p, int na, const double *M, int ns,
+                            double *lam)
 {
     int nc = st->nc, m = p->m, nf = 0;
     for (int k = 0; k < nc; k++)
@@ -350,7 +352,7 @@ static int ssn_solve_pinned(ssn_state *st, const cx_problem *p, int na, int ns, 
     for (int k = 0; k < nc; k++)
         if (st->pin[k] < 0)
             st->fpos[nf++] = k;
-    const double *M = st->M, *x = st->x;
+    const double *x = st->x;
     double *rhs = st->uc;   /* the free right-hand side, then the free solution */
     for (int j = 0; j < nf; j++) {
         const double *col = M + (size_t)ns * st->fpos[j];
@@ -399,6 +401,22 @@ static int ssn_solve(ssn_state *st, const cx_problem *p, cx_iterate *it, cx_diag
             st->act[na++] = r;
     int ns = nc + na;
     const double *S = cx_schur_matrix(st->S);
+    memcpy(st->x, st->fc, sizeof(double) * (size_t)nc);
+    for (int i = 0; st->tangential && st->dt == 1 && i < m; i++) {
+        int r = m + i;
+        if (st->set[r] == 0)
+            continue;
+        double lt = st->set[r] * st->sb[i];
+        for (int q = st->rp[r]; q < st->rp[r + 1]; q++)
+            st->x[st->rc[q]] -= st->rv[q] * lt;
+    }
+    double *lam = st->Bu;   /* na <= nrow: the active rows' multipliers */
+    /* without 3D slip points the pinned system's block is S's own: read
+     * there, the saddle-point matrix (order ns, rebuilt at every
+     * iteration) is built only when the pinned solve does not apply */
+    int slip3d = ssn_nslip3d(st, p) > 0;
+    if (!slip3d && ssn_solve_pinned(st, p, na, S, nc, lam) == CX_OK)
+        goto iterate;
     for (int j = 0; j < nc; j++) {
         memcpy(st->M + (size_t)ns * j, S + (size_t)nc * j, sizeof(double) * (size_t)nc);
         memset(st->M + (size_t)ns * j + nc, 0, sizeof(double) * (size_t)na);
@@ -413,19 +431,9 @@ static int ssn_solve(ssn_state *st, const cx_problem *p, cx_iterate *it, cx_diag
         }
         st->x[nc + a] = r < m ? st->kappa * p->g[r] : 0.0;
     }
-    memcpy(st->x, st->fc, sizeof(double) * (size_t)nc);
-    for (int i = 0; st->tangential && st->dt == 1 && i < m; i++) {
-        int r = m + i;
-        if (st->set[r] == 0)
-            continue;
-        double lt = st->set[r] * st->sb[i];
-        for (int q = st->rp[r]; q < st->rp[r + 1]; q++)
-            st->x[st->rc[q]] -= st->rv[q] * lt;
-    }
-    if (st->tangential && st->dt == 2)
+    if (slip3d)
         ssn_add_slip3d(st, p, ns);
-    double *lam = st->Bu;   /* na <= nrow: the active rows' multipliers */
-    if (ssn_solve_pinned(st, p, na, ns, lam) != CX_OK) {
+    if (!slip3d || ssn_solve_pinned(st, p, na, st->M, ns, lam) != CX_OK) {
         int status = cx_dense_sym_solve(ns, st->M, st->x, st->ipiv, st->work, st->lwork, NULL);
         if (status != CX_OK)
             return cx_diag_set(d, status,
@@ -436,7 +444,7 @@ static int ssn_solve(ssn_state *st, const cx_problem *p, cx_iterate *it, cx_diag
             lam[a] = st->kappa * st->x[nc + a];
     }
 
-    /* ---- the new iterate ---- */
+iterate:   /* ---- the new iterate ---- */
     memset(it->lN, 0, sizeof(double) * (size_t)m);
     for (int i = 0; st->tangential && st->dt == 1 && i < m; i++)
         it->lT[i] = st->set[m + i] * st->sb[i];
