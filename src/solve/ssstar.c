@@ -71,6 +71,7 @@ typedef struct {
     double gamma;         /* approximation step (relative), tangential rows */
     double gamma_n;       /* ... multiplier rows */
     int compliance;       /* step: kp holds 1 / max (A^-1)_vv at the point, not max A_vv */
+    int seidel;           /* sweep: each point's step sees the points before it moved */
     double eps;           /* stopping tolerance */
     double fscale;        /* load scale for the residual */
 } ssstar_state;
@@ -81,6 +82,10 @@ static const cx_param ssstar_params[] = {
     {"step", CX_PARAM_CHOICE, 0, 0, 1, "diag|compliance",
      "the approximation step's scale per point: gamma / kappa (diag) or gamma x the largest "
      "diagonal entry of A^-1 at the point (compliance: the point's own flexibility)", 0},
+    {"sweep", CX_PARAM_CHOICE, 0, 0, 1, "jacobi|seidel",
+     "the approximation step over the points: all from the same iterate (jacobi) or one after "
+     "another, each from the residual the points before it left (seidel; the paper's "
+     "'consecutively' read as a Gauss-Seidel sweep)", 0},
     {"gamma_n", CX_PARAM_REAL, 1.0, 1e-6, 1e6, NULL,
      "[M, chosen] approximation step of the contact multiplier, relative to kappa", 0},
     {"eps", CX_PARAM_REAL, 1e-12, 0, 1, NULL,
@@ -266,6 +271,7 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
     st->gamma = cx_param_get(params, "gamma");
     st->gamma_n = cx_param_get(params, "gamma_n");
     st->compliance = (int)cx_param_get(params, "step") == 1;
+    st->seidel = (int)cx_param_get(params, "sweep") == 1;
     st->eps = cx_param_get(params, "eps");
     int status = ssstar_rotation(st, p, d);
     if (status != CX_OK) {
@@ -361,6 +367,17 @@ static int ssstar_init(void *state, cx_session *s, const cx_param_values *params
     return CX_OK;
 }
 
+/* sweep=seidel: r = A x - b with x point k's new displacements (uh) and
+ * the later points' old ones (xi), where the next point's step starts. */
+static void ssstar_seidel(ssstar_state *st, int k)
+{
+    for (int a = -1; a < st->dt; a++) {
+        int q = a < 0 ? st->nvar[k] : st->tv[st->dt * k + a];
+        if (q >= 0 && st->uh[q] != st->xi[q])
+            cx_vec_axpy(st->nv, st->uh[q] - st->xi[q], st->A + (size_t)st->nv * q, st->r);
+    }
+}
+
 /* The approximation step (001 §4, doc/papers.md §1.3) from (xi, lam):
  * uh, lh and y*^ (ys, ysl). r = A xi - b on entry. */
 static void ssstar_approximate(ssstar_state *st)
@@ -389,12 +406,16 @@ static void ssstar_approximate(ssstar_state *st)
         int v = st->nvar[k];
         if (v < 0) {
             st->lh[k] = st->ysl[k] = 0;
+            if (st->seidel)
+                ssstar_seidel(st, k);
             continue;
         }
         st->uh[v] = st->xi[v] - gt * (st->r[v] + st->lam[k]);
         double wl = st->lam[k] + gl * (st->xi[v] - st->gap[k]);
         st->lh[k] = wl > 0 ? wl : 0;
         st->ysl[k] = wl < 0 ? wl / gl : 0;
+        if (st->seidel)
+            ssstar_seidel(st, k);
     }
 }
 

@@ -88,4 +88,13 @@ for table, labels in [(t1, ["MPRGP", "SNM1", "SNM2", "SNM3"]), (t2, ["MPRGP", "S
         # MPRGP stays within 25 % on every row (21 % below on this one)
         check(abs(got["MPRGP"][0] - 181) <= 0.25 * 181, f"MPRGP {got['MPRGP'][0]} within 25 % of 181")
 
+# the kkt error at each run's stop, every method of the row
+kkt = re.findall(r"^  kkt 30600/150: (.*)$", out, re.M)
+check(len(kkt) == 1, f"one kkt line for the row: {kkt}")
+if kkt:
+    vals = dict(re.findall(r"(MPRGP|SNM\d) (\d\.\de[-+]\d+)", kkt[0]))
+    check(set(vals) == {"MPRGP", "SNM1", "SNM2", "SNM3", "SNM4"}, f"every method's kkt: {kkt[0]}")
+    # the paper's criterion stops near the solution: MPRGP's g^P <= 1e-6 ||b|| about 1e-5, the others below
+    check(all(float(v) < 1e-3 for v in vals.values()), f"every run stops near the solution: {vals}")
+
 finish("cli paper 000")

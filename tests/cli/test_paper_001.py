@@ -49,4 +49,18 @@ check(code == 0, "bench paper 001 --gamma 1 exits 0")
 check("gamma = 1," in out2 and "(--gamma" in out2, "the chosen gamma is stated")
 it2 = iters(out2)
 check(it2 != it and all(a > 20 for a, _ in it2.values()), f"gamma = 1 cycles (many steps: {it2})")
+
+# --set passes a parameter to ssstar: the looser eps of the README's readings
+# is stated and stops earlier (short of the solution); a bad one is a usage error
+code, out3, err = run("bench", "paper", "001", "--levels", "1-2", "--no-solves", "--repeat", "1",
+                      "--gamma", "16", "--set", "eps=1e-3")
+check(code == 0, f"bench paper 001 --set eps=1e-3 exits 0 ({err.strip()})")
+check("eps = 0.001, the relative residual" in out3 and "stop short of the solution" in out3,
+      "the looser eps is stated with its consequence")
+it3, it1 = iters(out3), iters(out)
+check(set(it3) == {1, 2} == set(it1) and all(a < it1[L][0] for L, (a, _) in it3.items()),
+      f"eps = 1e-3 takes fewer steps ({it3} against {it1})")
+for bad in ("foo=1", "sweep=x"):
+    code, _, err = run("bench", "paper", "001", "--levels", "1", "--set", bad)
+    check(code == 2 and len(err.strip().splitlines()) == 1, f"--set {bad} is refused: {err!r}")
 finish("cli_paper_001")

@@ -33,7 +33,7 @@ COMMANDS = [
      "(0, 1)"),
     (["bench", "stress"], BENCH | {"level", "cases"}, ["--threads", "0"], "[1, 1024]"),
     (["bench", "paper", "000"], {"rows", "all", "first", "slip", "slip-nodal", "abar", "scene", "repeat"}, ["--rows", "22"], "[1, 21]"),
-    (["bench", "paper", "001"], {"levels", "repeat", "no-solves", "gamma"}, ["--repeat", "16"], "[1, 15]"),
+    (["bench", "paper", "001"], {"levels", "repeat", "no-solves", "gamma", "set"}, ["--repeat", "16"], "[1, 15]"),
     (["bench", "paper", "002"], {"quick", "tables"}, ["--tables", "9"], "--tables '9'"),
     (["bench", "paper", "003"], {"max-level", "small", "time-limit", "tables", "geometry", "gap"},
      ["--gap", "1"], "(0, 1)"),
