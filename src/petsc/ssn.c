@@ -254,15 +254,7 @@ static int ssn_ksp(px_system *sys, const char *prefix, KSP *ksp, cx_diag *d)
 #ifdef PETSC_HAVE_HYPRE
     if (strcmp(prefix, "cx_hypre_") != 0)
 #endif
-        /* GAMG's aggregates, prolongator and Chebyshev bounds built
-         * afresh on every step's matrix, not kept from the first one
-         * (only the Galerkin products formed again): a prolongator built
-         * where the contact dofs were pinned serves the steps that free
-         * them badly (hertz 128: 23-32 iterations per step against 7-17;
-         * prism 7: 199 against 102 in all), and its bounds let prism 5 and
-         * 7 go indefinite once a 3D slip point's stiffness beta P came in.
-         * The set-up costs more than the products alone, and less than the
-         * iterations it saves (prism 7, 1 rank: 86 s against 108 s) */
+        /* set per step by px_ssn_solve: kept while the sets change little */
         PX(PCGAMGSetReuseInterpolation(pc, PETSC_FALSE));
     PX(KSPSetOptionsPrefix(*ksp, prefix));   /* PETSC_OPTIONS="-cx_ksp_monitor ..." */
     if (sys->dim == 2 && strcmp(prefix, "cx_") == 0) {
@@ -380,11 +372,27 @@ int px_ssn_solve(px_run *run, cx_diag *d)
          * linearised stiffness): the last step's preconditioner serves
          * again, without a set-up; a failure below builds a fresh one */
         int reuse = k > 1 && nchanged == 0 && slip3d == 0 && !c.failed, fresh = 0;
+        /* GAMG's aggregates and prolongator kept from the last set-up
+         * (its Galerkin products and Chebyshev bounds formed again) while
+         * the sets change in at most 5 % of the rows; after larger changes
+         * (the first steps after the bonded one) built afresh: kept from
+         * the bonded step they served the later steps badly (hertz 128:
+         * 23-32 iterations per step against 7-17; prism 7: 199 in all
+         * against 102) and sent prism 5 and 7 indefinite; built afresh on
+         * every step the set-up cost more than that saved (prism 6, 1
+         * rank: 10.7 s of set-up against 6.5 s, 100 iterations against
+         * 88) */
+        int keep = k > 2 && !c.failed && 20 * nchanged <= c.nrow;
         PX(VecCopy(c.U, c.U0));
         for (;;) {
             KSP ksp = c.ksp[c.stage];
             PX(KSPSetOperators(ksp, c.A, c.A));
             PX(KSPSetReusePreconditioner(ksp, reuse ? PETSC_TRUE : PETSC_FALSE));
+            if (c.stage < 2 && !reuse) {
+                PC pc;
+                PX(KSPGetPC(ksp, &pc));
+                PX(PCGAMGSetReuseInterpolation(pc, keep ? PETSC_TRUE : PETSC_FALSE));
+            }
             PX(KSPSetTolerances(ksp, eta, 0.0, PETSC_DEFAULT, 100000));
             PX(KSPSolve(ksp, c.B, c.U));
             r->pc_setups++;
