@@ -8,6 +8,8 @@
 
 static int px_started;   /* 1 once PetscInitialize has run here */
 
+PetscLogEvent px_ev_assemble, px_ev_system, px_ev_gather, px_ev_kkt;
+
 int px_fail(PetscErrorCode ierr, const char *file, int line, cx_diag *d)
 {
     const char *text = NULL;
@@ -31,6 +33,12 @@ int cx_petsc_initialize(cx_diag *d)
     /* errors come back as codes, printed once by the program, not as
      * PETSc's traceback on stderr */
     PetscPushErrorHandler(PetscReturnErrorHandler, NULL);
+    PetscClassId cls;
+    PetscClassIdRegister("signorini", &cls);
+    PetscLogEventRegister("cxAssemble", cls, &px_ev_assemble);
+    PetscLogEventRegister("cxStepSystem", cls, &px_ev_system);
+    PetscLogEventRegister("cxStepGather", cls, &px_ev_gather);
+    PetscLogEventRegister("cxStepKKT", cls, &px_ev_kkt);
     px_started = 1;
     return CX_OK;
 }

@@ -65,7 +65,9 @@ typedef struct cx_petsc_result {
     cx_kkt kkt_parts;
     double *u, *lN, *lT; /* n, m, nt: the last iterate, on every rank */
     long krylov;         /* Krylov iterations in all */
-    int pc_setups;       /* GAMG set-ups */
+    int pc_setups;       /* Krylov solves (each with its preconditioner set up, unless reused) */
+    int pc_reused;       /* of which reused the last step's preconditioner (the sets unchanged) */
+    int pc_rebuilt;      /* preconditioners built afresh after one failed */
     double t_setup;      /* parallel assembly, Dirichlet rows, near null space */
     double t_solve;      /* the method */
     int nranks;

@@ -21,6 +21,12 @@ int px_fail(PetscErrorCode ierr, const char *file, int line, cx_diag *d);
         }                                                     \
     } while (0)
 
+/* The backend's phases in PETSc's -log_view (registered by
+ * cx_petsc_initialize): the parallel assembly of K with its Dirichlet rows
+ * and near null space; a Newton step's matrix copy and pinning; its
+ * residual, gathers and multipliers; the kkt error on every rank. */
+extern PetscLogEvent px_ev_assemble, px_ev_system, px_ev_gather, px_ev_kkt;
+
 /* The system of a problem on the ranks: all dofs (node k, component c ->
  * dim k + c), rows by contiguous node ranges. */
 typedef struct px_system {

@@ -45,7 +45,9 @@ int px_run_check(px_run *run, int iter, int ncontact, int nstick, int nslip, int
     const cx_problem *p = run->sys->p;
     cx_petsc_result *r = run->r;
     /* every rank holds the same iterate: the same error everywhere */
+    (void)PetscLogEventBegin(px_ev_kkt, 0, 0, 0, 0);
     r->kkt = cx_kkt_error(p, run->fr, r->u, r->lN, r->lT, run->work, NULL, &r->kkt_parts);
+    (void)PetscLogEventEnd(px_ev_kkt, 0, 0, 0, 0);
     r->iterations = iter;
     cx_petsc_step st = {iter, r->kkt, ncontact, nstick, nslip, nchanged, krylov, rtol,
                         cx_clock_now() - run->t0};
@@ -108,7 +110,10 @@ int cx_petsc_solve(const cx_problem *p, const cx_friction_state *fr, const char 
         goto fail;
     }
     double t0 = cx_clock_now();
-    if ((status = px_system_create(&sys, p, fr->law == CX_FRICTION_TRESCA, d)) != CX_OK)
+    (void)PetscLogEventBegin(px_ev_assemble, 0, 0, 0, 0);
+    status = px_system_create(&sys, p, fr->law == CX_FRICTION_TRESCA, d);
+    (void)PetscLogEventEnd(px_ev_assemble, 0, 0, 0, 0);
+    if (status != CX_OK)
         goto fail;
     r->t_setup = cx_clock_now() - t0;
     px_run run = {&sys, &frs, opt, obs, ctx, r, work, cx_clock_now(), INFINITY, 0};

@@ -19,7 +19,11 @@
  * Inexact Newton: the step's relative residual (the forcing term) is
  * 1e-2 times the last kkt error, within [1e-14, 1e-2], and a hundred times
  * smaller than the last one when the sets have not changed (what is left
- * is the linear solve's error). The run stops on the kkt error alone.
+ * is the linear solve's error); where the step is then linear in u (no 3D
+ * slip point) it is solved at once to a tenth of the tolerance over the
+ * last error, with the last step's preconditioner (the matrix is the
+ * same). Every other step sets GAMG up afresh on its own matrix. The run
+ * stops on the kkt error alone.
  *
  * Each step communicates: the matrix copy and the pinning (local), the
  * Krylov solve (each CG iteration one halo exchange of the product with K,
@@ -45,6 +49,7 @@ typedef struct {
     KSP ksp[3];                /* CG + GAMG with Chebyshev smoothing (GAMG's default), with SOR;
                                   CG + hypre's BoomerAMG */
     int stage;                 /* the one in use: a failure moves on for the rest of the run */
+    int failed;                /* the last solve failed: no reuse of its preconditioner */
     Vec U, B, X, R, U0;
 } ssn_ctx;
 
@@ -226,7 +231,9 @@ static void ssn_clear(ssn_ctx *c)
  * large as |z| is close to s, and Chebyshev's eigenvalue estimate then
  * made the preconditioner indefinite (prism 5; prism 3 on 2 ranks); SOR
  * in turn failed on a coarse level of hertz 128 (a zero pivot), so a run
- * starts with Chebyshev and changes for good at the first such step; and
+ * starts with Chebyshev and changes for good at the first step where a
+ * fresh set-up on that step's matrix fails too (with GAMG built afresh on
+ * every step none of prism 3-7, block3d 8, hertz 16-512 gets there); and
  * where both failed (prism 8, step 8: "SUBPC_ERROR" after 4 iterations),
  * prefix "cx_hypre_" takes hypre's BoomerAMG, where PETSc has it. */
 static int ssn_ksp(px_system *sys, const char *prefix, KSP *ksp, cx_diag *d)
@@ -244,7 +251,26 @@ static int ssn_ksp(px_system *sys, const char *prefix, KSP *ksp, cx_diag *d)
 #else
     PX(PCSetType(pc, PCGAMG));
 #endif
+#ifdef PETSC_HAVE_HYPRE
+    if (strcmp(prefix, "cx_hypre_") != 0)
+#endif
+        /* set per step by px_ssn_solve: kept while the sets change little */
+        PX(PCGAMGSetReuseInterpolation(pc, PETSC_FALSE));
     PX(KSPSetOptionsPrefix(*ksp, prefix));   /* PETSC_OPTIONS="-cx_ksp_monitor ..." */
+    if (sys->dim == 2 && strcmp(prefix, "cx_") == 0) {
+        /* 2D (hertz's graded triangles): the graph's weak couplings
+         * dropped (threshold 0.02) and three Chebyshev steps per level
+         * instead of two; with GAMG's defaults the iterations per solve
+         * grew about 1.5x per level (hertz 128: 14.1, 256: 22.8 with the
+         * set-up afresh), with these they stay about 10 (10.3, 11.6);
+         * a higher threshold (0.05) was worse. 3D keeps the defaults */
+        PetscReal thr = 0.02;
+        PX(PCGAMGSetThreshold(pc, &thr, 1));
+        PetscBool has = PETSC_FALSE;
+        PX(PetscOptionsHasName(NULL, NULL, "-cx_mg_levels_ksp_max_it", &has));
+        if (!has)
+            PX(PetscOptionsSetValue(NULL, "-cx_mg_levels_ksp_max_it", "3"));
+    }
     if (strcmp(prefix, "cx_sor_") == 0) {
         static const char *const dflt[][2] = {{"-cx_sor_mg_levels_ksp_type", "richardson"},
                                               {"-cx_sor_mg_levels_pc_type", "sor"}};
@@ -316,30 +342,93 @@ int px_ssn_solve(px_run *run, cx_diag *d)
             nchanged = 0;
         memcpy(c.prev, c.set, (size_t)c.nrow);
         double eta = fmin(1e-2, fmax(1e-14, 1e-2 * kkt_prev));
+        int slip3d = 0;   /* 3D slip points: beta and q are linearised */
+        for (int i = 0; c.tangential && c.dt == 2 && i < p->m; i++)
+            slip3d += c.set[i] == 1 && c.set[p->m + 2 * i] != 0;
         if (k > 1 && nchanged == 0)
             eta = fmax(1e-14, fmin(eta, 1e-2 * eta_prev));
+        if (k > 1 && nchanged == 0 && slip3d == 0) {
+            /* the sets held and the step is linear in u (no 3D slip
+             * direction to linearise): the sets' solution is this step's
+             * exact solve, so the step is solved at once to what the
+             * tolerance asks of it (the solve's residual is relative to
+             * the last iterate's, about kkt_prev) instead of a hundredfold
+             * per step (hertz 256: two more steps, each with its own set-up).
+             * With 3D slip the linearisation's own error (quadratic, kkt
+             * 2e-4 -> 7e-6 -> 5e-9 on prism 5 whatever the solve's
+             * accuracy) is what is left, and the rule above is kept */
+            double tol = run->opt->tol > 0 ? run->opt->tol : 1e-10;
+            eta = fmax(1e-14, fmin(eta, 1e-1 * tol / fmax(kkt_prev, tol)));
+        }
         eta_prev = eta;
-        if ((status = ssn_system(&c, fr, d)) != CX_OK)
+        (void)PetscLogEventBegin(px_ev_system, 0, 0, 0, 0);
+        status = ssn_system(&c, fr, d);
+        (void)PetscLogEventEnd(px_ev_system, 0, 0, 0, 0);
+        if (status != CX_OK)
             goto fail;
         KSPConvergedReason kr;
         PetscInt its, its0 = 0;
+        /* the same sets and no 3D slip point (whose beta and q change the
+         * matrix from step to step; a preconditioner kept across those
+         * took 25-39 iterations per step on prism 5 against 8-13): the
+         * same matrix, so the last step's preconditioner serves again
+         * without a set-up; a failure below builds a fresh one */
+        int reuse = k > 1 && nchanged == 0 && slip3d == 0 && !c.failed, fresh = 0;
+        /* GAMG's aggregates and prolongator kept from the last set-up
+         * (its Galerkin products and Chebyshev bounds formed again) while
+         * the sets change in at most 5 % of the rows; after larger changes
+         * (the first steps after the bonded one) built afresh: kept from
+         * the bonded step they served the later steps badly (hertz 128:
+         * 23-32 iterations per step against 7-17; prism 7: 199 in all
+         * against 102) and sent prism 5 and 7 indefinite; built afresh on
+         * every step the set-up cost more than that saved (prism 6, 1
+         * rank: 10.7 s of set-up against 6.5 s, 100 iterations against
+         * 88) */
+        int keep = k > 2 && !c.failed && 20 * nchanged <= c.nrow;
         PX(VecCopy(c.U, c.U0));
         for (;;) {
             KSP ksp = c.ksp[c.stage];
             PX(KSPSetOperators(ksp, c.A, c.A));
+            PX(KSPSetReusePreconditioner(ksp, reuse ? PETSC_TRUE : PETSC_FALSE));
+            if (c.stage < 2 && !reuse) {
+                PC pc;
+                PX(KSPGetPC(ksp, &pc));
+                PX(PCGAMGSetReuseInterpolation(pc, keep ? PETSC_TRUE : PETSC_FALSE));
+            }
             PX(KSPSetTolerances(ksp, eta, 0.0, PETSC_DEFAULT, 100000));
             PX(KSPSolve(ksp, c.B, c.U));
             r->pc_setups++;
+            r->pc_reused += reuse;
             PX(KSPGetConvergedReason(ksp, &kr));
             PX(KSPGetIterationNumber(ksp, &its));
             r->krylov += its;
             its += its0;
-            if (kr >= 0 || c.stage == 2 || (kr != KSP_DIVERGED_INDEFINITE_PC && kr != KSP_DIVERGED_PC_FAILED))
+            c.failed = kr < 0;
+            if (kr >= 0 || (kr != KSP_DIVERGED_INDEFINITE_PC && kr != KSP_DIVERGED_PC_FAILED))
                 break;
-            /* the preconditioner failed: this step and the next by the next one */
-            c.stage++;
             its0 = its;
             PX(VecCopy(c.U0, c.U));
+            if (!fresh && c.stage < 2) {
+                /* first a fresh set-up of the same preconditioner on this
+                 * step's matrix: a reused one, or GAMG's prolongator and
+                 * Chebyshev bounds kept from an earlier step (whose
+                 * estimate of the largest eigenvalue a 3D slip point's
+                 * stiffness beta P may exceed: prism 5 step 6 went
+                 * indefinite so), is the usual cause */
+                PC pc;
+                PX(KSPGetPC(ksp, &pc));
+                PX(PCReset(pc));
+                fresh = 1;
+                reuse = 0;
+                r->pc_rebuilt++;
+                continue;
+            }
+            if (c.stage == 2)
+                break;
+            /* the preconditioner failed afresh: this step and the next by the next one */
+            c.stage++;
+            fresh = 0;
+            reuse = 0;
         }
         if (kr < 0) {
             PC pc;
@@ -368,12 +457,14 @@ int px_ssn_solve(px_run *run, cx_diag *d)
             PX(VecRestoreArrayRead(c.X, &xa));
             PX(VecRestoreArray(c.U, &ua));
         }
+        (void)PetscLogEventBegin(px_ev_gather, 0, 0, 0, 0);
         PX(MatMult(sys->K, c.U, c.R));
         PX(VecAYPX(c.R, -1.0, sys->f));   /* R = f - K u */
         if ((status = px_system_gather(sys, c.U, r->u, d)) != CX_OK ||
             (status = px_system_gather(sys, c.R, NULL, d)) != CX_OK ||
             (status = ssn_multipliers(&c, fr, r, d)) != CX_OK)
             goto fail;
+        (void)PetscLogEventEnd(px_ev_gather, 0, 0, 0, 0);
         int nc = 0, nst = 0, nsl = 0;
         for (int i = 0; i < p->m; i++) {
             if (c.set[i] != 1)
