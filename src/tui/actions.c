@@ -350,15 +350,30 @@ static void coef_describe(const tui_state *st, int i, char *buf, size_t len)
 
 /* method */
 
+/* On the PETSc backend ('b') the row shows and steps the backend's method
+ * (the header names the backend): that is what s and r run, not the
+ * direct path's selection. */
 static void method_format(const tui_state *st, int i, char *buf, size_t len)
 {
     (void)i;
-    snprintf(buf, len, "%s", tui_state_sel_method(st)->id);
+    if (st->sel_backend)
+        snprintf(buf, len, "%s", tui_backend_method(st->sel_backend - 1));
+    else
+        snprintf(buf, len, "%s", tui_state_sel_method(st)->id);
 }
 
 static int method_step(tui_state *st, int i, int dir)
 {
     (void)i;
+    if (st->sel_backend) {
+        int n = 0;
+        while (tui_backend_method(n))
+            n++;
+        st->sel_backend = (st->sel_backend - 1 + (dir > 0 ? 1 : n - 1)) % n + 1;
+        tui_msg(st, 0, "backend petsc, method %s (1 rank); b: the next one, then the direct path",
+                tui_backend_method(st->sel_backend - 1));
+        return TUI_REDRAW;
+    }
     int k = next_method(st, dir);
     if (k < 0 || k == st->sel_method) {
         tui_msg(st, 0, "%s is the only method that fits this scene", tui_state_sel_method(st)->id);

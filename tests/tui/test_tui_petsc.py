@@ -111,6 +111,9 @@ try:
     # 'b': petsc-vi, petsc-tao, then the direct path; 'r' runs it in a row of its own
     keys("b")
     wait_for(lambda t: "│ petsc petsc-vi none" in t.splitlines()[0], "b: petsc-vi")
+    # the setup's method row shows what s and r run: the backend's method
+    check(re.search(r"^method\s+◂?petsc-vi\b", screen(), re.M) is not None,
+          "the method row shows petsc-vi")
     keys("b")
     wait_for(lambda t: "│ petsc petsc-tao none" in t.splitlines()[0], "b: petsc-tao")
     keys("b")
