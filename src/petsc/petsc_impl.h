@@ -75,7 +75,7 @@ typedef struct px_run {
     cx_petsc_observer obs;
     void *ctx;
     cx_petsc_result *r;
-    double *work;                  /* n + m + nt: cx_kkt_error's */
+    double *work;                  /* n + m + nt: cx_kkt_error's, then n: K u */
     double t0;
     double best;                   /* the smallest kkt error so far, and its iteration */
     int best_iter;

@@ -46,7 +46,20 @@ int px_run_check(px_run *run, int iter, int ncontact, int nstick, int nslip, int
     cx_petsc_result *r = run->r;
     /* every rank holds the same iterate: the same error everywhere */
     (void)PetscLogEventBegin(px_ev_kkt, 0, 0, 0, 0);
-    r->kkt = cx_kkt_error(p, run->fr, r->u, r->lN, r->lT, run->work, NULL, &r->kkt_parts);
+    /* K u from the residual f - K u the method gathered last (sys->whole,
+     * over all dofs): the serial p->K is not read, so a driver may free it */
+    {
+        double *Ku = run->work + p->n + p->m + p->nt + 1;
+        const PetscScalar *w;
+        if (VecGetArrayRead(run->sys->whole, &w) == 0) {
+            for (int j = 0; j < p->n; j++)
+                Ku[j] = p->f[j] - w[p->map.all_of[j]];
+            (void)VecRestoreArrayRead(run->sys->whole, &w);
+            r->kkt = cx_kkt_error_Ku(p, run->fr, r->u, r->lN, r->lT, Ku, run->work, NULL, &r->kkt_parts);
+        } else {
+            r->kkt = NAN;
+        }
+    }
     (void)PetscLogEventEnd(px_ev_kkt, 0, 0, 0, 0);
     r->iterations = iter;
     cx_petsc_step st = {iter, r->kkt, ncontact, nstick, nslip, nchanged, krylov, rtol,
@@ -97,7 +110,7 @@ int cx_petsc_solve(const cx_problem *p, const cx_friction_state *fr, const char 
     r->rows = CX_NEW(int, r->nranks);
     r->elems = CX_NEW(int, r->nranks);
     r->mem_peak = CX_NEW(double, r->nranks);
-    double *work = CX_NEW(double, p->n + p->m + p->nt + 1);
+    double *work = CX_NEW(double, 2 * (size_t)p->n + p->m + p->nt + 1);
     if (fr->law == CX_FRICTION_TRESCA && !fr->s) {   /* the session's rule: s_i = bound x weight_i */
         s = CX_NEW(double, p->m + 1);
         for (int i = 0; s && i < p->m; i++)

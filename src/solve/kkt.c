@@ -88,6 +88,13 @@ double cx_kkt_error(const cx_problem *p, const cx_friction_state *fr, const doub
                     const double *lN, const double *lT, double *work, cx_counters *cnt,
                     cx_kkt *parts)
 {
+    return cx_kkt_error_Ku(p, fr, u, lN, lT, NULL, work, cnt, parts);
+}
+
+double cx_kkt_error_Ku(const cx_problem *p, const cx_friction_state *fr, const double *u,
+                       const double *lN, const double *lT, const double *Ku, double *work,
+                       cx_counters *cnt, cx_kkt *parts)
+{
     int n = p->n;
     cx_kkt k = {INFINITY, INFINITY, INFINITY, INFINITY};
     double *r = work;
@@ -98,9 +105,13 @@ double cx_kkt_error(const cx_problem *p, const cx_friction_state *fr, const doub
     }
     /* ---- equilibrium: K u - f + N' lN + T' lT ---- */
     double nB = norminf(n, r), nf = norminf(n, p->f);
-    cx_csc_gemv(&p->K, 1.0, u, 1.0, r);
-    if (cnt)
-        cnt->matvecs++;
+    if (Ku) {
+        cx_vec_axpy(n, 1.0, Ku, r);
+    } else {
+        cx_csc_gemv(&p->K, 1.0, u, 1.0, r);
+        if (cnt)
+            cnt->matvecs++;
+    }
     cx_vec_axpy(n, -1.0, p->f, r);
     k.equilibrium = kkt_ratio(norminf(n, r), nf + nB);
     kkt_maps(p, fr, u, lN, lT, work + n, &k);

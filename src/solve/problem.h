@@ -160,6 +160,12 @@ typedef struct cx_kkt {
 double cx_kkt_error(const cx_problem *p, const cx_friction_state *fr, const double *u,
                     const double *lN, const double *lT, double *work, cx_counters *cnt,
                     cx_kkt *parts);
+/* The same error with K u given (n values; NULL: computed from p->K), for
+ * a caller that has the product without p->K: the PETSc backend, whose K
+ * is distributed and whose driver may free the serial one. */
+double cx_kkt_error_Ku(const cx_problem *p, const cx_friction_state *fr, const double *u,
+                       const double *lN, const double *lT, const double *Ku, double *work,
+                       cx_counters *cnt, cx_kkt *parts);
 
 /* The same error for an iterate whose u is exact on the contact dofs and
  * whose other dofs solve their equilibrium rows (u_i = K_ii^-1 (f_i -
