@@ -8,28 +8,11 @@ import json
 import os
 import re
 import shutil
-import subprocess
-import sys
 import tempfile
 
-exe = sys.argv[1]
-failed = 0
+from mpicheck import check, finish, run
 
 
-def run(args, mpi=0):
-    cmd = ([shutil.which("mpirun"), "-n", str(mpi)] if mpi else []) + [exe] + args
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=500)
-
-
-def check(cond, what, r=None):
-    global failed
-    if not cond:
-        failed += 1
-        print(f"FAIL: {what}")
-        if r is not None:
-            print(r.stdout[-2000:], r.stderr[-2000:])
-    else:
-        print(f"ok: {what}")
 
 
 # one rank, no mpirun: converges, prints the rank line
@@ -74,5 +57,4 @@ with tempfile.TemporaryDirectory() as tmp:
         ok = ok and os.path.getsize(vtu) > 1000
     check(ok, "block3d 4 petsc-tao: JSON on stdout, a VTU file", r)
 
-print(f"petsc cli: {failed} failed")
-sys.exit(1 if failed else 0)
+finish("petsc cli")

@@ -12,29 +12,12 @@ import math
 import os
 import re
 import shutil
-import subprocess
-import sys
 import tempfile
 
-exe = sys.argv[1]
-failed = 0
+from mpicheck import check, finish, run
 TOL = 1e-10
 
 
-def run(args, mpi=0):
-    cmd = ([shutil.which("mpirun"), "-n", str(mpi)] if mpi else []) + [exe] + args
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=500)
-
-
-def check(cond, what, r=None):
-    global failed
-    if not cond:
-        failed += 1
-        print(f"FAIL: {what}")
-        if r is not None:
-            print(r.stdout[-3000:], r.stderr[-3000:])
-    else:
-        print(f"ok: {what}")
 
 
 def crossover(rows, method):
@@ -140,5 +123,4 @@ with tempfile.TemporaryDirectory() as tmp:
         check(r.returncode == 0 and r.stdout.count("# program:") == 1 and len(body) == 3,
               "hertz 8 on 2 ranks: one table, one CSV with two rows", r)
 
-print("FAILED" if failed else "all passed")
-sys.exit(1 if failed else 0)
+finish("petsc bench scaling")
