@@ -71,6 +71,25 @@ fail:
     return status;
 }
 
+/* What both peers start from: K's copy without the near null space (the
+ * header says why), x at zero within its bounds lo, hi, and the vector of
+ * the residual; peer_clear undoes it, also after a failure here. */
+static int peer_init(peer_ctx *c, Vec *x, Vec *lo, Vec *hi, cx_diag *d)
+{
+    int status = CX_OK;
+    px_system *sys = c->run->sys;
+    PX(MatDuplicate(sys->K, MAT_COPY_VALUES, &c->K));
+    PX(MatSetNearNullSpace(c->K, NULL));
+    PX(MatCreateVecs(sys->K, x, NULL));
+    PX(VecDuplicate(*x, lo));
+    PX(VecDuplicate(*x, hi));
+    PX(VecDuplicate(*x, &c->R));
+    PX(VecSet(*x, 0.0));
+    return peer_bounds(sys, *lo, *hi, *x, d);
+fail:
+    return status;
+}
+
 /* What both peers hold at the end (PETSc's destroyers take NULL). */
 static void peer_clear(peer_ctx *c, Vec *x, Vec *lo, Vec *hi)
 {
@@ -158,17 +177,11 @@ int px_vi_solve(px_run *run, cx_diag *d)
     int status = CX_OK;
     px_system *sys = run->sys;
     peer_ctx c = {run, NULL, NULL, 0, CX_OK, d};
-    PX(MatDuplicate(sys->K, MAT_COPY_VALUES, &c.K));
-    PX(MatSetNearNullSpace(c.K, NULL));
     SNES snes = NULL;
     Vec x = NULL, F = NULL, lo = NULL, hi = NULL;
-    PX(MatCreateVecs(sys->K, &x, &F));
-    PX(VecDuplicate(x, &lo));
-    PX(VecDuplicate(x, &hi));
-    PX(VecDuplicate(x, &c.R));
-    PX(VecSet(x, 0.0));
-    if ((status = peer_bounds(sys, lo, hi, x, d)) != CX_OK)
+    if ((status = peer_init(&c, &x, &lo, &hi, d)) != CX_OK)
         goto fail;
+    PX(VecDuplicate(x, &F));
     PX(SNESCreate(sys->comm, &snes));
     PX(SNESSetType(snes, SNESVINEWTONRSLS));
     PX(SNESSetFunction(snes, F, vi_function, sys));
@@ -260,16 +273,9 @@ int px_tao_solve(px_run *run, cx_diag *d)
     int status = CX_OK;
     px_system *sys = run->sys;
     peer_ctx c = {run, NULL, NULL, 0, CX_OK, d};
-    PX(MatDuplicate(sys->K, MAT_COPY_VALUES, &c.K));
-    PX(MatSetNearNullSpace(c.K, NULL));
     Tao tao = NULL;
     Vec x = NULL, lo = NULL, hi = NULL;
-    PX(MatCreateVecs(sys->K, &x, NULL));
-    PX(VecDuplicate(x, &lo));
-    PX(VecDuplicate(x, &hi));
-    PX(VecDuplicate(x, &c.R));
-    PX(VecSet(x, 0.0));
-    if ((status = peer_bounds(sys, lo, hi, x, d)) != CX_OK)
+    if ((status = peer_init(&c, &x, &lo, &hi, d)) != CX_OK)
         goto fail;
     PX(TaoCreate(sys->comm, &tao));
     PX(TaoSetType(tao, TAOTRON));
