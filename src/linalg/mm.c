@@ -152,7 +152,10 @@ static int mm_prescan(FILE *f, const char *name, cx_diag *d)
         char *p = line, tail[2];
         while (*p == ' ' || *p == '\t')
             p++;
-        if (*p == '%' || *p == '\n' || *p == '\r' || *p == 0)
+        /* a comment, or a line of blanks only: a carriage return before
+         * more text ("\r3 3") is not one (CHOLMOD took such a line for
+         * the size and returned a bad object: found by libFuzzer) */
+        if (*p == '%' || p[strspn(p, " \t\r\n")] == 0)
             continue;
         if ((size_t)len != strlen(line)) {
             st = cx_diag_set(d, CX_EINVAL, "%s: line %d: a NUL byte", name, lineno);
