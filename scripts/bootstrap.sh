@@ -7,7 +7,9 @@
 # Gmsh (user geometry), PETSc with OpenMPI (the parallel backend; with
 # --no-install-recommends petsc-dev does not bring mpirun: openmpi-bin),
 # FCLIB (problem exchange), giflib (animations), EGL (headless GL where
-# OSMesa is gone); cffi and pytest for the Python package and its tests.
+# OSMesa is gone); cffi and pytest for the Python package and its tests;
+# numpy and scipy (the package's arrays, the VTU and materials tests) and
+# matplotlib (python/examples/compare.py), which a bare Debian 12 lacks.
 set -eu
 cd "$(dirname "$0")/.."
 
@@ -16,7 +18,8 @@ libsuitesparse-dev libopenblas0 liblapack-dev libinih-dev \
 libncurses-dev libosmesa6-dev libpng-dev libcairo2-dev fonts-dejavu-core tmux \
 python3-vtk9 clang libclang-rt-14-dev locales \
 libgmsh-dev petsc-dev openmpi-bin libfclib-dev libgif-dev \
-libegl-dev libopengl-dev python3-cffi python3-pytest"
+libegl-dev libopengl-dev python3-cffi python3-pytest \
+python3-numpy python3-scipy python3-matplotlib"
 
 missing=""
 for p in $packages; do
