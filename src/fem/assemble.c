@@ -18,7 +18,7 @@
  * entry is the sum of its element contributions in element order, the
  * same sums, bitwise, as the reduction of the matrix over all dofs
  * (cx_fem_reduce) gives. */
-#include "fem/fem_impl.h"
+#include "fem/element_impl.h"
 
 #include <limits.h>
 #include <string.h>
@@ -267,14 +267,14 @@ static void scatter_partial(int dim, int nd, const double *restrict Ke, int a, i
 }
 
 /* K += Ke of every element (kernel, then scatter at the places the
- * pattern gives), inlined with constant dim and npe so that the gather
- * and the scatter of the nodes whose dofs are all free are fixed-size
- * loops. Ke is exactly symmetric: column (b j) is read along its
+ * pattern gives), inlined with constant dim, npe and quadrature so that
+ * the gather, the kernel (element_impl.h, no call per element) and the
+ * scatter of the nodes whose dofs are all free are fixed-size loops. Ke is exactly symmetric: column (b j) is read along its
  * contiguous row. Returns the first element whose kernel fails, or -1. */
-static inline __attribute__((always_inline)) int
-assemble_elements(int dim, int npe, const cx_mesh *restrict m, const cx_dofmap *map,
-                  const cx_fem_ref *restrict ref, const double *restrict D, const pattern *restrict g,
-                  double *restrict Kx, double *restrict fd)
+CX_FEM_INLINE int assemble_elements(int dim, int npe, int nq, int affine, const cx_mesh *restrict m,
+                                    const cx_dofmap *map, const cx_fem_ref *restrict ref,
+                                    const double *restrict D, const pattern *restrict g,
+                                    double *restrict Kx, double *restrict fd)
 {
     const int nd = dim * npe, ns = cx_fem_nstress(dim);
     const unsigned full = (1u << dim) - 1;
@@ -285,7 +285,7 @@ assemble_elements(int dim, int npe, const cx_mesh *restrict m, const cx_dofmap *
         for (int a = 0; a < npe; a++)
             for (int i = 0; i < dim; i++)
                 xe[dim * a + i] = m->x[dim * nodes[a] + i];
-        if (cx_fem_ref_stiffness(ref, xe, element_D(m, D, ns, e), Ke))
+        if (cx_fem_stiffness_kernel(dim, npe, nq, affine, ref, xe, element_D(m, D, ns, e), Ke))
             return e;
         for (int b = 0; b < npe; b++) {
             int nb = nodes[b], L = g->len[nb];
@@ -342,11 +342,11 @@ static int assemble(const cx_mesh *m, const cx_material *mats, const cx_dofmap *
 
     int bad;
     switch (m->etype) {
-    case CX_EL_TRI3: bad = assemble_elements(2, 3, m, map, &ref, D, &g, K->x, fd); break;
-    case CX_EL_TRI6: bad = assemble_elements(2, 6, m, map, &ref, D, &g, K->x, fd); break;
-    case CX_EL_QUAD4: bad = assemble_elements(2, 4, m, map, &ref, D, &g, K->x, fd); break;
-    case CX_EL_HEX8: bad = assemble_elements(3, 8, m, map, &ref, D, &g, K->x, fd); break;
-    case CX_EL_TET4: bad = assemble_elements(3, 4, m, map, &ref, D, &g, K->x, fd); break;
+    case CX_EL_TRI3: bad = assemble_elements(2, 3, 1, 1, m, map, &ref, D, &g, K->x, fd); break;
+    case CX_EL_TRI6: bad = assemble_elements(2, 6, 3, 0, m, map, &ref, D, &g, K->x, fd); break;
+    case CX_EL_QUAD4: bad = assemble_elements(2, 4, 4, 0, m, map, &ref, D, &g, K->x, fd); break;
+    case CX_EL_HEX8: bad = assemble_elements(3, 8, 8, 0, m, map, &ref, D, &g, K->x, fd); break;
+    case CX_EL_TET4: bad = assemble_elements(3, 4, 1, 1, m, map, &ref, D, &g, K->x, fd); break;
     default: bad = 0;   /* refused by cx_fem_ref_init above */
     }
     if (bad >= 0)
