@@ -94,9 +94,10 @@ CX_FEM_INLINE int cx_fem_check_nodes(int dim, int npe, const cx_fem_ref *restric
  * fixed length nd, which the compiler vectorises. The sums run in the
  * order of the dense product over the Voigt rows (the zeros of B skipped
  * add nothing), so Ke is the same to the last bit as B'(DB) with a dense
- * B. The full Ke is summed and its upper triangle mirrored below at the
- * end, so that Ke is exactly symmetric (the two triangles of B'(DB) differ
- * in rounding). */
+ * B. Only the upper triangle is summed (the rows of node a from its own
+ * columns on) and mirrored below at the end, so that Ke is exactly
+ * symmetric (the two triangles of B'(DB) would differ in rounding) for
+ * about half the work of the full product. */
 CX_FEM_INLINE int cx_fem_stiffness_kernel(int dim, int npe, int nq, int affine,
                                            const cx_fem_ref *restrict r, const double *restrict xe,
                                            const double *restrict D, double *restrict Ke)
@@ -127,7 +128,7 @@ CX_FEM_INLINE int cx_fem_stiffness_kernel(int dim, int npe, int nq, int affine,
             for (int a = 0; a < npe; a++) {
                 double gx = G[2 * a], gy = G[2 * a + 1];
                 double *restrict kx = Ke + nd * (2 * a), *restrict ky = kx + nd;
-                for (int j = 0; j < nd; j++) {
+                for (int j = 2 * a; j < nd; j++) {   /* the upper triangle */
                     kx[j] += gx * DB[0][j] + gy * DB[2][j];
                     ky[j] += gy * DB[1][j] + gx * DB[2][j];
                 }
@@ -149,7 +150,7 @@ CX_FEM_INLINE int cx_fem_stiffness_kernel(int dim, int npe, int nq, int affine,
                 double gx = G[3 * a], gy = G[3 * a + 1], gz = G[3 * a + 2];
                 double *restrict kx = Ke + nd * (3 * a), *restrict ky = kx + nd,
                                  *restrict kz = ky + nd;
-                for (int j = 0; j < nd; j++) {
+                for (int j = 3 * a; j < nd; j++) {   /* the upper triangle */
                     kx[j] += gx * DB[0][j] + gz * DB[4][j] + gy * DB[5][j];
                     ky[j] += gy * DB[1][j] + gz * DB[3][j] + gx * DB[5][j];
                     kz[j] += gz * DB[2][j] + gy * DB[3][j] + gx * DB[4][j];
