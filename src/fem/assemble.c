@@ -122,8 +122,8 @@ static int popcount(unsigned v)
  * (incidences inc[ip[b] .. ip[b + 1]), each e npe + the node's place in
  * e), each once (mark[c] == b once seen), ascending, into adj; returns
  * their count. */
-static int node_neighbours(const int *conn, int npe, const int *ip, const int *inc, int b, int *mark,
-                           int *adj)
+CX_FEM_INLINE int node_neighbours(const int *conn, int npe, const int *ip, const int *inc, int b,
+                                  int *mark, int *adj)
 {
     int deg = 0;
     for (int q = ip[b]; q < ip[b + 1]; q++) {
@@ -144,6 +144,88 @@ static int node_neighbours(const int *conn, int npe, const int *ip, const int *i
         adj[l] = c;
     }
     return deg;
+}
+
+/* The pass over the nodes of pattern_build, inlined with constant dim,
+ * npe and position size: per node b, its neighbours, the offsets of their
+ * rows in its columns (off, by node), its elements' positions, its
+ * columns' rows. Returns K's entries, -1 past INT_MAX; *cols counts the
+ * free columns met. */
+CX_FEM_INLINE long long pattern_nodes(int dim, int npe, int bytes, const cx_mesh *m,
+                                      const cx_dofmap *map, const int *restrict ip,
+                                      const int *restrict inc, int *restrict mark,
+                                      int *restrict off, int *restrict nb, pattern *g, cx_csc *K,
+                                      int *cols)
+{
+    const int *restrict conn = m->conn, *restrict free_of = map ? map->free_of : NULL;
+    const unsigned char *restrict fm = g->fm;
+    unsigned char *restrict pos8 = g->pos8;
+    int *restrict pos32 = g->pos32, *restrict len_of = g->len, *restrict cbase = g->cbase;
+    int *restrict Kp = K->p, *restrict Ki = K->i;
+    int nn = m->nnodes, ncol = K->ncol, col = 0;
+    long long nnz = 0;
+    for (int b = 0; b < nn; b++)
+        mark[b] = -1;
+    for (int b = 0; b < nn; b++) {
+        int deg = node_neighbours(conn, npe, ip, inc, b, mark, nb), len = 0;
+        for (int k = 0; k < deg; k++) {
+            off[nb[k]] = len;
+            len += popcount(fm[nb[k]]);
+        }
+        for (int q = ip[b]; q < ip[b + 1]; q++) {
+            int e = inc[q] / npe, lb = inc[q] % npe;
+            const int *nodes = conn + (size_t)npe * (size_t)e;
+            size_t at = (size_t)npe * ((size_t)npe * (size_t)e + (size_t)lb);
+            for (int a = 0; a < npe; a++) {
+                if (bytes)
+                    pos8[at + (size_t)a] = (unsigned char)off[nodes[a]];
+                else
+                    pos32[at + (size_t)a] = off[nodes[a]];
+            }
+        }
+        int nf = popcount(fm[b]);
+        len_of[b] = len;
+        cbase[b] = (int)nnz;
+        if (nnz + (long long)len * nf > INT_MAX)
+            return -1;
+        if (nf > 0) {   /* no column, no rows */
+            int *ki = Ki + nnz;
+            for (int k = 0; k < deg; k++) {
+                int a = nb[k];
+                for (int i = 0; i < dim; i++)
+                    if ((fm[a] >> i) & 1u)
+                        *ki++ = free_of ? free_of[dim * a + i] : dim * a + i;
+            }
+            for (int t = 0; t < nf && col < ncol; t++) {   /* col < ncol: a map not of this mesh */
+                Kp[col++] = (int)nnz + t * len;
+                if (t > 0)
+                    memcpy(Ki + nnz + t * len, Ki + nnz, sizeof(int) * (size_t)len);
+            }
+        }
+        nnz += (long long)len * nf;
+        *cols += nf;
+    }
+    return nnz;
+}
+
+/* pattern_nodes for the mesh's element type, one instance per type and
+ * position size. */
+static long long pattern_type(const cx_mesh *m, const cx_dofmap *map, const int *ip, const int *inc,
+                              int *mark, int *off, int *nb, pattern *g, cx_csc *K, int *cols)
+{
+#define CX_PATTERN_CASE(t, dim, npe)                                                                     \
+    case t:                                                                                              \
+        return g->pos8 ? pattern_nodes(dim, npe, 1, m, map, ip, inc, mark, off, nb, g, K, cols)         \
+                       : pattern_nodes(dim, npe, 0, m, map, ip, inc, mark, off, nb, g, K, cols);
+    switch (m->etype) {
+        CX_PATTERN_CASE(CX_EL_TRI3, 2, 3)
+        CX_PATTERN_CASE(CX_EL_TRI6, 2, 6)
+        CX_PATTERN_CASE(CX_EL_QUAD4, 2, 4)
+        CX_PATTERN_CASE(CX_EL_HEX8, 3, 8)
+        CX_PATTERN_CASE(CX_EL_TET4, 3, 4)
+    }
+#undef CX_PATTERN_CASE
+    return 0;   /* checked by the caller (cx_fem_ref_init) */
 }
 
 /* The pattern over the free dofs of map (NULL: every dof), K's p and i
@@ -209,53 +291,11 @@ static int pattern_build(const cx_mesh *m, const cx_dofmap *map, pattern *g, cx_
         goto done;
     advise_huge(K->i, sizeof(int) * bound);
     advise_huge(g->pos8 ? (void *)g->pos8 : (void *)g->pos32, npair * (g->pos8 ? 1 : sizeof(int)));
-    /* per node: its neighbours, the offsets of their rows in its columns
-     * (off, by node), its elements' entries, its columns */
-    long long nnz = 0;
-    int col = 0, cols = 0;
-    for (int b = 0; b < nn; b++)
-        mark[b] = -1;
-    for (int b = 0; b < nn; b++) {
-        int deg = node_neighbours(m->conn, npe, ip, inc, b, mark, nb), len = 0;
-        for (int k = 0; k < deg; k++) {
-            off[nb[k]] = len;
-            len += popcount(g->fm[nb[k]]);
-        }
-        for (int q = ip[b]; q < ip[b + 1]; q++) {
-            int e = inc[q] / npe, lb = inc[q] % npe;
-            const int *nodes = m->conn + (size_t)npe * (size_t)e;
-            size_t at = (size_t)npe * ((size_t)npe * (size_t)e + (size_t)lb);
-            if (g->pos8)
-                for (int a = 0; a < npe; a++)
-                    g->pos8[at + (size_t)a] = (unsigned char)off[nodes[a]];
-            else
-                for (int a = 0; a < npe; a++)
-                    g->pos32[at + (size_t)a] = off[nodes[a]];
-        }
-        int nf = popcount(g->fm[b]);
-        g->len[b] = len;
-        g->cbase[b] = (int)nnz;
-        if (nnz + (long long)len * nf > INT_MAX) {
-            status = cx_diag_set(d, CX_EINVAL, "mesh too large to assemble: over %d entries in K",
-                                 INT_MAX);
-            goto done;
-        }
-        if (nf > 0) {   /* no column, no rows */
-            int *ki = K->i + nnz;
-            for (int k = 0; k < deg; k++) {
-                int a = nb[k];
-                for (int i = 0; i < dim; i++)
-                    if ((g->fm[a] >> i) & 1u)
-                        *ki++ = map ? map->free_of[dim * a + i] : dim * a + i;
-            }
-            for (int t = 0; t < nf && col < ncol; t++) {   /* col < ncol: a map not of this mesh */
-                K->p[col++] = (int)nnz + t * len;
-                if (t > 0)
-                    memcpy(K->i + nnz + t * len, K->i + nnz, sizeof(int) * (size_t)len);
-            }
-        }
-        nnz += (long long)len * nf;
-        cols += nf;
+    int cols = 0;
+    long long nnz = pattern_type(m, map, ip, inc, mark, off, nb, g, K, &cols);
+    if (nnz < 0) {
+        status = cx_diag_set(d, CX_EINVAL, "mesh too large to assemble: over %d entries in K", INT_MAX);
+        goto done;
     }
     if (cols != ncol) {   /* a map not of this mesh */
         status = CX_EINVAL;
