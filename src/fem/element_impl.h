@@ -88,6 +88,39 @@ CX_FEM_INLINE int cx_fem_check_nodes(int dim, int npe, const cx_fem_ref *restric
     return CX_OK;
 }
 
+/* Ke's upper triangle += B'(DB) at one quadrature point (B from the
+ * gradients G, as cx_fem_strain_matrix; the rows of node a from its own
+ * columns on). first: Ke holds nothing yet, and each entry is its terms
+ * added to 0.0, the same sums bit for bit (signed zeros included) as
+ * after a pass that zeroes Ke. */
+CX_FEM_INLINE void cx_fem_add_btdb(int dim, int npe, int first, const double *restrict G,
+                                   const double (*restrict DB)[CX_FEM_MAXDOF], double *restrict Ke)
+{
+    const int nd = dim * npe;
+    for (int a = 0; a < npe; a++) {
+        const double *g = G + dim * a;
+        double *restrict kx = Ke + nd * (dim * a), *restrict ky = kx + nd;
+        if (dim == 2) {
+            /* Voigt (xx, yy, xy): column (a, x) of B is gx e0 + gy e2,
+             * column (a, y) is gy e1 + gx e2 */
+            for (int j = 2 * a; j < nd; j++) {
+                kx[j] = (first ? 0.0 : kx[j]) + (g[0] * DB[0][j] + g[1] * DB[2][j]);
+                ky[j] = (first ? 0.0 : ky[j]) + (g[1] * DB[1][j] + g[0] * DB[2][j]);
+            }
+        } else {
+            /* Voigt (xx, yy, zz, yz, xz, xy): column (a, x) of B is
+             * gx e0 + gz e4 + gy e5, (a, y) gy e1 + gz e3 + gx e5,
+             * (a, z) gz e2 + gy e3 + gx e4 */
+            double *restrict kz = ky + nd;
+            for (int j = 3 * a; j < nd; j++) {
+                kx[j] = (first ? 0.0 : kx[j]) + (g[0] * DB[0][j] + g[2] * DB[4][j] + g[1] * DB[5][j]);
+                ky[j] = (first ? 0.0 : ky[j]) + (g[1] * DB[1][j] + g[2] * DB[3][j] + g[0] * DB[5][j]);
+                kz[j] = (first ? 0.0 : kz[j]) + (g[2] * DB[2][j] + g[1] * DB[3][j] + g[0] * DB[4][j]);
+            }
+        }
+    }
+}
+
 /* Ke = sum_q w_q det J_q B_q' D B_q. B has three non-zeros per column in
  * 3D (two in 2D), at the rows of cx_fem_strain_matrix, so DB = s D B costs
  * ns x nd x 3 and each row of B'(DB) three rows of DB: contiguous rows of
@@ -108,16 +141,18 @@ CX_FEM_INLINE int cx_fem_stiffness_kernel(int dim, int npe, int nq, int affine,
 
     if (!affine && cx_fem_check_nodes(dim, npe, r, xe, lim))
         return CX_ENUMERIC;
-    for (int k = 0; k < nd * nd; k++)
+    /* one point (TRI3, TET4): its terms are added to 0.0 (the zeroing pass
+     * cost a tenth of TRI3's assembly); more: to Ke zeroed first (peeling
+     * the first point made HEX8's larger loop slower) */
+    for (int k = 0; nq > 1 && k < nd * nd; k++)
         Ke[k] = 0;
     for (int q = 0; q < nq; q++) {
         double det = cx_fem_jacobian(dim, npe, r->dNq[q], xe, G);
         if (!(det > lim))
             return CX_ENUMERIC;
         double s = r->w[q] * det;
+        /* DB = s D B, B's columns as cx_fem_add_btdb states */
         if (dim == 2) {
-            /* Voigt (xx, yy, xy): column (a, x) of B is gx e0 + gy e2,
-             * column (a, y) is gy e1 + gx e2 */
             for (int a = 0; a < npe; a++) {
                 double gx = G[2 * a], gy = G[2 * a + 1];
                 for (int k = 0; k < 3; k++) {
@@ -125,18 +160,7 @@ CX_FEM_INLINE int cx_fem_stiffness_kernel(int dim, int npe, int nq, int affine,
                     DB[k][2 * a + 1] = s * (D[3 * k + 1] * gy + D[3 * k + 2] * gx);
                 }
             }
-            for (int a = 0; a < npe; a++) {
-                double gx = G[2 * a], gy = G[2 * a + 1];
-                double *restrict kx = Ke + nd * (2 * a), *restrict ky = kx + nd;
-                for (int j = 2 * a; j < nd; j++) {   /* the upper triangle */
-                    kx[j] += gx * DB[0][j] + gy * DB[2][j];
-                    ky[j] += gy * DB[1][j] + gx * DB[2][j];
-                }
-            }
         } else {
-            /* Voigt (xx, yy, zz, yz, xz, xy): column (a, x) of B is
-             * gx e0 + gz e4 + gy e5, (a, y) gy e1 + gz e3 + gx e5,
-             * (a, z) gz e2 + gy e3 + gx e4 */
             for (int a = 0; a < npe; a++) {
                 double gx = G[3 * a], gy = G[3 * a + 1], gz = G[3 * a + 2];
                 for (int k = 0; k < 6; k++) {
@@ -146,17 +170,8 @@ CX_FEM_INLINE int cx_fem_stiffness_kernel(int dim, int npe, int nq, int affine,
                     DB[k][3 * a + 2] = s * (Dk[2] * gz + Dk[3] * gy + Dk[4] * gx);
                 }
             }
-            for (int a = 0; a < npe; a++) {
-                double gx = G[3 * a], gy = G[3 * a + 1], gz = G[3 * a + 2];
-                double *restrict kx = Ke + nd * (3 * a), *restrict ky = kx + nd,
-                                 *restrict kz = ky + nd;
-                for (int j = 3 * a; j < nd; j++) {   /* the upper triangle */
-                    kx[j] += gx * DB[0][j] + gz * DB[4][j] + gy * DB[5][j];
-                    ky[j] += gy * DB[1][j] + gz * DB[3][j] + gx * DB[5][j];
-                    kz[j] += gz * DB[2][j] + gy * DB[3][j] + gx * DB[4][j];
-                }
-            }
         }
+        cx_fem_add_btdb(dim, npe, nq == 1, G, (const double (*)[CX_FEM_MAXDOF])DB, Ke);
     }
     for (int i = 0; i < nd; i++)
         for (int j = 0; j < i; j++)
