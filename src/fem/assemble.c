@@ -360,10 +360,14 @@ static void scatter_partial(int dim, int nd, const double *restrict Ke, int a, i
 /* K += Ke of every element (kernel, then scatter at the places the
  * pattern gives), inlined with constant dim, npe and quadrature so that
  * the gather, the kernel (element_impl.h, no call per element) and the
- * scatter of the nodes whose dofs are all free are fixed-size loops. Ke is exactly symmetric: column (b j) is read along its
- * contiguous row. Returns the first element whose kernel fails, or -1. */
-CX_FEM_INLINE int assemble_elements(int dim, int npe, int nq, int affine, int bytes, const cx_mesh *restrict m,
-                                    const cx_dofmap *map, const cx_fem_ref *restrict ref,
+ * scatter of the nodes whose dofs are all free are fixed-size loops. Ke
+ * is exactly symmetric: column (b j) is read along its contiguous row (a
+ * scatter reading the upper triangle only, without the kernel's mirror
+ * copy, was slower: strided reads). Returns the first element whose
+ * kernel fails, or -1. */
+CX_FEM_INLINE int assemble_elements(int dim, int npe, int nq, int affine, int bytes,
+                                    const cx_mesh *restrict m, const cx_dofmap *map,
+                                    const cx_fem_ref *restrict ref,
                                     const double *restrict D, const pattern *restrict g,
                                     double *restrict Kx, double *restrict fd)
 {
