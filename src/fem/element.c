@@ -13,7 +13,7 @@
  *
  * The shape functions are evaluated once per element type (cx_fem_ref):
  * the per-element work is the Jacobian, its inverse and B'DB. */
-#include "fem/fem_impl.h"
+#include "fem/element_impl.h"
 
 #include <string.h>
 
@@ -142,89 +142,10 @@ int cx_fem_ref_init(cx_fem_ref *r, cx_elem_type t)
 
 /* ---- geometry ------------------------------------------------------------ */
 
-/* The helpers and the stiffness kernel are inlined into callers that pass
- * constant sizes (one instance per element type), so that every loop has a
- * fixed trip count and the compiler unrolls or vectorises it. */
-#define CX_FEM_INLINE static inline __attribute__((always_inline))
-
-/* The size below which det J counts as zero: rounding of an exactly
- * degenerate element leaves ~1e-16 h^dim, never exactly 0. */
-CX_FEM_INLINE double det_floor(int dim, int npe, const double *restrict xe)
-{
-    double h = 0;
-    for (int k = 0; k < dim; k++) {
-        double lo = xe[k], hi = xe[k];
-        for (int a = 1; a < npe; a++) {
-            double v = xe[dim * a + k];
-            lo = v < lo ? v : lo;
-            hi = v > hi ? v : hi;
-        }
-        h = hi - lo > h ? hi - lo : h;
-    }
-    return dim == 3 ? 1e-12 * h * h * h : 1e-12 * h * h;
-}
-
-/* det J at reference gradients dN, J[i][k] = dx_i / dxi_k = sum_a
- * x_a,i dN_a,k, and, when G is not NULL, the physical gradients
- * G_a = J^-T dN_a (node-major). */
-CX_FEM_INLINE double jacobian(int dim, int npe, const double *restrict dN,
-                              const double *restrict xe, double *restrict G)
-{
-    double J[9] = {0}, Ji[9], det;
-    for (int a = 0; a < npe; a++)
-        for (int i = 0; i < dim; i++)
-            for (int k = 0; k < dim; k++)
-                J[dim * i + k] += xe[dim * a + i] * dN[dim * a + k];
-    if (dim == 2) {
-        det = J[0] * J[3] - J[1] * J[2];
-        if (!G)
-            return det;
-        Ji[0] = J[3] / det, Ji[1] = -J[1] / det;
-        Ji[2] = -J[2] / det, Ji[3] = J[0] / det;
-    } else {
-        double c00 = J[4] * J[8] - J[5] * J[7], c01 = J[5] * J[6] - J[3] * J[8],
-               c02 = J[3] * J[7] - J[4] * J[6];
-        det = J[0] * c00 + J[1] * c01 + J[2] * c02;
-        if (!G)
-            return det;
-        Ji[0] = c00 / det;
-        Ji[1] = (J[2] * J[7] - J[1] * J[8]) / det;
-        Ji[2] = (J[1] * J[5] - J[2] * J[4]) / det;
-        Ji[3] = c01 / det;
-        Ji[4] = (J[0] * J[8] - J[2] * J[6]) / det;
-        Ji[5] = (J[2] * J[3] - J[0] * J[5]) / det;
-        Ji[6] = c02 / det;
-        Ji[7] = (J[1] * J[6] - J[0] * J[7]) / det;
-        Ji[8] = (J[0] * J[4] - J[1] * J[3]) / det;
-    }
-    /* G[a][i] = sum_k dN[a][k] Ji[k][i] */
-    for (int a = 0; a < npe; a++)
-        for (int i = 0; i < dim; i++) {
-            double s = 0;
-            for (int k = 0; k < dim; k++)
-                s += dN[dim * a + k] * Ji[dim * k + i];
-            G[dim * a + i] = s;
-        }
-    return det;
-}
-
-/* det J > 0 at every node as well as at the quadrature points: a
- * non-convex quadrilateral or a folded hexahedron can pass at the Gauss
- * points and still be inverted near a corner. On an affine element J is
- * the same everywhere and the quadrature point's check is this one. */
-CX_FEM_INLINE int check_nodes(int dim, int npe, const cx_fem_ref *restrict r,
-                              const double *restrict xe, double lim)
-{
-    for (int a = 0; a < npe; a++)
-        if (!(jacobian(dim, npe, r->dNn[a], xe, NULL) > lim))
-            return CX_ENUMERIC;
-    return CX_OK;
-}
-
 int cx_fem_ref_node_gradients(const cx_fem_ref *r, const double *xe, int a, double *G)
 {
-    double lim = det_floor(r->dim, r->npe, xe);
-    return jacobian(r->dim, r->npe, r->dNn[a], xe, G) > lim ? CX_OK : CX_ENUMERIC;
+    double lim = cx_fem_det_floor(r->dim, r->npe, xe);
+    return cx_fem_jacobian(r->dim, r->npe, r->dNn[a], xe, G) > lim ? CX_OK : CX_ENUMERIC;
 }
 
 void cx_fem_strain_matrix(int dim, int npe, const double *G, double *B)
@@ -249,89 +170,14 @@ void cx_fem_strain_matrix(int dim, int npe, const double *G, double *B)
 
 /* ---- kernels ------------------------------------------------------------- */
 
-/* Ke = sum_q w_q det J_q B_q' D B_q. B has three non-zeros per column in
- * 3D (two in 2D), at the rows of cx_fem_strain_matrix, so DB = s D B costs
- * ns x nd x 3 and each row of B'(DB) three rows of DB: contiguous rows of
- * fixed length nd, which the compiler vectorises. The sums run in the
- * order of the dense product over the Voigt rows (the zeros of B skipped
- * add nothing), so Ke is the same to the last bit as B'(DB) with a dense
- * B. The full Ke is summed and its upper triangle mirrored below at the
- * end, so that Ke is exactly symmetric (the two triangles of B'(DB) differ
- * in rounding). */
-CX_FEM_INLINE int stiffness(int dim, int npe, int nq, int affine, const cx_fem_ref *restrict r,
-                            const double *restrict xe, const double *restrict D,
-                            double *restrict Ke)
-{
-    const int nd = dim * npe;
-    double G[3 * CX_FEM_MAXNPE], DB[6][CX_FEM_MAXDOF];
-    double lim = det_floor(dim, npe, xe);
-
-    if (!affine && check_nodes(dim, npe, r, xe, lim))
-        return CX_ENUMERIC;
-    for (int k = 0; k < nd * nd; k++)
-        Ke[k] = 0;
-    for (int q = 0; q < nq; q++) {
-        double det = jacobian(dim, npe, r->dNq[q], xe, G);
-        if (!(det > lim))
-            return CX_ENUMERIC;
-        double s = r->w[q] * det;
-        if (dim == 2) {
-            /* Voigt (xx, yy, xy): column (a, x) of B is gx e0 + gy e2,
-             * column (a, y) is gy e1 + gx e2 */
-            for (int a = 0; a < npe; a++) {
-                double gx = G[2 * a], gy = G[2 * a + 1];
-                for (int k = 0; k < 3; k++) {
-                    DB[k][2 * a] = s * (D[3 * k] * gx + D[3 * k + 2] * gy);
-                    DB[k][2 * a + 1] = s * (D[3 * k + 1] * gy + D[3 * k + 2] * gx);
-                }
-            }
-            for (int a = 0; a < npe; a++) {
-                double gx = G[2 * a], gy = G[2 * a + 1];
-                double *restrict kx = Ke + nd * (2 * a), *restrict ky = kx + nd;
-                for (int j = 0; j < nd; j++) {
-                    kx[j] += gx * DB[0][j] + gy * DB[2][j];
-                    ky[j] += gy * DB[1][j] + gx * DB[2][j];
-                }
-            }
-        } else {
-            /* Voigt (xx, yy, zz, yz, xz, xy): column (a, x) of B is
-             * gx e0 + gz e4 + gy e5, (a, y) gy e1 + gz e3 + gx e5,
-             * (a, z) gz e2 + gy e3 + gx e4 */
-            for (int a = 0; a < npe; a++) {
-                double gx = G[3 * a], gy = G[3 * a + 1], gz = G[3 * a + 2];
-                for (int k = 0; k < 6; k++) {
-                    const double *Dk = D + 6 * k;
-                    DB[k][3 * a] = s * (Dk[0] * gx + Dk[4] * gz + Dk[5] * gy);
-                    DB[k][3 * a + 1] = s * (Dk[1] * gy + Dk[3] * gz + Dk[5] * gx);
-                    DB[k][3 * a + 2] = s * (Dk[2] * gz + Dk[3] * gy + Dk[4] * gx);
-                }
-            }
-            for (int a = 0; a < npe; a++) {
-                double gx = G[3 * a], gy = G[3 * a + 1], gz = G[3 * a + 2];
-                double *restrict kx = Ke + nd * (3 * a), *restrict ky = kx + nd,
-                                 *restrict kz = ky + nd;
-                for (int j = 0; j < nd; j++) {
-                    kx[j] += gx * DB[0][j] + gz * DB[4][j] + gy * DB[5][j];
-                    ky[j] += gy * DB[1][j] + gz * DB[3][j] + gx * DB[5][j];
-                    kz[j] += gz * DB[2][j] + gy * DB[3][j] + gx * DB[4][j];
-                }
-            }
-        }
-    }
-    for (int i = 0; i < nd; i++)
-        for (int j = 0; j < i; j++)
-            Ke[nd * i + j] = Ke[nd * j + i];
-    return CX_OK;
-}
-
 int cx_fem_ref_stiffness(const cx_fem_ref *r, const double *xe, const double *D, double *Ke)
 {
     switch (r->t) {
-    case CX_EL_TRI3: return stiffness(2, 3, 1, 1, r, xe, D, Ke);
-    case CX_EL_TRI6: return stiffness(2, 6, 3, 0, r, xe, D, Ke);
-    case CX_EL_QUAD4: return stiffness(2, 4, 4, 0, r, xe, D, Ke);
-    case CX_EL_HEX8: return stiffness(3, 8, 8, 0, r, xe, D, Ke);
-    case CX_EL_TET4: return stiffness(3, 4, 1, 1, r, xe, D, Ke);
+    case CX_EL_TRI3: return cx_fem_stiffness_kernel(2, 3, 1, 1, r, xe, D, Ke);
+    case CX_EL_TRI6: return cx_fem_stiffness_kernel(2, 6, 3, 0, r, xe, D, Ke);
+    case CX_EL_QUAD4: return cx_fem_stiffness_kernel(2, 4, 4, 0, r, xe, D, Ke);
+    case CX_EL_HEX8: return cx_fem_stiffness_kernel(3, 8, 8, 0, r, xe, D, Ke);
+    case CX_EL_TET4: return cx_fem_stiffness_kernel(3, 4, 1, 1, r, xe, D, Ke);
     }
     return CX_EINVAL;
 }
@@ -339,12 +185,12 @@ int cx_fem_ref_stiffness(const cx_fem_ref *r, const double *xe, const double *D,
 int cx_fem_ref_body_force(const cx_fem_ref *r, const double *xe, const double *b, double *fe)
 {
     int dim = r->dim, npe = r->npe;
-    double lim = det_floor(dim, npe, xe);
+    double lim = cx_fem_det_floor(dim, npe, xe);
     memset(fe, 0, sizeof(double) * (size_t)(dim * npe));
-    if (!r->affine && check_nodes(dim, npe, r, xe, lim))
+    if (!r->affine && cx_fem_check_nodes(dim, npe, r, xe, lim))
         return CX_ENUMERIC;
     for (int q = 0; q < r->nq; q++) {
-        double det = jacobian(dim, npe, r->dNq[q], xe, NULL);
+        double det = cx_fem_jacobian(dim, npe, r->dNq[q], xe, NULL);
         if (!(det > lim))
             return CX_ENUMERIC;
         for (int a = 0; a < npe; a++)
