@@ -216,6 +216,10 @@ typedef struct cx_schur_ordering {
     double lnz[2];           /* predicted factor non-zeros, by cx_schur_order */
     double flops[2];         /* predicted factorisation flops */
     double seconds[2];       /* ordering + symbolic analysis */
+    /* where the set-up's CPU time went (seconds of the process's CPU
+     * clock): the orderings, their symbolic analyses, the numeric
+     * factorisation, and forming S from the factor's trailing block */
+    double cpu_ordering, cpu_symbolic, cpu_numeric, cpu_form;
 } cx_schur_ordering;
 /* cx_schur_create with the ordering given (tests, bench comparisons). */
 int cx_schur_create_ordered(cx_schur **S, const cx_csc *A, const int *c, int nc, cx_schur_order order,

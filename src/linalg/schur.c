@@ -14,6 +14,7 @@
 
 #include <math.h>
 #include <string.h>
+#include <time.h>
 
 extern void dlauum_(const char *uplo, const int *n, double *a, const int *lda, int *info);
 extern void dtrmv_(const char *uplo, const char *trans, const char *diag, const int *n, const double *a,
@@ -141,59 +142,94 @@ static int schur_analyse(cx_schur *s, cholmod_sparse *view, int *perm, cholmod_f
     return CX_OK;
 }
 
-/* perm = nested dissection (METIS) of M_ii, then the c dofs in the order
- * CAMD left them (the trailing block is dense whatever its order). M_ii
- * is the upper triangle of M on the interior dofs, renumbered. */
-static int schur_metis(cx_schur *s, const cx_csc *M, const int *cmember, int *perm, const int *camd_perm,
+/* The process's CPU clock, for the phase times of cx_schur_ordering. */
+static double schur_cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Do interior dofs a and b have the same column pattern in M? */
+static int schur_same_column(const cx_csc *M, int a, int b)
+{
+    int la = M->p[a + 1] - M->p[a], lb = M->p[b + 1] - M->p[b];
+    return la == lb && memcmp(M->i + M->p[a], M->i + M->p[b], sizeof(int) * (size_t)la) == 0;
+}
+
+/* perm = nested dissection (METIS) of the graph of M_ii, then the c dofs
+ * in the caller's order (the trailing block is dense whatever its order,
+ * and in the caller's order S needs no permutation). The graph is first
+ * compressed: consecutive interior dofs whose columns of M have the same
+ * pattern (the 2 or 3 dofs of a node in elasticity) become one vertex, so
+ * METIS and CHOLMOD's pre- and post-processing around it see a graph
+ * d times smaller in vertices and d^2 in edges; the separators found are
+ * those of the node graph, which is what the dof graph's are anyway. */
+static int schur_metis(cx_schur *s, const cx_csc *M, const int *cmember, const int *c, int *perm,
                        cx_diag *d)
 {
     int n = s->n, ni = s->n - s->nc, st = CX_ENOMEM;
-    int *newi = CX_NEW(int, n), *old = CX_NEW(int, ni > 0 ? ni : 1), *pi = CX_NEW(int, ni > 0 ? ni : 1);
-    cx_csc Mii = {0};
-    Mii.nrow = Mii.ncol = ni;
-    Mii.p = CX_NEW(int, ni + 1);
-    Mii.i = CX_NEW(int, cx_csc_nnz(M) ? cx_csc_nnz(M) : 1);
-    Mii.x = CX_NEW(double, cx_csc_nnz(M) ? cx_csc_nnz(M) : 1);
-    if (!newi || !old || !pi || !Mii.p || !Mii.i || !Mii.x)
+    size_t cap = cx_csc_nnz(M) ? cx_csc_nnz(M) : 1;
+    int *old = CX_NEW(int, ni + 1), *grp = CX_NEW(int, n), *gfirst = CX_NEW(int, ni + 1);
+    int *gperm = CX_NEW(int, ni + 1);
+    cx_csc G = {0};
+    G.p = CX_NEW(int, ni + 1);
+    G.i = CX_NEW(int, cap);
+    if (!old || !grp || !gfirst || !gperm || !G.p || !G.i)
         goto done;
-    for (int j = 0, k = 0; j < n; j++)
-        if (!cmember[j]) {
-            old[k] = j;
-            newi[j] = k++;
-        }
+    /* the interior dofs in order, grouped: grp[dof] = its vertex */
+    int ng = 0;
+    for (int j = 0, k = 0; j < n; j++) {
+        if (cmember[j])
+            continue;
+        if (k == 0 || old[k - 1] != j - 1 || !schur_same_column(M, j - 1, j))
+            gfirst[ng++] = k;
+        grp[j] = ng - 1;
+        old[k++] = j;
+    }
+    gfirst[ng] = ni;
+    /* the upper triangle of the vertex graph, from each vertex's first
+     * dof; rows come sorted by dof, so their vertices are nondecreasing
+     * and a repeat is always the previous entry */
     int nz = 0;
-    for (int k = 0; k < ni; k++) {
-        int j = old[k];
-        Mii.p[k] = nz;
+    for (int g = 0; g < ng; g++) {
+        int j = old[gfirst[g]], last = -1;
+        G.p[g] = nz;
         for (int q = M->p[j]; q < M->p[j + 1]; q++) {
             int i = M->i[q];
-            if (i <= j && !cmember[i]) {
-                Mii.i[nz] = newi[i];
-                Mii.x[nz++] = M->x[q];
-            }
+            if (cmember[i] || grp[i] > g || grp[i] == last)
+                continue;
+            G.i[nz++] = last = grp[i];
         }
     }
-    Mii.p[ni] = nz;
-    cholmod_sparse view = cx_cholmod_view(&Mii, 1);
+    G.p[ng] = nz;
+    G.nrow = G.ncol = ng;
+    cholmod_sparse view = cx_cholmod_view(&G, 1);
+    view.xtype = CHOLMOD_PATTERN;
+    view.x = NULL;
     st = CX_OK;
-    if (ni > 0) {
-        int ok = cholmod_metis(&view, NULL, 0, 1, pi, &s->cc);
+    if (ng > 0) {
+        int ok = cholmod_metis(&view, NULL, 0, 1, gperm, &s->cc);
         st = cx_cholmod_check(&s->cc, NULL, "schur: nested dissection", d);
         if (st == CX_OK && !ok)
             st = cx_diag_set(d, CX_EEXTERNAL, "schur: nested dissection failed");
     }
     if (st == CX_OK) {
-        for (int k = 0; k < ni; k++)
-            perm[k] = old[pi[k]];
-        memcpy(perm + ni, camd_perm + ni, sizeof(int) * (size_t)s->nc);
+        int t = 0;
+        for (int k = 0; k < ng; k++)
+            for (int q = gfirst[gperm[k]]; q < gfirst[gperm[k] + 1]; q++)
+                perm[t++] = old[q];
+        memcpy(perm + ni, c, sizeof(int) * (size_t)s->nc);
     }
 done:
     if (st == CX_ENOMEM)
         cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
-    cx_free(newi);
     cx_free(old);
-    cx_free(pi);
-    cx_csc_clear(&Mii);
+    cx_free(grp);
+    cx_free(gfirst);
+    cx_free(gperm);
+    cx_free(G.p);
+    cx_free(G.i);
     return st;
 }
 
@@ -222,12 +258,15 @@ static int schur_factor(cx_schur *s, cx_csc *M, int *cmember, int *perm, cx_diag
     cx_schur_ordering *o = &s->ord;
     cholmod_sparse view = cx_cholmod_view(M, 1);
     cx_progress_step("ordering", n);
-    double t0 = cx_clock_now();
+    double t0 = cx_clock_now(), c0 = schur_cpu_now();
     int ok = cholmod_camd(&view, NULL, 0, cmember, perm, cc);
     CX_TRY(cx_cholmod_check(cc, NULL, "schur: constrained ordering", d));
     if (!ok)
         return cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering failed");
+    double c1 = schur_cpu_now();
+    o->cpu_ordering += c1 - c0;
     CX_TRY(schur_analyse(s, &view, perm, &s->L, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d));
+    o->cpu_symbolic += schur_cpu_now() - c1;
     o->seconds[CX_ORDER_CAMD] = cx_clock_now() - t0;
     o->chosen = CX_ORDER_CAMD;
     double cost = schur_metis_cost(n - nc);
@@ -237,9 +276,14 @@ static int schur_factor(cx_schur *s, cx_csc *M, int *cmember, int *perm, cx_diag
         if (!pm)
             return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
         t0 = cx_clock_now();
+        c0 = schur_cpu_now();
         cholmod_factor *Lm = NULL;
-        if ((st = schur_metis(s, M, cmember, pm, perm, d)) == CX_OK)
+        if ((st = schur_metis(s, M, cmember, s->c, pm, d)) == CX_OK) {
+            c1 = schur_cpu_now();
+            o->cpu_ordering += c1 - c0;
             st = schur_analyse(s, &view, pm, &Lm, &o->lnz[CX_ORDER_METIS], &o->flops[CX_ORDER_METIS], d);
+            o->cpu_symbolic += schur_cpu_now() - c1;
+        }
         o->seconds[CX_ORDER_METIS] = cx_clock_now() - t0;
         cx_free(pm);
         if (st)
@@ -258,43 +302,82 @@ static int schur_factor(cx_schur *s, cx_csc *M, int *cmember, int *perm, cx_diag
         if (!cmember[P[t]])
             return cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering not kept");
     cx_progress_step("factorising", n);
+    c0 = schur_cpu_now();
     cholmod_factorize(&view, s->L, cc);
+    o->cpu_numeric += schur_cpu_now() - c0;
     if (s->cnt)
         s->cnt->factorizations++;
     CX_TRY(cx_cholmod_check(cc, s->L, "schur: Cholesky factorisation", d));
     return cx_cholmod_check_pivots(s->L, M, "schur: Cholesky factorisation", d);
 }
 
+/* x[0 .. len) reversed in place. */
+static void schur_reverse(double *x, size_t len)
+{
+    for (size_t a = 0, b = len; a + 1 < b; a++, b--) {
+        double t = x[a];
+        x[a] = x[b - 1];
+        x[b - 1] = t;
+    }
+}
+
+/* The strict upper triangle of the nc x nc matrix W from its lower one,
+ * by tiles that stay in cache on both sides. */
+static void schur_mirror(double *W, size_t nc)
+{
+    enum { TILE = 64 };
+    for (size_t j0 = 0; j0 < nc; j0 += TILE)
+        for (size_t i0 = j0; i0 < nc; i0 += TILE) {
+            size_t j1 = j0 + TILE < nc ? j0 + TILE : nc, i1 = i0 + TILE < nc ? i0 + TILE : nc;
+            for (size_t j = j0; j < j1; j++)
+                for (size_t i = i0 > j + 1 ? i0 : j + 1; i < i1; i++)
+                    W[j + i * nc] = W[i + j * nc];
+        }
+}
+
 /* S = L22 L22' - D, rows and columns in the caller's order. The product
  * of two triangles costs nc^3/3 (dlauum) where a general rank-nc update
  * (dsyrk) costs nc^3; dlauum forms U U' of an upper triangle, so L22 is
- * taken in reversed order, U = J L22 J, and L22 L22' = J U U' J. */
+ * taken in reversed order, U = J L22 J, and L22 L22' = J U U' J. With
+ * column-major storage, J X J of a square X is X's array read backwards:
+ * two reversals of one array, no gather. W = L22 L22' is formed in S
+ * itself when the trailing block is in the caller's order (the METIS
+ * path), else in a scratch array and permuted into S. */
 static int schur_form(cx_schur *s, const double *dshift)
 {
-    int nc = s->nc, info = 0;
-    size_t ld = (size_t)nc;
-    double *U = CX_NEW(double, ld * ld);
-    if (!U)
+    int nc = s->nc, info = 0, ident = 1;
+    size_t ld = (size_t)nc, nn = ld * ld;
+    for (int k = 0; k < nc && ident; k++)
+        ident = s->tpos[k] == k;
+    double *W = ident ? s->S : CX_NEW(double, nn);
+    if (!W)
         return CX_ENOMEM;
     cx_progress_step("condensing", nc);
     schur_extract(s);
-    for (size_t j = 0; j < ld; j++)
-        for (size_t i = 0; i <= j; i++)
-            U[i + j * ld] = s->L22[(ld - 1 - i) + (ld - 1 - j) * ld];
+    for (size_t k = 0; k < nn; k++)   /* U = J L22 J: upper, zero below */
+        W[k] = s->L22[nn - 1 - k];
     if (nc > 0)
-        dlauum_("U", &nc, U, &nc, &info);
+        dlauum_("U", &nc, W, &nc, &info);
     if (info != 0) {
-        cx_free(U);
+        if (!ident)
+            cx_free(W);
         return CX_EEXTERNAL;
     }
-    for (int a = 0; a < nc; a++)
-        for (int b = 0; b < nc; b++) {
-            /* (J U U' J)[ta, tb], read from U U''s upper triangle */
-            size_t ra = ld - 1 - (size_t)s->tpos[a], rb = ld - 1 - (size_t)s->tpos[b];
-            double v = ra <= rb ? U[ra + rb * ld] : U[rb + ra * ld];
-            s->S[a + (size_t)b * ld] = v - (a == b ? dshift[a] : 0);
-        }
-    cx_free(U);
+    schur_reverse(W, nn);   /* J (U U') J = L22 L22', in the lower triangle */
+    schur_mirror(W, ld);
+    if (ident) {
+        for (size_t k = 0; k < ld; k++)
+            W[k + k * ld] -= dshift[k];
+        return CX_OK;
+    }
+    for (size_t b = 0; b < ld; b++) {
+        const double *wb = W + (size_t)s->tpos[b] * ld;
+        double *sb = s->S + b * ld;
+        for (size_t a = 0; a < ld; a++)
+            sb[a] = wb[s->tpos[a]];
+        sb[b] -= dshift[b];
+    }
+    cx_free(W);
     return CX_OK;
 }
 
@@ -346,8 +429,10 @@ int cx_schur_create_ordered(cx_schur **Sp, const cx_csc *A, const int *c, int nc
         cmember[P[n - nc + t]] = -1 - t;
     for (int k = 0; k < nc; k++)
         s->tpos[k] = -1 - cmember[c[k]];
+    double c0 = schur_cpu_now();
     if ((st = schur_form(s, dshift)))
         goto fail;
+    s->ord.cpu_form = schur_cpu_now() - c0;
 
     cx_free(M.x);
     cx_free(cmember);
