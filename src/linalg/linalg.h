@@ -193,11 +193,11 @@ int cx_ldlmod_solve(cx_ldlmod *F, const double *b, double *x, cx_diag *d);
 /* For A symmetric positive semi-definite of order n, split into dofs c
  * (given) and the rest i, with A_ii positive definite:
  *     S = A_cc - A_ci A_ii^-1 A_ic          (the Schur complement)
- * obtained from ONE sparse Cholesky of A + D, D = diag(A_cc) on the c dofs
- * (so that the factorisation exists even when A is singular), ordered with
- * the c dofs last (constrained ordering): the trailing block L22 of the
- * factor gives S = L22 L22' - D. A may be singular in directions that
- * involve the c dofs (a floating body held only by contact). */
+ * obtained from ONE sparse Cholesky factorisation of A ordered with the
+ * c dofs last (constrained ordering) that stops before them: the updates
+ * gathered into the trailing block are S (schur_numeric.c). A may be
+ * singular in directions that involve the c dofs (a floating body held
+ * only by contact). */
 typedef struct cx_schur cx_schur;
 
 /* c: nc distinct dof indices (copied; CX_EINVAL if repeated or out of
