@@ -215,6 +215,25 @@ static void compare_vector(int m, int neumann, int normal_only)
     CX_CHECK_OK(cx_schur_expand(Sc, f, uc, u1));
     CX_CHECK_OK(cx_schur_expand(Sm, f, uc, u2));
     CX_CHECK_LE(max_diff((size_t)n, u1, u2), 1e-12 * max_abs((size_t)n, u1));
+
+    /* the automatic choice on 3 dofs per node: METIS analysed first, CAMD
+     * predicted from its column counts alone, the same numbers as CAMD's
+     * full analysis; the factor is the chosen one's */
+    cx_schur *Sa = NULL;
+    CX_CHECK_OK(cx_schur_create(&Sa, &A, c, nc, NULL, NULL));
+    const cx_schur_ordering *oa = cx_schur_ordering_of(Sa), *oc = cx_schur_ordering_of(Sc),
+                            *om = cx_schur_ordering_of(Sm);
+    CX_CHECK(oa->tried);
+    CX_CHECK(oa->lnz[CX_ORDER_CAMD] == oc->lnz[CX_ORDER_CAMD] && oa->flops[CX_ORDER_CAMD] == oc->flops[CX_ORDER_CAMD]);
+    CX_CHECK(oa->lnz[CX_ORDER_METIS] == om->lnz[CX_ORDER_METIS]);
+    CX_CHECK(cx_schur_factor_nnz(Sa) == cx_schur_factor_nnz(oa->chosen == CX_ORDER_METIS ? Sm : Sc));
+    if (oa->chosen == CX_ORDER_METIS)
+        CX_CHECK(oa->flops[CX_ORDER_METIS] < oa->flops[CX_ORDER_CAMD]);
+    if (m >= 18)   /* METIS's flops (5.2e9 at m = 18) now win back its cost */
+        CX_CHECK(oa->chosen == CX_ORDER_METIS);
+    CX_CHECK_LE(max_diff(nn, cx_schur_matrix(Sa), Sref), 1e-12 * smax);
+    cx_schur_destroy(&Sa);
+
     cx_schur_destroy(&Sc);
     cx_schur_destroy(&Sm);
     free(c);
@@ -236,5 +255,7 @@ int main(void)
     compare_vector(7, 0, 0);   /* 1029 dofs, 147 on the face: Tresca-like */
     compare_vector(7, 0, 1);   /* the 49 normal dofs: frictionless-like */
     compare_vector(6, 1, 0);   /* singular: held only through c */
+    compare_vector(12, 0, 0);  /* 5184 dofs, 432 on the face: CAMD still chosen */
+    compare_vector(18, 0, 0);  /* 17496 dofs, 972 on the face: METIS chosen */
     return check_finish("linalg_ordering");
 }
