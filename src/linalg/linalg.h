@@ -193,11 +193,11 @@ int cx_ldlmod_solve(cx_ldlmod *F, const double *b, double *x, cx_diag *d);
 /* For A symmetric positive semi-definite of order n, split into dofs c
  * (given) and the rest i, with A_ii positive definite:
  *     S = A_cc - A_ci A_ii^-1 A_ic          (the Schur complement)
- * obtained from ONE sparse Cholesky of A + D, D = diag(A_cc) on the c dofs
- * (so that the factorisation exists even when A is singular), ordered with
- * the c dofs last (constrained ordering): the trailing block L22 of the
- * factor gives S = L22 L22' - D. A may be singular in directions that
- * involve the c dofs (a floating body held only by contact). */
+ * obtained from ONE sparse Cholesky factorisation of A ordered with the
+ * c dofs last (constrained ordering) that stops before them: the updates
+ * gathered into the trailing block are S (schur_numeric.c). A may be
+ * singular in directions that involve the c dofs (a floating body held
+ * only by contact). */
 typedef struct cx_schur cx_schur;
 
 /* c: nc distinct dof indices (copied; CX_EINVAL if repeated or out of
@@ -208,7 +208,9 @@ int cx_schur_create(cx_schur **S, const cx_csc *A, const int *c, int nc,
 /* The fill-reducing ordering of the factor (c last in both): CAMD on the
  * whole matrix, or nested dissection (METIS) on the i dofs. AUTO analyses
  * CAMD's, then METIS's unless its own cost could not be won back, and
- * factorises the one with fewer predicted flops (the METIS run counted). */
+ * factorises the one with fewer predicted flops (the METIS run counted);
+ * with 3 dofs per node (3D elasticity) METIS's first, CAMD's predicted
+ * from its column counts only. */
 typedef enum cx_schur_order { CX_ORDER_CAMD = 0, CX_ORDER_METIS = 1, CX_ORDER_AUTO = 2 } cx_schur_order;
 typedef struct cx_schur_ordering {
     cx_schur_order chosen;   /* CAMD or METIS */
@@ -216,6 +218,10 @@ typedef struct cx_schur_ordering {
     double lnz[2];           /* predicted factor non-zeros, by cx_schur_order */
     double flops[2];         /* predicted factorisation flops */
     double seconds[2];       /* ordering + symbolic analysis */
+    /* where the set-up's CPU time went (seconds of the process's CPU
+     * clock): the orderings, their symbolic analyses, the numeric
+     * factorisation, and forming S from the factor's trailing block */
+    double cpu_ordering, cpu_symbolic, cpu_numeric, cpu_form;
 } cx_schur_ordering;
 /* cx_schur_create with the ordering given (tests, bench comparisons). */
 int cx_schur_create_ordered(cx_schur **S, const cx_csc *A, const int *c, int nc, cx_schur_order order,

@@ -35,4 +35,15 @@ int cx_cholmod_check_pivots(const cholmod_factor *L, const cx_csc *A, const char
 /* The original column of position k of the permuted order of L. */
 int cx_cholmod_column(const cholmod_factor *L, int k);
 
+/* schur_numeric.c: with L the supernodal symbolic factor of P A P' (A in
+ * full symmetric storage, P = L->Perm) whose columns from nstop on are the
+ * dofs condensed onto, factorise the columns before nstop and leave the
+ * rest unfactorised: W (nc x nc, nc = n - nstop, column-major, lower
+ * triangle written, zero-initialised by the caller) receives
+ * S = A22 - L21 L21' in the trailing order, and L's trailing block is set
+ * to the identity, so that L y = P f gives y2 = f_c - A_ci A_ii^-1 f_i and
+ * L' x = [y1; u_c] gives x_i = A_ii^-1 (f_i - A_ic u_c). CX_ENUMERIC
+ * naming a column if A_ii is not (numerically) positive definite. */
+int cx_schur_numeric(cholmod_factor *L, const cx_csc *A, int nstop, double *W, cholmod_common *cc, cx_diag *d);
+
 #endif

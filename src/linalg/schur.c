@@ -1,23 +1,21 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* Static condensation of a symmetric matrix onto a subset c of its dofs
- * from one sparse Cholesky factorisation (doc/design.md §5). With the c dofs
- * ordered last, the factor of M = A + D splits as
- *     P M P' = [L11 0; L21 L22] [L11 0; L21 L22]'
- * and L22 L22' = A_cc + D - A_ci A_ii^-1 A_ic = S + D. D = diag(A_cc) on
- * the c dofs keeps the factorisation possible when A is singular in
- * directions that the c dofs hold (a body held only by contact); it touches
- * neither L11 nor L21, so the partial solves with L still condense and
- * expand with the true A:
- *     L22 y2 = f_c - A_ci A_ii^-1 f_i        (y = L^-1 P f)
- *     L' x = [y1; L22' u_c]  gives  x_c = u_c, x_i = A_ii^-1 (f_i - A_ic u_c). */
+ * from one partial sparse Cholesky factorisation (doc/design.md §5). With
+ * the c dofs ordered last,
+ *     P A P' = [A11 A12; A21 A22] = [L11 0; L21 I] [L11' L21'; 0 S]
+ * and S = A22 - L21 L21' = A_cc - A_ci A_ii^-1 A_ic: the interior
+ * supernodes are factorised, the contact columns only receive their
+ * updates (schur_numeric.c). S needs A_ii positive definite only: A may be
+ * singular in directions that the c dofs hold (a body held only by
+ * contact). With the identity in L's trailing block the solves with L
+ * condense and expand:
+ *     L y = P f             gives  y2 = f_c - A_ci A_ii^-1 f_i
+ *     L' x = [y1; u_c]      gives  x_c = u_c, x_i = A_ii^-1 (f_i - A_ic u_c). */
 #include "linalg/linalg_impl.h"
 
 #include <math.h>
 #include <string.h>
-
-extern void dlauum_(const char *uplo, const int *n, double *a, const int *lda, int *info);
-extern void dtrmv_(const char *uplo, const char *trans, const char *diag, const int *n, const double *a,
-                   const int *lda, double *x, const int *incx);
+#include <time.h>
 
 struct cx_schur {
     int n, nc;
@@ -25,11 +23,9 @@ struct cx_schur {
     int *tpos;          /* nc: position of c[k] in the trailing block */
     cx_counters *cnt;   /* borrowed */
     cholmod_common cc;
-    cholmod_factor *L;  /* supernodal LL' of P (A + D) P' */
+    cholmod_factor *L;  /* supernodal [L11 0; L21 I] of P A P' */
     cholmod_dense *X1, *X2, *Y, *E;   /* solve workspace, reused */
-    double *L22;        /* nc x nc, lower, trailing order */
     double *S;          /* nc x nc, full, caller's order */
-    double *t;          /* nc: scratch in trailing order */
     double *fcopy;      /* n: the last f given to a forward solve ... */
     double *fy;         /* n: ... and L^-1 P f, reused while f is the same */
     int fy_valid;
@@ -50,46 +46,16 @@ void cx_schur_destroy(cx_schur **Sp)
     cholmod_finish(&s->cc);
     cx_free(s->c);
     cx_free(s->tpos);
-    cx_free(s->L22);
     cx_free(s->S);
-    cx_free(s->t);
     cx_free(s->fcopy);
     cx_free(s->fy);
     cx_free(s);
     *Sp = NULL;
 }
 
-/* Copy the trailing nc x nc block of the supernodal factor into L22. Each
- * supernode k holds columns super[k] .. super[k+1]-1 as a dense
- * column-major block of nrow rows (row indices s[pi[k] ..]); a supernode
- * may straddle the boundary n - nc. */
-static void schur_extract(cx_schur *s)
+/* cmember[j] = 1 marks the c dofs, checked distinct and in range. */
+static int schur_members(int n, const int *c, int nc, int *cmember, cx_diag *d)
 {
-    const cholmod_factor *L = s->L;
-    const int *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s;
-    const double *lx = L->x;
-    int first = s->n - s->nc;
-    size_t nc = (size_t)s->nc;
-    for (size_t k = 0; k < L->nsuper; k++) {
-        int c0 = super[k], c1 = super[k + 1], nrow = pi[k + 1] - pi[k];
-        if (c1 <= first)
-            continue;
-        for (int j = c0 > first ? c0 : first; j < c1; j++)
-            for (int r = j - c0; r < nrow; r++) {
-                int row = ls[pi[k] + r];   /* >= j >= first */
-                s->L22[(size_t)(row - first) + (size_t)(j - first) * nc] = lx[px[k] + r + (j - c0) * nrow];
-            }
-    }
-}
-
-/* M = A + D, D = diag(A_cc) on the c dofs (the largest diagonal of A where
- * that is not positive); cmember[j] = 1 marks the c dofs. M shares the
- * pattern of A (p and i borrowed) and owns only its values M->x. */
-static int schur_shift(const cx_csc *A, const int *c, int nc, cx_csc *M, int *cmember, double *dshift,
-                       cx_diag *d)
-{
-    int n = A->nrow;
-    size_t nz = cx_csc_nnz(A);
     for (int k = 0; k < nc; k++) {
         int j = c[k];
         if (j < 0 || j >= n)
@@ -98,28 +64,10 @@ static int schur_shift(const cx_csc *A, const int *c, int nc, cx_csc *M, int *cm
             return cx_diag_set(d, CX_EINVAL, "schur: dof %d given twice", j);
         cmember[j] = 1;
     }
-    *M = *A;
-    if (!(M->x = CX_NEW(double, nz)))
-        return CX_ENOMEM;
-    memcpy(M->x, A->x, sizeof(double) * nz);
-    /* the diagonal by bisection in the sorted columns, not a pass over A */
-    double dmax = 0;
-    for (int j = 0; j < n; j++) {
-        int q = cx_csc_find(A, j, j);
-        if (q >= 0)
-            dmax = fmax(dmax, A->x[q]);
-    }
-    for (int k = 0; k < nc; k++) {
-        int j = c[k], q = cx_csc_find(M, j, j);
-        if (q < 0)
-            return cx_diag_set(d, CX_EINVAL, "schur: no diagonal entry in column %d", j);
-        dshift[k] = M->x[q] > 0 ? M->x[q] : (dmax > 0 ? dmax : 1);
-        M->x[q] += dshift[k];
-    }
     return CX_OK;
 }
 
-/* Symbolic analysis of M with perm kept as given (not postordered: the
+/* Symbolic analysis of A with perm kept as given (not postordered: the
  * c dofs must stay last); lnz and fl from CHOLMOD's column counts. */
 static int schur_analyse(cx_schur *s, cholmod_sparse *view, int *perm, cholmod_factor **L, double *lnz,
                          double *fl, cx_diag *d)
@@ -129,6 +77,7 @@ static int schur_analyse(cx_schur *s, cholmod_sparse *view, int *perm, cholmod_f
     cc->method[0].ordering = CHOLMOD_GIVEN;
     cc->postorder = 0;
     *L = cholmod_analyze_p(view, perm, NULL, 0, cc);
+    cc->supernodal = CHOLMOD_SUPERNODAL;   /* after a prediction (schur_predict) */
     int st = cx_cholmod_check(cc, *L, "schur: analysis", d);
     if (st == CX_OK && !*L)
         st = cx_diag_set(d, CX_EEXTERNAL, "schur: analysis failed");
@@ -141,59 +90,120 @@ static int schur_analyse(cx_schur *s, cholmod_sparse *view, int *perm, cholmod_f
     return CX_OK;
 }
 
-/* perm = nested dissection (METIS) of M_ii, then the c dofs in the order
- * CAMD left them (the trailing block is dense whatever its order). M_ii
- * is the upper triangle of M on the interior dofs, renumbered. */
-static int schur_metis(cx_schur *s, const cx_csc *M, const int *cmember, int *perm, const int *camd_perm,
+/* lnz and fl of the ordering perm without the supernodal pattern (column
+ * counts only: half the analysis's time on prism 7's CAMD ordering). */
+static int schur_predict(cx_schur *s, cholmod_sparse *view, int *perm, double *lnz, double *fl, cx_diag *d)
+{
+    cholmod_factor *L = NULL;
+    s->cc.supernodal = CHOLMOD_SIMPLICIAL;
+    int st = schur_analyse(s, view, perm, &L, lnz, fl, d);
+    cholmod_free_factor(&L, &s->cc);
+    return st;
+}
+
+/* The process's CPU clock, for the phase times of cx_schur_ordering. */
+static double schur_cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Do interior dofs a and b have the same column pattern in M? */
+static int schur_same_column(const cx_csc *M, int a, int b)
+{
+    int la = M->p[a + 1] - M->p[a], lb = M->p[b + 1] - M->p[b];
+    return la == lb && memcmp(M->i + M->p[a], M->i + M->p[b], sizeof(int) * (size_t)la) == 0;
+}
+
+/* The interior dofs per vertex of the graph schur_metis compresses (3 in
+ * 3D elasticity, 2 in 2D, 1 for a scalar problem). */
+static double schur_dofs_per_vertex(const cx_csc *M, const int *cmember)
+{
+    int ni = 0, ng = 0;
+    for (int j = 0; j < M->ncol; j++) {
+        if (cmember[j])
+            continue;
+        if (ni == 0 || j == 0 || cmember[j - 1] || !schur_same_column(M, j - 1, j))
+            ng++;
+        ni++;
+    }
+    return ng > 0 ? (double)ni / ng : 0;
+}
+
+/* perm = nested dissection (METIS) of the graph of M_ii, then the c dofs
+ * in the caller's order (the trailing block is dense whatever its order,
+ * and in the caller's order S needs no permutation). The graph is first
+ * compressed: consecutive interior dofs whose columns of M have the same
+ * pattern (the 2 or 3 dofs of a node in elasticity) become one vertex, so
+ * METIS and CHOLMOD's pre- and post-processing around it see a graph
+ * d times smaller in vertices and d^2 in edges; the separators found are
+ * those of the node graph, which is what the dof graph's are anyway. */
+static int schur_metis(cx_schur *s, const cx_csc *M, const int *cmember, const int *c, int *perm,
                        cx_diag *d)
 {
     int n = s->n, ni = s->n - s->nc, st = CX_ENOMEM;
-    int *newi = CX_NEW(int, n), *old = CX_NEW(int, ni > 0 ? ni : 1), *pi = CX_NEW(int, ni > 0 ? ni : 1);
-    cx_csc Mii = {0};
-    Mii.nrow = Mii.ncol = ni;
-    Mii.p = CX_NEW(int, ni + 1);
-    Mii.i = CX_NEW(int, cx_csc_nnz(M) ? cx_csc_nnz(M) : 1);
-    Mii.x = CX_NEW(double, cx_csc_nnz(M) ? cx_csc_nnz(M) : 1);
-    if (!newi || !old || !pi || !Mii.p || !Mii.i || !Mii.x)
+    size_t cap = cx_csc_nnz(M) ? cx_csc_nnz(M) : 1;
+    int *old = CX_NEW(int, ni + 1), *grp = CX_NEW(int, n), *gfirst = CX_NEW(int, ni + 1);
+    int *gperm = CX_NEW(int, ni + 1);
+    cx_csc G = {0};
+    G.p = CX_NEW(int, ni + 1);
+    G.i = CX_NEW(int, cap);
+    if (!old || !grp || !gfirst || !gperm || !G.p || !G.i)
         goto done;
-    for (int j = 0, k = 0; j < n; j++)
-        if (!cmember[j]) {
-            old[k] = j;
-            newi[j] = k++;
-        }
+    /* the interior dofs in order, grouped: grp[dof] = its vertex */
+    int ng = 0;
+    for (int j = 0, k = 0; j < n; j++) {
+        if (cmember[j])
+            continue;
+        if (k == 0 || old[k - 1] != j - 1 || !schur_same_column(M, j - 1, j))
+            gfirst[ng++] = k;
+        grp[j] = ng - 1;
+        old[k++] = j;
+    }
+    gfirst[ng] = ni;
+    /* the upper triangle of the vertex graph, from each vertex's first
+     * dof; rows come sorted by dof, so their vertices are nondecreasing
+     * and a repeat is always the previous entry */
     int nz = 0;
-    for (int k = 0; k < ni; k++) {
-        int j = old[k];
-        Mii.p[k] = nz;
+    for (int g = 0; g < ng; g++) {
+        int j = old[gfirst[g]], last = -1;
+        G.p[g] = nz;
         for (int q = M->p[j]; q < M->p[j + 1]; q++) {
             int i = M->i[q];
-            if (i <= j && !cmember[i]) {
-                Mii.i[nz] = newi[i];
-                Mii.x[nz++] = M->x[q];
-            }
+            if (cmember[i] || grp[i] > g || grp[i] == last)
+                continue;
+            G.i[nz++] = last = grp[i];
         }
     }
-    Mii.p[ni] = nz;
-    cholmod_sparse view = cx_cholmod_view(&Mii, 1);
+    G.p[ng] = nz;
+    G.nrow = G.ncol = ng;
+    cholmod_sparse view = cx_cholmod_view(&G, 1);
+    view.xtype = CHOLMOD_PATTERN;
+    view.x = NULL;
     st = CX_OK;
-    if (ni > 0) {
-        int ok = cholmod_metis(&view, NULL, 0, 1, pi, &s->cc);
+    if (ng > 0) {
+        int ok = cholmod_metis(&view, NULL, 0, 1, gperm, &s->cc);
         st = cx_cholmod_check(&s->cc, NULL, "schur: nested dissection", d);
         if (st == CX_OK && !ok)
             st = cx_diag_set(d, CX_EEXTERNAL, "schur: nested dissection failed");
     }
     if (st == CX_OK) {
-        for (int k = 0; k < ni; k++)
-            perm[k] = old[pi[k]];
-        memcpy(perm + ni, camd_perm + ni, sizeof(int) * (size_t)s->nc);
+        int t = 0;
+        for (int k = 0; k < ng; k++)
+            for (int q = gfirst[gperm[k]]; q < gfirst[gperm[k] + 1]; q++)
+                perm[t++] = old[q];
+        memcpy(perm + ni, c, sizeof(int) * (size_t)s->nc);
     }
 done:
     if (st == CX_ENOMEM)
         cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
-    cx_free(newi);
     cx_free(old);
-    cx_free(pi);
-    cx_csc_clear(&Mii);
+    cx_free(grp);
+    cx_free(gfirst);
+    cx_free(gperm);
+    cx_free(G.p);
+    cx_free(G.i);
     return st;
 }
 
@@ -209,25 +219,91 @@ done:
 
 static double schur_metis_cost(int ni) { return CX_SCHUR_METIS_FLOPS_PER_DOF * (double)ni; }
 
-/* Constrained ordering (c last), analysis with that ordering kept as is,
- * numeric factorisation of M. Two orderings compete: CAMD on the whole
- * matrix with c constrained last, and nested dissection on the interior
- * with c appended; the one whose predicted factorisation flops, plus the
- * ordering's own cost, are fewer is factorised. Their analyses alone are
+/* Elasticity in 3D (3 dofs per node), where nested dissection has won by
+ * 2.6-3x in flops on every scene measured (README, "The direct path in
+ * 3D"): METIS is analysed first, in full, and CAMD only predicted from its
+ * column counts; the choice is the same rule as schur_order's (whenever
+ * that would try METIS at all), and CAMD's supernodal analysis runs only
+ * if CAMD wins. */
+#define CX_SCHUR_3D_DOFS_PER_VERTEX 2.5
+
+static int schur_order_3d(cx_schur *s, const cx_csc *A, cholmod_sparse *view, int *cmember, int *perm,
+                          cx_diag *d)
+{
+    int n = s->n, nc = s->nc, st;
+    cx_schur_ordering *o = &s->ord;
+    cholmod_factor *Lm = NULL;
+    double t0 = cx_clock_now(), c0 = schur_cpu_now(), c1;
+    int *pm = CX_NEW(int, n);
+    if (!pm)
+        return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
+    if ((st = schur_metis(s, A, cmember, s->c, pm, d)) == CX_OK) {
+        c1 = schur_cpu_now();
+        o->cpu_ordering += c1 - c0;
+        st = schur_analyse(s, view, pm, &Lm, &o->lnz[CX_ORDER_METIS], &o->flops[CX_ORDER_METIS], d);
+        o->cpu_symbolic += schur_cpu_now() - c1;
+    }
+    o->seconds[CX_ORDER_METIS] = cx_clock_now() - t0;
+    cx_free(pm);
+    if (st)
+        return st;
+    o->tried = 1;
+    t0 = cx_clock_now();
+    c0 = schur_cpu_now();
+    int ok = cholmod_camd(view, NULL, 0, cmember, perm, &s->cc);
+    st = cx_cholmod_check(&s->cc, NULL, "schur: constrained ordering", d);
+    if (st == CX_OK && !ok)
+        st = cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering failed");
+    c1 = schur_cpu_now();
+    o->cpu_ordering += c1 - c0;
+    if (st == CX_OK)
+        st = schur_predict(s, view, perm, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d);
+    if (st == CX_OK && !(o->flops[CX_ORDER_METIS] + schur_metis_cost(n - nc) < o->flops[CX_ORDER_CAMD])) {
+        double lnz, fl;   /* the same as predicted */
+        cholmod_free_factor(&Lm, &s->cc);
+        st = schur_analyse(s, view, perm, &Lm, &lnz, &fl, d);
+        o->chosen = CX_ORDER_CAMD;
+    } else {
+        o->chosen = CX_ORDER_METIS;
+    }
+    o->cpu_symbolic += schur_cpu_now() - c1;
+    o->seconds[CX_ORDER_CAMD] = cx_clock_now() - t0;
+    if (st) {
+        cholmod_free_factor(&Lm, &s->cc);
+        return st;
+    }
+    s->L = Lm;
+    const int *P = s->L->Perm;
+    for (int t = n - nc; t < n; t++)
+        if (!cmember[P[t]])
+            return cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering not kept");
+    return CX_OK;
+}
+
+/* Constrained ordering (c last) and symbolic analysis with that ordering
+ * kept as is. Two orderings compete: CAMD on the whole matrix with c
+ * constrained last, and nested dissection on the interior with c
+ * appended; the one whose predicted factorisation flops, plus the
+ * ordering's own cost, are fewer is kept. Their analyses alone are
  * compared, before any numeric work. */
-static int schur_factor(cx_schur *s, cx_csc *M, int *cmember, int *perm, cx_diag *d)
+static int schur_order(cx_schur *s, const cx_csc *A, int *cmember, int *perm, cx_diag *d)
 {
     int n = s->n, nc = s->nc, st = CX_OK;
     cholmod_common *cc = &s->cc;
     cx_schur_ordering *o = &s->ord;
-    cholmod_sparse view = cx_cholmod_view(M, 1);
+    cholmod_sparse view = cx_cholmod_view(A, 1);
     cx_progress_step("ordering", n);
-    double t0 = cx_clock_now();
+    if (s->force_order == CX_ORDER_AUTO && schur_dofs_per_vertex(A, cmember) >= CX_SCHUR_3D_DOFS_PER_VERTEX)
+        return schur_order_3d(s, A, &view, cmember, perm, d);
+    double t0 = cx_clock_now(), c0 = schur_cpu_now();
     int ok = cholmod_camd(&view, NULL, 0, cmember, perm, cc);
     CX_TRY(cx_cholmod_check(cc, NULL, "schur: constrained ordering", d));
     if (!ok)
         return cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering failed");
+    double c1 = schur_cpu_now();
+    o->cpu_ordering += c1 - c0;
     CX_TRY(schur_analyse(s, &view, perm, &s->L, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d));
+    o->cpu_symbolic += schur_cpu_now() - c1;
     o->seconds[CX_ORDER_CAMD] = cx_clock_now() - t0;
     o->chosen = CX_ORDER_CAMD;
     double cost = schur_metis_cost(n - nc);
@@ -237,9 +313,14 @@ static int schur_factor(cx_schur *s, cx_csc *M, int *cmember, int *perm, cx_diag
         if (!pm)
             return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
         t0 = cx_clock_now();
+        c0 = schur_cpu_now();
         cholmod_factor *Lm = NULL;
-        if ((st = schur_metis(s, M, cmember, pm, perm, d)) == CX_OK)
+        if ((st = schur_metis(s, A, cmember, s->c, pm, d)) == CX_OK) {
+            c1 = schur_cpu_now();
+            o->cpu_ordering += c1 - c0;
             st = schur_analyse(s, &view, pm, &Lm, &o->lnz[CX_ORDER_METIS], &o->flops[CX_ORDER_METIS], d);
+            o->cpu_symbolic += schur_cpu_now() - c1;
+        }
         o->seconds[CX_ORDER_METIS] = cx_clock_now() - t0;
         cx_free(pm);
         if (st)
@@ -257,45 +338,58 @@ static int schur_factor(cx_schur *s, cx_csc *M, int *cmember, int *perm, cx_diag
     for (int t = n - nc; t < n; t++)
         if (!cmember[P[t]])
             return cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering not kept");
-    cx_progress_step("factorising", n);
-    cholmod_factorize(&view, s->L, cc);
-    if (s->cnt)
-        s->cnt->factorizations++;
-    CX_TRY(cx_cholmod_check(cc, s->L, "schur: Cholesky factorisation", d));
-    return cx_cholmod_check_pivots(s->L, M, "schur: Cholesky factorisation", d);
+    return CX_OK;
 }
 
-/* S = L22 L22' - D, rows and columns in the caller's order. The product
- * of two triangles costs nc^3/3 (dlauum) where a general rank-nc update
- * (dsyrk) costs nc^3; dlauum forms U U' of an upper triangle, so L22 is
- * taken in reversed order, U = J L22 J, and L22 L22' = J U U' J. */
-static int schur_form(cx_schur *s, const double *dshift)
+/* The strict upper triangle of the nc x nc matrix W from its lower one,
+ * by tiles that stay in cache on both sides. */
+static void schur_mirror(double *W, size_t nc)
 {
-    int nc = s->nc, info = 0;
-    size_t ld = (size_t)nc;
-    double *U = CX_NEW(double, ld * ld);
-    if (!U)
-        return CX_ENOMEM;
-    cx_progress_step("condensing", nc);
-    schur_extract(s);
-    for (size_t j = 0; j < ld; j++)
-        for (size_t i = 0; i <= j; i++)
-            U[i + j * ld] = s->L22[(ld - 1 - i) + (ld - 1 - j) * ld];
-    if (nc > 0)
-        dlauum_("U", &nc, U, &nc, &info);
-    if (info != 0) {
-        cx_free(U);
-        return CX_EEXTERNAL;
-    }
-    for (int a = 0; a < nc; a++)
-        for (int b = 0; b < nc; b++) {
-            /* (J U U' J)[ta, tb], read from U U''s upper triangle */
-            size_t ra = ld - 1 - (size_t)s->tpos[a], rb = ld - 1 - (size_t)s->tpos[b];
-            double v = ra <= rb ? U[ra + rb * ld] : U[rb + ra * ld];
-            s->S[a + (size_t)b * ld] = v - (a == b ? dshift[a] : 0);
+    enum { TILE = 64 };
+    for (size_t j0 = 0; j0 < nc; j0 += TILE)
+        for (size_t i0 = j0; i0 < nc; i0 += TILE) {
+            size_t j1 = j0 + TILE < nc ? j0 + TILE : nc, i1 = i0 + TILE < nc ? i0 + TILE : nc;
+            for (size_t j = j0; j < j1; j++)
+                for (size_t i = i0 > j + 1 ? i0 : j + 1; i < i1; i++)
+                    W[j + i * nc] = W[i + j * nc];
         }
-    cx_free(U);
-    return CX_OK;
+}
+
+/* The numeric factorisation of the interior and S, rows and columns in
+ * the caller's order. The trailing block arrives lower, in the trailing
+ * order: in S itself when that is the caller's order (the METIS path),
+ * else in a scratch array permuted into S. */
+static int schur_numeric(cx_schur *s, const cx_csc *A, cx_diag *d)
+{
+    int nc = s->nc, ident = 1;
+    size_t ld = (size_t)nc, nn = ld * ld;
+    for (int k = 0; k < nc && ident; k++)
+        ident = s->tpos[k] == k;
+    double *W = ident ? s->S : CX_NEW(double, nn ? nn : 1);
+    if (!W)
+        return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
+    cx_progress_step("factorising", s->n);
+    double c0 = schur_cpu_now();
+    int st = cx_schur_numeric(s->L, A, s->n - nc, W, &s->cc, d);
+    double c1 = schur_cpu_now();
+    s->ord.cpu_numeric += c1 - c0;
+    if (s->cnt)
+        s->cnt->factorizations++;
+    if (st == CX_OK) {
+        cx_progress_step("condensing", nc);
+        schur_mirror(W, ld);
+        if (!ident)
+            for (size_t b = 0; b < ld; b++) {
+                const double *wb = W + (size_t)s->tpos[b] * ld;
+                double *sb = s->S + b * ld;
+                for (size_t a = 0; a < ld; a++)
+                    sb[a] = wb[s->tpos[a]];
+            }
+        s->ord.cpu_form += schur_cpu_now() - c1;
+    }
+    if (!ident)
+        cx_free(W);
+    return st;
 }
 
 int cx_schur_create(cx_schur **Sp, const cx_csc *A, const int *c, int nc, cx_counters *cnt, cx_diag *d)
@@ -310,9 +404,7 @@ int cx_schur_create_ordered(cx_schur **Sp, const cx_csc *A, const int *c, int nc
     *Sp = NULL;
     if (A->ncol != n || nc < 0 || nc > n)
         return cx_diag_set(d, CX_EINVAL, "schur: %d dofs of a %d x %d matrix", nc, A->nrow, A->ncol);
-    cx_csc M = {0};
     int *cmember = NULL, *perm = NULL;
-    double *dshift = NULL;
     cx_schur *s = CX_NEW(cx_schur, 1);
     if (!s)
         return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
@@ -323,46 +415,37 @@ int cx_schur_create_ordered(cx_schur **Sp, const cx_csc *A, const int *c, int nc
     s->force_order = order;
     s->c = CX_NEW(int, nc);
     s->tpos = CX_NEW(int, nc);
-    s->L22 = CX_NEW(double, (size_t)nc * (size_t)nc);
     s->S = CX_NEW(double, (size_t)nc * (size_t)nc);
-    s->t = CX_NEW(double, nc);
     s->fcopy = CX_NEW(double, n);
     s->fy = CX_NEW(double, n);
     cmember = CX_NEW(int, n);
     perm = CX_NEW(int, n);
-    dshift = CX_NEW(double, nc);
-    if (!s->c || !s->tpos || !s->L22 || !s->S || !s->t || !s->fcopy || !s->fy || !cmember || !perm ||
-        !dshift)
+    if (!s->c || !s->tpos || !s->S || !s->fcopy || !s->fy || !cmember || !perm)
         goto fail;
     if (nc > 0)
         memcpy(s->c, c, sizeof(int) * (size_t)nc);
 
-    if ((st = schur_shift(A, c, nc, &M, cmember, dshift, d)) || (st = schur_factor(s, &M, cmember, perm, d)))
+    if ((st = schur_members(n, c, nc, cmember, d)) || (st = schur_order(s, A, cmember, perm, d)))
         goto fail;
-
     /* cmember reused: dof -> -1 - its position in the trailing block */
     const int *P = s->L->Perm;
     for (int t = 0; t < nc; t++)
         cmember[P[n - nc + t]] = -1 - t;
     for (int k = 0; k < nc; k++)
         s->tpos[k] = -1 - cmember[c[k]];
-    if ((st = schur_form(s, dshift)))
+    if ((st = schur_numeric(s, A, d)))
         goto fail;
 
-    cx_free(M.x);
     cx_free(cmember);
     cx_free(perm);
-    cx_free(dshift);
     *Sp = s;
     return CX_OK;
 
 fail:
     if (st == CX_ENOMEM)
         cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
-    cx_free(M.x);
     cx_free(cmember);
     cx_free(perm);
-    cx_free(dshift);
     cx_schur_destroy(&s);
     return st;
 }
@@ -408,25 +491,19 @@ static int schur_forward(cx_schur *s, const double *f)
 int cx_schur_condense(cx_schur *s, const double *f, double *fc)
 {
     CX_TRY(schur_forward(s, f));
-    int nc = s->nc, one = 1;
-    if (nc == 0)
-        return CX_OK;
-    memcpy(s->t, (double *)s->X1->x + (s->n - nc), sizeof(double) * (size_t)nc);
-    dtrmv_("L", "N", "N", &nc, s->L22, &nc, s->t, &one);
-    for (int k = 0; k < nc; k++)
-        fc[k] = s->t[s->tpos[k]];
+    const double *y2 = (const double *)s->X1->x + (s->n - s->nc);
+    for (int k = 0; k < s->nc; k++)
+        fc[k] = y2[s->tpos[k]];
     return CX_OK;
 }
 
 int cx_schur_expand(cx_schur *s, const double *f, const double *uc, double *u)
 {
     CX_TRY(schur_forward(s, f));
-    int nc = s->nc, one = 1;
+    int nc = s->nc;
+    double *x2 = (double *)s->X1->x + (s->n - nc);
     for (int k = 0; k < nc; k++)
-        s->t[s->tpos[k]] = uc[k];
-    if (nc > 0)
-        dtrmv_("L", "T", "N", &nc, s->L22, &nc, s->t, &one);
-    memcpy((double *)s->X1->x + (s->n - nc), s->t, sizeof(double) * (size_t)nc);
+        x2[s->tpos[k]] = uc[k];
     CX_TRY(schur_solve(s, CHOLMOD_Lt, s->X1, &s->X2));
     CX_TRY(schur_solve(s, CHOLMOD_Pt, s->X2, &s->X1));
     memcpy(u, s->X1->x, sizeof(double) * (size_t)s->n);
