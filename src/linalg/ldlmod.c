@@ -25,6 +25,7 @@ struct cx_ldlmod {
     int *mark;         /* n: visit stamps of the row reaches */
     int stamp;
     cholmod_dense *X, *Y, *E;   /* cholmod_solve2's workspace, kept between solves */
+    double lnz_full;   /* entries of L as factorised, before the zeros are dropped */
 };
 
 void cx_ldlmod_destroy(cx_ldlmod **F)
@@ -42,6 +43,29 @@ void cx_ldlmod_destroy(cx_ldlmod **F)
     cx_free(f->parent), cx_free(f->mark);
     cx_free(f);
     *F = NULL;
+}
+
+/* Drop the exact zeros below the diagonal of the simplicial factor: the
+ * relaxed supernodes' padding, and the rows and columns that the mask
+ * holds at the identity (the closed start masks every contact unknown, so
+ * its factor has the pattern of A's but far fewer non-zeros). Solves and
+ * updates then walk only the true non-zeros. The columns keep their
+ * space (Lp), so a later update that fills an entry again finds room;
+ * CHOLMOD's Modify grows a column's pattern as its updates need. */
+static void ldlmod_drop_zeros(cx_ldlmod *f)
+{
+    cholmod_factor *L = f->L;
+    int *lp = L->p, *li = L->i, *lnz = L->nz;
+    double *lx = L->x;
+    for (int j = 0; j < f->n; j++) {
+        int p0 = lp[j], q = p0 + 1;   /* the diagonal (D) stays first */
+        for (int p = p0 + 1; p < p0 + lnz[j]; p++)
+            if (lx[p] != 0) {
+                li[q] = li[p];
+                lx[q++] = lx[p];
+            }
+        lnz[j] = q - p0;
+    }
 }
 
 /* The numeric factor of A from the kept analysis: a copy of the symbolic
@@ -65,6 +89,10 @@ static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
         cholmod_change_factor(CHOLMOD_REAL, 0, 0, 1, 1, f->L, &f->c);
         CX_TRY(cx_cholmod_check(&f->c, f->L, "supernodal to simplicial LDL'", d));
     }
+    f->lnz_full = 0;
+    for (int j = 0; j < f->n; j++)
+        f->lnz_full += ((const int *)f->L->nz)[j];
+    ldlmod_drop_zeros(f);
     return CX_OK;
 }
 
@@ -261,11 +289,7 @@ double cx_ldlmod_row_cost(cx_ldlmod *f, int k, const cx_csc *A, const unsigned c
 
 double cx_ldlmod_factor_nnz(const cx_ldlmod *f)
 {
-    const int *lnz = f->L->nz;
-    double nnz = 0;
-    for (int j = 0; j < f->n; j++)
-        nnz += lnz[j];
-    return nnz;
+    return f->lnz_full;
 }
 
 int cx_ldlmod_add(cx_ldlmod *f, int k, const cx_csc *A, const unsigned char *keep, double shift,

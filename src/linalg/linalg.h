@@ -196,7 +196,10 @@ int cx_ldlmod_delete_row(cx_ldlmod *F, int k, const cx_csc *A, const unsigned ch
  * columns of row k's pattern (keep, A as above) and those on the path from
  * k to the root of the elimination tree, at the factor's current counts. */
 double cx_ldlmod_row_cost(cx_ldlmod *F, int k, const cx_csc *A, const unsigned char *keep);
-/* Entries of L (the unit diagonal and D counted once per column). */
+/* Entries of L as a factorisation fills them (the analysed pattern, the
+ * unit diagonal and D counted once per column): the size of a new
+ * factor, against which updates are weighed. The factor kept holds only
+ * its non-zeros, often far fewer (the masked rows' are dropped). */
 double cx_ldlmod_factor_nnz(const cx_ldlmod *F);
 /* x = A^-1 b for the current matrix. */
 int cx_ldlmod_solve(cx_ldlmod *F, const double *b, double *x, cx_diag *d);

@@ -59,9 +59,10 @@ static const cx_param pdas_params[] = {
     CX_LCP_PARAMS_COMMON,
     {"eps0", CX_PARAM_REAL, 0, 0, 1, NULL,
      "continuation: start with this eps (relative) and divide by 100 down to eps (0: off)", 0},
-    {"update", CX_PARAM_INT, CX_PDAS_UPDATE_MAX, 0, 1e9, NULL,
+    {"update", CX_PARAM_INT, -1, -1, 1e9, NULL,
      "update the factor row by row when at most this many unknowns change sets (and, with model "
-     "= 1, the rows' work is below a new factor's), else refactorise (0: always refactorise)", 0},
+     "= 1, the rows' work is below a new factor's), else refactorise (0: always refactorise; "
+     "-1: 100000 with the model, 200 without)", 0},
     {"model", CX_PARAM_BOOL, 1, 0, 1, NULL,
      "1: update when the changed rows touch at most 38 x nnz(L) entries of the factor (the "
      "break-even with a new factor); 0: the count rule alone (update = N, 200 if not given)", 0},
@@ -137,8 +138,8 @@ static int pdas_init(void *state, cx_session *s, const cx_param_values *params, 
     cx_lcp_run *r = &st->run;
     int status = cx_lcp_solver_init(&st->reg, r->L, cx_session_counters(s), d);
     int upd = (int)cx_param_get(params, "update"), model = cx_param_get(params, "model") != 0;
-    if (!model && upd == CX_PDAS_UPDATE_MAX)
-        upd = CX_PDAS_UPDATE_COUNT;   /* the count rule's own default */
+    if (upd < 0)   /* the default: the model decides, or the count rule's own default */
+        upd = model ? CX_PDAS_UPDATE_MAX : CX_PDAS_UPDATE_COUNT;
     if (!status)
         status = cx_lcp_solver_updates(&st->reg, upd, d);
     if (!status && r->project)
