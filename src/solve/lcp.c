@@ -178,8 +178,19 @@ void cx_lcp_apply(const cx_lcp *L, const double *v, double *y)
         cx_csc_gemv(&L->A, 1.0, v, 0.0, y);
 }
 
+/* cx_lcp_result with A v given (Av, NULL: computed row by row): the
+ * multipliers are then read from it instead of one row of A each. */
+static int lcp_result(cx_lcp_map *map, int reduced, const double *v, const double *Av, double *work,
+                      const cx_problem *p, double *u, double *lN);
+
 int cx_lcp_result(cx_lcp_map *map, int reduced, const double *v, double *work,
                   const cx_problem *p, double *u, double *lN)
+{
+    return lcp_result(map, reduced, v, NULL, work, p, u, lN);
+}
+
+static int lcp_result(cx_lcp_map *map, int reduced, const double *v, const double *Av, double *work,
+                      const cx_problem *p, double *u, double *lN)
 {
     const double *vf = v;
     int n = map->full.n;
@@ -190,6 +201,11 @@ int cx_lcp_result(cx_lcp_map *map, int reduced, const double *v, double *work,
     memcpy(u, map->u0, sizeof(double) * (size_t)n);
     cx_csc_gemv(&map->T, 1.0, vf, 1.0, u);
     /* lN_r = (A v - b)_p(r): one row of A per contact row */
+    if (Av && !reduced) {
+        for (int k = 0; k < p->m; k++)
+            lN[k] = Av[map->piv[k]] - map->full.b[map->piv[k]];
+        return CX_OK;
+    }
     for (int k = 0; k < p->m; k++) {
         int j = map->piv[k];
         double s = -map->full.b[j];
@@ -825,5 +841,8 @@ int cx_lcp_run_project(cx_lcp_run *r, cx_session *s, cx_iterate *it, cx_diag *d)
 int cx_lcp_run_publish(cx_lcp_run *r, cx_session *s, cx_iterate *it)
 {
     const cx_problem *p = cx_session_problem(s);
-    return cx_lcp_result(r->map, r->reduced, r->v, r->work + 2 * r->L->n, p, it->u, it->lN);
+    /* A v of the last PDAS step when it is of this v (one product fewer
+     * per published iterate) */
+    const double *Av = r->ls.Av_valid ? r->ls.Av : r->guard.Av_valid ? r->guard.Av : NULL;
+    return lcp_result(r->map, r->reduced, r->v, Av, r->work + 2 * r->L->n, p, it->u, it->lN);
 }
