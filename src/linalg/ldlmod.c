@@ -21,6 +21,11 @@ struct cx_ldlmod {
     int *ri;           /* n: row buffer of R */
     double *rx;        /* n */
     double *w;         /* n: solve workspace */
+    int *parent;       /* n: elimination tree of the analysed pattern, in L's order (-1: root) */
+    int *mark;         /* n: visit stamps of the row reaches */
+    int stamp;
+    cholmod_dense *X, *Y, *E;   /* cholmod_solve2's workspace, kept between solves */
+    double lnz_full;   /* entries of L as factorised, before the zeros are dropped */
 };
 
 void cx_ldlmod_destroy(cx_ldlmod **F)
@@ -30,10 +35,37 @@ void cx_ldlmod_destroy(cx_ldlmod **F)
     cx_ldlmod *f = *F;
     cholmod_free_factor(&f->L, &f->c);
     cholmod_free_factor(&f->sym, &f->c);
+    cholmod_free_dense(&f->X, &f->c);
+    cholmod_free_dense(&f->Y, &f->c);
+    cholmod_free_dense(&f->E, &f->c);
     cholmod_finish(&f->c);
     cx_free(f->pinv), cx_free(f->ri), cx_free(f->rx), cx_free(f->w);
+    cx_free(f->parent), cx_free(f->mark);
     cx_free(f);
     *F = NULL;
+}
+
+/* Drop the exact zeros below the diagonal of the simplicial factor: the
+ * relaxed supernodes' padding, and the rows and columns that the mask
+ * holds at the identity (the closed start masks every contact unknown, so
+ * its factor has the pattern of A's but far fewer non-zeros). Solves and
+ * updates then walk only the true non-zeros. The columns keep their
+ * space (Lp), so a later update that fills an entry again finds room;
+ * CHOLMOD's Modify grows a column's pattern as its updates need. */
+static void ldlmod_drop_zeros(cx_ldlmod *f)
+{
+    cholmod_factor *L = f->L;
+    int *lp = L->p, *li = L->i, *lnz = L->nz;
+    double *lx = L->x;
+    for (int j = 0; j < f->n; j++) {
+        int p0 = lp[j], q = p0 + 1;   /* the diagonal (D) stays first */
+        for (int p = p0 + 1; p < p0 + lnz[j]; p++)
+            if (lx[p] != 0) {
+                li[q] = li[p];
+                lx[q++] = lx[p];
+            }
+        lnz[j] = q - p0;
+    }
 }
 
 /* The numeric factor of A from the kept analysis: a copy of the symbolic
@@ -57,7 +89,39 @@ static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
         cholmod_change_factor(CHOLMOD_REAL, 0, 0, 1, 1, f->L, &f->c);
         CX_TRY(cx_cholmod_check(&f->c, f->L, "supernodal to simplicial LDL'", d));
     }
+    f->lnz_full = 0;
+    for (int j = 0; j < f->n; j++)
+        f->lnz_full += ((const int *)f->L->nz)[j];
+    ldlmod_drop_zeros(f);
     return CX_OK;
+}
+
+/* The elimination tree of P A P' (A's pattern: every masked matrix's is
+ * within it) by Liu's ancestor walk with path compression; mark serves as
+ * the ancestor array. Node j's parent is the first row below j in column j
+ * of the factor of A, and a non-zero L(k, j) of any masked matrix's factor
+ * makes k an ancestor of j in this tree (its factor's pattern is within
+ * A's). */
+static void ldlmod_etree(cx_ldlmod *f, const cx_csc *A)
+{
+    int n = f->n, *anc = f->mark;
+    for (int k = 0; k < n; k++) {
+        f->parent[k] = -1, anc[k] = -1;
+        int col = cx_cholmod_column(f->L, k);
+        for (int q = A->p[col]; q < A->p[col + 1]; q++) {
+            int i = f->pinv[A->i[q]];
+            while (i != -1 && i < k) {
+                int next = anc[i];
+                anc[i] = k;
+                if (next == -1)
+                    f->parent[i] = k;
+                i = next;
+            }
+        }
+    }
+    for (int k = 0; k < n; k++)
+        f->mark[k] = 0;
+    f->stamp = 0;
 }
 
 static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod *like, cx_counters *cnt,
@@ -79,7 +143,9 @@ static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod
     f->ri = CX_NEW(int, n);
     f->rx = CX_NEW(double, n);
     f->w = CX_NEW(double, n);
-    if (!f->pinv || !f->ri || !f->rx || !f->w) {
+    f->parent = CX_NEW(int, n);
+    f->mark = CX_NEW(int, n);
+    if (!f->pinv || !f->ri || !f->rx || !f->w || !f->parent || !f->mark) {
         cx_ldlmod_destroy(&f);
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
@@ -102,6 +168,7 @@ static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod
     }
     for (int k = 0; k < n; k++)
         f->pinv[cx_cholmod_column(f->L, k)] = k;
+    ldlmod_etree(f, A);
     *F = f;
     return CX_OK;
 }
@@ -167,6 +234,64 @@ int cx_ldlmod_delete(cx_ldlmod *f, int k, cx_diag *d)
     return CX_OK;
 }
 
+/* The pattern of row kk (L's order) of the factor of the current matrix,
+ * or a superset: the etree paths from the rows i < kk of A's column k
+ * that the current matrix keeps (keep NULL: all) up to kk. Into f->ri;
+ * returns its length. */
+static int ldlmod_row_reach(cx_ldlmod *f, int k, const cx_csc *A, const unsigned char *keep)
+{
+    int kk = f->pinv[k], nz = 0;
+    if (++f->stamp == 0x7fffffff) {
+        for (int j = 0; j < f->n; j++)
+            f->mark[j] = 0;
+        f->stamp = 1;
+    }
+    f->mark[kk] = f->stamp;
+    for (int q = A->p[k]; q < A->p[k + 1]; q++) {
+        int r = A->i[q];
+        if (keep && !keep[r])
+            continue;
+        for (int i = f->pinv[r]; i != -1 && i < kk && f->mark[i] != f->stamp; i = f->parent[i]) {
+            f->mark[i] = f->stamp;
+            f->ri[nz++] = i;
+        }
+    }
+    return nz;
+}
+
+int cx_ldlmod_delete_row(cx_ldlmod *f, int k, const cx_csc *A, const unsigned char *keep, cx_diag *d)
+{
+    int nz = ldlmod_row_reach(f, k, A, keep), p[2] = {0, nz};
+    cholmod_sparse R;
+    memset(&R, 0, sizeof R);
+    R.nrow = (size_t)f->n, R.ncol = 1, R.nzmax = nz > 0 ? (size_t)nz : 1;
+    R.p = p, R.i = f->ri, R.x = NULL;
+    R.stype = 0, R.itype = CHOLMOD_INT, R.xtype = CHOLMOD_PATTERN, R.dtype = CHOLMOD_DOUBLE;
+    R.sorted = 0, R.packed = 1;
+    cholmod_rowdel((size_t)f->pinv[k], &R, f->L, &f->c);
+    CX_TRY(cx_cholmod_check(&f->c, f->L, "row delete", d));
+    if (f->cnt)
+        f->cnt->updates++;
+    return CX_OK;
+}
+
+double cx_ldlmod_row_cost(cx_ldlmod *f, int k, const cx_csc *A, const unsigned char *keep)
+{
+    const int *lnz = f->L->nz;
+    double cost = 0;
+    int nz = ldlmod_row_reach(f, k, A, keep);
+    for (int a = 0; a < nz; a++)
+        cost += lnz[f->ri[a]];
+    for (int j = f->pinv[k]; j != -1; j = f->parent[j])
+        cost += lnz[j];
+    return cost;
+}
+
+double cx_ldlmod_factor_nnz(const cx_ldlmod *f)
+{
+    return f->lnz_full;
+}
+
 int cx_ldlmod_add(cx_ldlmod *f, int k, const cx_csc *A, const unsigned char *keep, double shift,
                   cx_diag *d)
 {
@@ -205,13 +330,14 @@ int cx_ldlmod_add(cx_ldlmod *f, int k, const cx_csc *A, const unsigned char *kee
 
 int cx_ldlmod_solve(cx_ldlmod *f, const double *b, double *x, cx_diag *d)
 {
-    memcpy(f->w, b, sizeof(double) * (size_t)f->n);
-    cholmod_dense B = cx_cholmod_vec(f->w, f->n);
-    cholmod_dense *X = cholmod_solve(CHOLMOD_A, f->L, &B, &f->c);
+    /* solve2 with the workspace kept: no allocation per solve */
+    cholmod_dense B = cx_cholmod_vec((double *)b, f->n);
+    int ok = cholmod_solve2(CHOLMOD_A, f->L, &B, NULL, &f->X, NULL, &f->Y, &f->E, &f->c);
     int st = cx_cholmod_check(&f->c, f->L, "solve (ldlmod)", d);
-    if (st == CX_OK && X)
-        memcpy(x, X->x, sizeof(double) * (size_t)f->n);
-    cholmod_free_dense(&X, &f->c);
+    if (st == CX_OK && (!ok || !f->X))
+        st = cx_diag_set(d, CX_EEXTERNAL, "solve (ldlmod) failed");
+    if (st == CX_OK)
+        memcpy(x, f->X->x, sizeof(double) * (size_t)f->n);
     if (f->cnt)
         f->cnt->solves++;
     return st;

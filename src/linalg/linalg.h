@@ -185,6 +185,22 @@ int cx_ldlmod_delete(cx_ldlmod *F, int k, cx_diag *d);
  * must be the identity's. CX_ENUMERIC if no longer positive definite. */
 int cx_ldlmod_add(cx_ldlmod *F, int k, const cx_csc *A, const unsigned char *keep, double shift,
                   cx_diag *d);
+/* The same as cx_ldlmod_delete, with the pattern of row k of L given to
+ * CHOLMOD from the elimination tree (the paths from the entries of A's
+ * column k on the rows keep says the current matrix has, keep NULL: all),
+ * instead of CHOLMOD's search of every column before k: the cost of a
+ * delete is then that of its update, not O(nnz(L)). A: the matrix every
+ * masked matrix's pattern is within (the one analysed). */
+int cx_ldlmod_delete_row(cx_ldlmod *F, int k, const cx_csc *A, const unsigned char *keep, cx_diag *d);
+/* The entries of L a delete or add of row k would touch (estimated): the
+ * columns of row k's pattern (keep, A as above) and those on the path from
+ * k to the root of the elimination tree, at the factor's current counts. */
+double cx_ldlmod_row_cost(cx_ldlmod *F, int k, const cx_csc *A, const unsigned char *keep);
+/* Entries of L as a factorisation fills them (the analysed pattern, the
+ * unit diagonal and D counted once per column): the size of a new
+ * factor, against which updates are weighed. The factor kept holds only
+ * its non-zeros, often far fewer (the masked rows' are dropped). */
+double cx_ldlmod_factor_nnz(const cx_ldlmod *F);
 /* x = A^-1 b for the current matrix. */
 int cx_ldlmod_solve(cx_ldlmod *F, const double *b, double *x, cx_diag *d);
 

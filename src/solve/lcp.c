@@ -178,8 +178,19 @@ void cx_lcp_apply(const cx_lcp *L, const double *v, double *y)
         cx_csc_gemv(&L->A, 1.0, v, 0.0, y);
 }
 
+/* cx_lcp_result with A v given (Av, NULL: computed row by row): the
+ * multipliers are then read from it instead of one row of A each. */
+static int lcp_result(cx_lcp_map *map, int reduced, const double *v, const double *Av, double *work,
+                      const cx_problem *p, double *u, double *lN);
+
 int cx_lcp_result(cx_lcp_map *map, int reduced, const double *v, double *work,
                   const cx_problem *p, double *u, double *lN)
+{
+    return lcp_result(map, reduced, v, NULL, work, p, u, lN);
+}
+
+static int lcp_result(cx_lcp_map *map, int reduced, const double *v, const double *Av, double *work,
+                      const cx_problem *p, double *u, double *lN)
 {
     const double *vf = v;
     int n = map->full.n;
@@ -190,6 +201,11 @@ int cx_lcp_result(cx_lcp_map *map, int reduced, const double *v, double *work,
     memcpy(u, map->u0, sizeof(double) * (size_t)n);
     cx_csc_gemv(&map->T, 1.0, vf, 1.0, u);
     /* lN_r = (A v - b)_p(r): one row of A per contact row */
+    if (Av && !reduced) {
+        for (int k = 0; k < p->m; k++)
+            lN[k] = Av[map->piv[k]] - map->full.b[map->piv[k]];
+        return CX_OK;
+    }
     for (int k = 0; k < p->m; k++) {
         int j = map->piv[k];
         double s = -map->full.b[j];
@@ -211,7 +227,10 @@ int cx_lcp_solver_init(cx_lcp_solver *s, const cx_lcp *L, cx_counters *cnt, cx_d
         s->Md = CX_NEW(double, (size_t)L->n * L->n);
         return s->Md ? CX_OK : cx_diag_set(d, CX_ENOMEM, "out of memory (dense %d x %d)", L->n, L->n);
     }
-    if (cx_csc_copy(&s->M, &L->A))
+    /* the masked matrix has A's pattern: borrowed, only the values are its own */
+    s->M.nrow = L->A.nrow, s->M.ncol = L->A.ncol;
+    s->M.p = L->A.p, s->M.i = L->A.i;
+    if (!(s->M.x = CX_NEW(double, cx_csc_nnz(&L->A) + 1)))
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     /* analysed on its first use: a solver whose factors are all ldlmod's
      * (updates) never needs it */
@@ -235,7 +254,7 @@ void cx_lcp_solver_clear(cx_lcp_solver *s)
     cx_ldlmod_destroy(&s->ldl);
     cx_free(s->fkeep);
     cx_fact_destroy(&s->F);
-    cx_csc_clear(&s->M);
+    cx_free(s->M.x);   /* M.p, M.i are A's */
     cx_free(s->Md);
     memset(s, 0, sizeof *s);
 }
@@ -332,12 +351,21 @@ static int lcp_factor_mod(cx_lcp_solver *s, double eps, const unsigned char *zer
         int nch = 0;
         for (int i = 0; i < n; i++)
             nch += s->fkeep[i] != !(zero && zero[i]);
-        if (nch <= s->update_max) {
+        int update = nch <= s->update_max;
+        if (update && s->model && nch > 0) {
+            /* the rows' work against a new factor's (CX_LCP_UPDATE_RATIO) */
+            double budget = CX_LCP_UPDATE_RATIO * cx_ldlmod_factor_nnz(s->ldl), cost = 0;
+            for (int i = 0; i < n && cost <= budget; i++)
+                if (s->fkeep[i] != !(zero && zero[i]))
+                    cost += cx_ldlmod_row_cost(s->ldl, i, &L->A, s->fkeep);
+            update = cost <= budget;
+        }
+        if (update) {
             int st = CX_OK;
             /* deletes first: each add then sees only the rows that stay */
             for (int i = 0; i < n && st == CX_OK; i++)
                 if (s->fkeep[i] && zero && zero[i]) {
-                    st = cx_ldlmod_delete(s->ldl, i, d);
+                    st = cx_ldlmod_delete_row(s->ldl, i, &L->A, s->fkeep, d);
                     s->fkeep[i] = 0;
                 }
             for (int i = 0; i < n && st == CX_OK; i++)
@@ -460,21 +488,34 @@ int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs,
 
 /* Factorise on the set act and move v to the solution of the masked system
  * (lam from it); shared by the plain and the damped step. */
+/* Av (n, or NULL): A v on entry, A v at the new v on exit. Given, the
+ * step takes one product with A (the new v's) instead of two: the entry's
+ * is corrected by the columns of the unknowns the set zeroes. */
 static int pdas_solve_set(cx_lcp_solver *s, double eps, double *v, double *lam,
-                          const unsigned char *act, cx_pdas_guard *g, double *work, cx_diag *d)
+                          const unsigned char *act, cx_pdas_guard *g, double *work, double *Av,
+                          cx_diag *d)
 {
     const cx_lcp *L = s->L;
     int n = L->n;
     double *r = work + n;
     for (int i = 0; i < n; i++)
-        if (act[i])
+        if (act[i] && v[i] != 0) {
+            if (Av && !L->dense)
+                for (int q = L->A.p[i]; q < L->A.p[i + 1]; q++)
+                    Av[L->A.i[q]] -= L->A.x[q] * v[i];
             v[i] = 0;
+        }
+    if (Av && L->dense)
+        cx_lcp_apply(L, v, Av);
     for (int fallback = 0;; fallback = 1) {
         int st = cx_lcp_factor(s, eps, act, NULL, d);
         /* the correction from the current v (v = 0 on the active set):
          * where the system is singular the free motion keeps its value */
         if (st == CX_OK) {
-            cx_lcp_apply(L, v, r);
+            if (Av)
+                memcpy(r, Av, sizeof(double) * (size_t)n);
+            else
+                cx_lcp_apply(L, v, r);
             for (int i = 0; i < n; i++)
                 r[i] = L->b[i] - r[i] - eps * v[i];
             st = cx_lcp_solve(s, act, r, r, work, d);   /* CG's fallback can find it singular */
@@ -491,9 +532,10 @@ static int pdas_solve_set(cx_lcp_solver *s, double eps, double *v, double *lam,
         break;
     }
     cx_vec_axpy(n, 1.0, r, v);
-    cx_lcp_apply(L, v, work);
+    double *Avn = Av ? Av : work;
+    cx_lcp_apply(L, v, Avn);
     for (int i = 0; i < n; i++)
-        lam[i] = act[i] ? work[i] + eps * v[i] - L->b[i] : 0;
+        lam[i] = act[i] ? Avn[i] + eps * v[i] - L->b[i] : 0;
     return CX_OK;
 }
 
@@ -525,6 +567,7 @@ int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *
     if (act[0] == 2) {
         pdas_first_set(L, c, v, lam, g, act);
         g->best = n + 1, g->tries = CX_PDAS_TRIES;
+        g->Av_valid = 0;
     } else {
         /* infeasible: active with lam < 0, inactive with v < 0 (to roundoff) */
         double vs = cx_vec_norminf(n, v), ls = cx_vec_norminf(n, lam), tol = CX_PDAS_ROUNDOFF;
@@ -550,7 +593,14 @@ int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *
             if (L->S[i] && (block ? (act[i] ? lam[i] < -tol * ls : v[i] < -tol * vs) : i == last))
                 act[i] = !act[i];
     }
-    return pdas_solve_set(s, eps, v, lam, act, g, work, d);
+    if (g->Av && !g->Av_valid) {
+        cx_lcp_apply(L, v, g->Av);
+        g->Av_valid = 1;
+    }
+    int st = pdas_solve_set(s, eps, v, lam, act, g, work, g->Av, d);
+    if (st != CX_OK)
+        g->Av_valid = 0;
+    return st;
 }
 
 /* ---- damped PDAS step ------------------------------------------------------- */
@@ -589,8 +639,10 @@ int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, d
     const cx_lcp *L = s->L;
     int n = L->n, first = ls->alpha == 0, changed = 0;
     *same = 0;
-    /* the set at v */
-    cx_lcp_apply(L, v, ls->Av);
+    /* the set at v (A v kept from the last step while valid) */
+    if (first || !ls->Av_valid)
+        cx_lcp_apply(L, v, ls->Av);
+    ls->Av_valid = 0;
     for (int i = 0; i < n; i++)
         lam[i] = L->S[i] ? ls->Av[i] + eps * v[i] - L->b[i] : 0;
     if (first) {
@@ -615,10 +667,11 @@ int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, d
     /* the Newton point on the set (kept while the set is) */
     if (first || changed) {
         memcpy(ls->vn, v, sizeof(double) * (size_t)n);
-        CX_TRY(pdas_solve_set(s, eps, ls->vn, work + 2 * n, act, g, work, d));
+        memcpy(ls->Avn, ls->Av, sizeof(double) * (size_t)n);
+        CX_TRY(pdas_solve_set(s, eps, ls->vn, work + 2 * n, act, g, work, ls->Avn, d));
     }
-    cx_lcp_apply(L, ls->vn, ls->Ad);
-    cx_vec_axpy(n, -1.0, ls->Av, ls->Ad);
+    for (int i = 0; i < n; i++)
+        ls->Ad[i] = ls->Avn[i] - ls->Av[i];
     /* Armijo on ||F||^2 */
     double th0 = pdas_merit(L, eps, c, v, ls->vn, ls->Av, ls->Ad, 0), alpha = 1, th = th0;
     double ref = th0;
@@ -646,6 +699,7 @@ int cx_lcp_pdas_search_step(cx_lcp_solver *s, double eps, double c, double *v, d
     }
     ls->alpha = alpha;
     ls->merit = sqrt(th);
+    ls->Av_valid = 1;
     return CX_OK;
 }
 
@@ -690,7 +744,10 @@ int cx_lcp_run_init(cx_lcp_run *r, cx_session *s, const cx_param_values *params,
     r->ls.Av = CX_NEW(double, nmax);
     r->ls.Ad = CX_NEW(double, nmax);
     r->ls.vn = CX_NEW(double, nmax);
-    if (!r->v || !r->lam || !r->work || !r->act || !r->ls.Av || !r->ls.Ad || !r->ls.vn) {
+    r->ls.Avn = CX_NEW(double, nmax);
+    r->guard.Av = CX_NEW(double, nmax);
+    if (!r->v || !r->lam || !r->work || !r->act || !r->ls.Av || !r->ls.Ad || !r->ls.vn || !r->ls.Avn ||
+        !r->guard.Av) {
         cx_lcp_run_clear(r);
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
@@ -711,7 +768,8 @@ void cx_lcp_run_clear(cx_lcp_run *r)
     cx_free(r->lam);
     cx_free(r->work);
     cx_free(r->act);
-    cx_free(r->ls.Av), cx_free(r->ls.Ad), cx_free(r->ls.vn);
+    cx_free(r->ls.Av), cx_free(r->ls.Ad), cx_free(r->ls.vn), cx_free(r->ls.Avn);
+    cx_free(r->guard.Av);
     memset(r, 0, sizeof *r);
 }
 
@@ -747,6 +805,8 @@ int cx_lcp_run_stage_done(cx_lcp_run *r, cx_iterate *it, cx_diag *d)
     }
     r->ls.alpha = 0;
     r->ls.steps = 0;
+    r->ls.Av_valid = 0;
+    r->guard.Av_valid = 0;
     r->guard.ties_to_v = 1;
     /* nonmonotone: near the solution the full PDAS steps of the projection
      * may raise the residual for a step or two */
@@ -781,5 +841,8 @@ int cx_lcp_run_project(cx_lcp_run *r, cx_session *s, cx_iterate *it, cx_diag *d)
 int cx_lcp_run_publish(cx_lcp_run *r, cx_session *s, cx_iterate *it)
 {
     const cx_problem *p = cx_session_problem(s);
-    return cx_lcp_result(r->map, r->reduced, r->v, r->work + 2 * r->L->n, p, it->u, it->lN);
+    /* A v of the last PDAS step when it is of this v (one product fewer
+     * per published iterate) */
+    const double *Av = r->ls.Av_valid ? r->ls.Av : r->guard.Av_valid ? r->guard.Av : NULL;
+    return lcp_result(r->map, r->reduced, r->v, Av, r->work + 2 * r->L->n, p, it->u, it->lN);
 }

@@ -61,13 +61,17 @@ int cx_lcp_result(cx_lcp_map *map, int reduced, const double *v, double *work,
 typedef struct cx_lcp_solver {
     const cx_lcp *L;
     cx_fact *F;
-    cx_csc M;            /* sparse: A's pattern, values rebuilt per factorisation */
+    cx_csc M;            /* sparse: A's pattern (borrowed: M.p, M.i are A's), its own
+                            values, rebuilt per factorisation */
     double *Md;          /* dense: n x n */
     cx_counters *cnt;
     /* updates (cx_lcp_solver_updates): a simplicial LDL' factor of the last
      * masked matrix, changed row by row when at most update_max unknowns
      * change their mask (same eps, no dadd), else refactorised */
     int update_max;      /* 0: always refactorise (cx_fact) */
+    int model;           /* 1: update when the changed rows' cost is at most
+                            CX_LCP_UPDATE_RATIO x nnz(L) (and update_max rows); 0: when at
+                            most update_max rows change */
     cx_ldlmod *ldl;
     unsigned char *fkeep;   /* n: 1 where the factored matrix is A's (not masked) */
     double feps;            /* the eps it was factored with */
@@ -89,6 +93,16 @@ typedef struct cx_lcp_solver {
     int pcg_solves;         /* systems solved by CG */
 } cx_lcp_solver;
 #define CX_LCP_PCG_ROWS 16
+/* The cost model's break-even (cx_lcp_solver.model): changing the factor
+ * row by row touches about cx_ldlmod_row_cost entries of L per row, one
+ * scalar multiply-add each along the etree paths, while a new factor is
+ * a supernodal (BLAS 3) factorisation plus the conversion to the
+ * simplicial LDL' the updates need. Measured on the walls at 1/100 (row
+ * updates of a running-bond step against its refactorisation), a new
+ * factor costs about as much as updates touching 38 x nnz(L) entries:
+ * below that the updates are cheaper. The ratio is of work, not of time,
+ * so the choice is the same on every machine and every run. */
+#define CX_LCP_UPDATE_RATIO 38.0
 #define CX_LCP_PCG_MAXIT 40
 
 int cx_lcp_solver_init(cx_lcp_solver *s, const cx_lcp *L, cx_counters *cnt, cx_diag *d);
@@ -128,6 +142,8 @@ int cx_lcp_solve(cx_lcp_solver *s, const unsigned char *zero, const double *rhs,
 #define CX_PDAS_ROUNDOFF 1e-12
 #endif
 typedef struct cx_pdas_guard {
+    double *Av;          /* n, or NULL: A v at the current v, kept between plain steps */
+    int Av_valid;        /* Av is of the current v (0: recompute at the next step) */
     int best, tries;     /* fewest infeasibilities so far; block tries left */
     long single;         /* single pivots taken */
     double eps_fallback; /* eps used when the unregularised system is singular (0: fail) */
@@ -162,6 +178,8 @@ int cx_lcp_pdas_step(cx_lcp_solver *s, double eps, double c, double *v, double *
 #define CX_PDAS_PROJ_MEMORY 4   /* the projection's (lcp.c) */
 typedef struct cx_pdas_search {
     double *Av, *Ad, *vn;   /* n each: A v, A (vn - v), the Newton point */
+    double *Avn;            /* n: A vn (kept with vn: a shortened step needs no product) */
+    int Av_valid;           /* Av is of the current v (else recomputed) */
     double alpha;           /* the last step length; 0 before the first */
     double merit;           /* ||F(v)|| at the current v */
     long short_steps;       /* steps with alpha < 1 */

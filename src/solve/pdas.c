@@ -13,9 +13,10 @@
  * the set repeats (then the iterate solves the LCP exactly).
  *
  * update = N (sparse systems, both stages): when at most N unknowns change
- * sets, the previous factor is changed row by row (CHOLMOD row delete /
- * row add, lcp.c) instead of refactorised; late iterations change a few
- * joints. The updated and the new factor round differently, and the
+ * sets and (model = 1, the default) the entries of L the row changes would
+ * touch are below CX_LCP_UPDATE_RATIO x nnz(L), the previous factor is
+ * changed row by row (CHOLMOD row delete / row add, lcp.c) instead of
+ * refactorised; late iterations change a few joints. The updated and the new factor round differently, and the
  * regularised systems (condition near amax / eps = 1e10) can turn a joint
  * at a tie: the solution is the same to 1e-10, the iteration count may
  * differ by a few (test_masonry). update = 0 refactorises every time.
@@ -39,10 +40,13 @@
 
 #include <string.h>
 
-/* The default of "update": on stack bond 1/100 (179250 unknowns) a row
- * change costs about 1/250 of a refactorisation (560 rows: 0.68 s against
- * 0.26 s for a new factor; 37 rows: 0.08 s) */
-#define CX_PDAS_UPDATE_MAX 200
+/* The default cap of "update": high enough that the cost model (model =
+ * 1, lcp.h CX_LCP_UPDATE_RATIO) decides; with model = 0 the count alone
+ * decides, and 200 was its measured default (stack bond 1/100: a row
+ * change costs about 1/250 of a refactorisation there, far more on
+ * running bond, whose interlocked bricks give the factor more fill). */
+#define CX_PDAS_UPDATE_MAX 100000
+#define CX_PDAS_UPDATE_COUNT 200
 
 typedef struct {
     cx_lcp_run run;
@@ -55,9 +59,13 @@ static const cx_param pdas_params[] = {
     CX_LCP_PARAMS_COMMON,
     {"eps0", CX_PARAM_REAL, 0, 0, 1, NULL,
      "continuation: start with this eps (relative) and divide by 100 down to eps (0: off)", 0},
-    {"update", CX_PARAM_INT, CX_PDAS_UPDATE_MAX, 0, 1e9, NULL,
-     "update the factor row by row when at most this many unknowns change sets, else refactorise "
-     "(0: always refactorise)", 0},
+    {"update", CX_PARAM_INT, -1, -1, 1e9, NULL,
+     "update the factor row by row when at most this many unknowns change sets (and, with model "
+     "= 1, the rows' work is below a new factor's), else refactorise (0: always refactorise; "
+     "-1: 100000 with the model, 200 without)", 0},
+    {"model", CX_PARAM_BOOL, 1, 0, 1, NULL,
+     "1: update when the changed rows touch at most 38 x nnz(L) entries of the factor (the "
+     "break-even with a new factor); 0: the count rule alone (update = N, 200 if not given)", 0},
     {"start", CX_PARAM_CHOICE, 0, 0, 1, "paper|closed",
      "first set: paper (from v = 0, 003 §4) or closed (every contact closed, then plain steps: "
      "fewer iterations where few open, e.g. the masonry walls; more where most do)", 0},
@@ -129,11 +137,14 @@ static int pdas_init(void *state, cx_session *s, const cx_param_values *params, 
     CX_TRY(cx_lcp_run_init(&st->run, s, params, reduced, d));
     cx_lcp_run *r = &st->run;
     int status = cx_lcp_solver_init(&st->reg, r->L, cx_session_counters(s), d);
-    int upd = (int)cx_param_get(params, "update");
+    int upd = (int)cx_param_get(params, "update"), model = cx_param_get(params, "model") != 0;
+    if (upd < 0)   /* the default: the model decides, or the count rule's own default */
+        upd = model ? CX_PDAS_UPDATE_MAX : CX_PDAS_UPDATE_COUNT;
     if (!status)
         status = cx_lcp_solver_updates(&st->reg, upd, d);
     if (!status && r->project)
         status = cx_lcp_solver_updates(&r->proj, upd, d);
+    st->reg.model = r->proj.model = model;
     r->proj.like = &st->reg;   /* the projection's factor: the same pattern when on the same LCP */
     if (status) {
         pdas_destroy(st);
@@ -167,6 +178,7 @@ static int pdas_step(void *state, cx_session *s, cx_iterate *it, cx_diag *d)
             st->eps = st->eps / 100 > r->eps ? st->eps / 100 : r->eps;
             r->guard.best = r->L->n + 1;
             CX_TRY(cx_lcp_pdas_resolve(&st->reg, st->eps, r->v, r->lam, r->act, r->work, d));
+            r->ls.Av_valid = r->guard.Av_valid = 0;   /* v moved */
             same = 0;
         }
         if (!same) {

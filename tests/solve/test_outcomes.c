@@ -372,6 +372,14 @@ static void test_auto_converges(void)
     const char *sets;
     cx_session *s = fixture_session("runningbond", 8, &sc);
     CX_CHECK(strcmp(cx_scene_auto_method(&sc, 8, cx_session_problem(s), CX_FRICTION_NONE, &sets), "pdas") == 0);
+    CX_CHECK(strcmp(sets, "start=closed") == 0);   /* the walls: every joint closed first */
+    {
+        cx_options o;
+        cx_options_default(&o);
+        CX_CHECK_OK(fixture_run_opts(s, "pdas", sets, &o, &d));
+        const cx_iterate *it = cx_session_iterate(s);
+        CX_CHECK(it->reason == CX_CONVERGED_KKT && it->kkt <= o.tol);
+    }
     cx_session_destroy(&s);
     s = fixture_session("hertz", 8, &sc);
     CX_CHECK(strcmp(cx_scene_auto_method(&sc, 8, cx_session_problem(s), CX_FRICTION_NONE, &sets), "ssn-tresca") == 0);
