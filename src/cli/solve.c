@@ -47,8 +47,8 @@ static const cx_opt solve_own_opts[] = {
     {"quiet", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no per-iteration lines", offsetof(solve_args, quiet),
      NULL},
     {"backend", 0, CX_OPT_CHOICE, 0, 0, 0, "direct|petsc", "NAME",
-     "direct (sparse Cholesky, the default) | petsc (CG + GAMG on the MPI ranks: mpirun -n N signorini "
-     "solve ...; methods ssn-tresca, petsc-vi, petsc-tao)", offsetof(solve_args, backend), NULL},
+     "direct (sparse Cholesky, the default) | petsc (CG + algebraic multigrid on the MPI ranks, GAMG in 3D "
+     "and BoomerAMG in 2D: mpirun -n N signorini solve ...; methods ssn-tresca, petsc-vi, petsc-tao)", offsetof(solve_args, backend), NULL},
     {"vtu-series", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR",
      "write every iterate as DIR/iter_NNNN.vtu and DIR/series.pvd (a ParaView time series, time = "
      "iteration); each iterate is completed first, as the explorer does", offsetof(solve_args, vtu_series),

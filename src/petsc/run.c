@@ -8,8 +8,9 @@
 #include <string.h>
 
 static const cx_petsc_method px_methods[] = {
-    {"ssn-tresca", "primal semismooth Newton / active set, CG + GAMG per step (000 §4.2 without the Schur "
-                   "reduction)", CX_FRICTIONLESS | CX_TRESCA},
+    {"ssn-tresca", "primal semismooth Newton / active set, a Krylov solve per step: CG + GAMG in 3D, CG + "
+                   "BoomerAMG in 2D where PETSc has hypre (000 §4.2 without the Schur reduction)",
+     CX_FRICTIONLESS | CX_TRESCA},
     {"petsc-vi", "PETSc SNES vinewtonrsls: reduced-space active-set Newton on the bounds", CX_FRICTIONLESS},
     {"petsc-tao", "PETSc TAO tron: trust-region Newton with gradient projection on the energy", CX_FRICTIONLESS},
 };

@@ -20,6 +20,14 @@ r = run(["solve", "hertz", "--level", "32", "--backend", "petsc"])
 check(r.returncode == 0 and "converged" in r.stdout and "(petsc, 1 rank)" in r.stdout
       and re.search(r"rank 0: \d+ rows, 2048 elements assembled", r.stdout), "hertz 32 alone", r)
 contact1 = re.search(r"contact x 0 y (\S+)", r.stdout)
+# the summary names the preconditioner that ran: BoomerAMG in 2D where
+# PETSc has hypre, else GAMG; -cx_pc_type gamg is named as it runs
+pc2d = re.search(r"petsc: +1 rank; CG \+ (BoomerAMG|GAMG): \d+ Krylov iterations in \d+ solves", r.stdout)
+check(pc2d is not None, "hertz 32: the summary names CG + BoomerAMG or CG + GAMG", r)
+r = run(["solve", "hertz", "--level", "32", "--backend", "petsc"], env={"PETSC_OPTIONS": "-cx_pc_type gamg"})
+check(r.returncode == 0 and "CG + GAMG: " in r.stdout, "hertz 32 with -cx_pc_type gamg: CG + GAMG named", r)
+r = run(["solve", "block3d", "--level", "4", "--backend", "petsc"])
+check(r.returncode == 0 and "CG + GAMG: " in r.stdout, "block3d 4: CG + GAMG named", r)
 
 # two ranks: one summary (rank 0's), both ranks' lines, the elements split
 if shutil.which("mpirun"):
