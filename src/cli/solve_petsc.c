@@ -132,6 +132,8 @@ int cli_solve_petsc(const char *cmd, const cx_scene *sc, const cx_problem *p, co
             fprintf(summary, "%ld Krylov iterations in the method's inner solves (%s)", r.krylov,
                     r.solver[0] ? r.solver : "no Krylov solver");
         fprintf(summary, "; peak memory %.0f MB in all\n", mem / 1048576.0);
+        if (r.reason == CX_DIVERGED_STALL && r.message[0])   /* at the roundoff floor (petsc/run.c) */
+            fprintf(summary, "stalled: %s\n", r.message);
         for (int k = 0; k < r.nranks; k++)
             fprintf(summary, "  rank %d: %d rows, %d elements assembled, peak memory %.0f MB\n", k, r.rows[k],
                     r.elems[k], r.mem_peak[k] / 1048576.0);

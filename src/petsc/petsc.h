@@ -64,6 +64,9 @@ typedef struct cx_petsc_result {
     int iterations;      /* Newton (or SNES, TAO) iterations */
     double kkt;
     cx_kkt kkt_parts;
+    double kkt_floor;    /* the roundoff floor of the kkt error at the last iterate where it was
+                            near it (eps max_i sum_j |K_ij u_j| over the force scale; run.c), else 0:
+                            a run that stops there ends CX_DIVERGED_STALL and says so */
     double *u, *lN, *lT; /* n, m, nt: the last iterate, on every rank */
     long krylov;         /* Krylov iterations in all */
     int pc_setups;       /* Krylov solves (each with its preconditioner set up, unless reused) */

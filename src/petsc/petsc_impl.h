@@ -84,6 +84,7 @@ typedef struct px_run {
     double t0;
     double best;                   /* the smallest kkt error so far, and its iteration */
     int best_iter;
+    double last_kkt;               /* the last step's kkt error */
 } px_run;
 /* The kkt error of r's iterate into r, and the observer told; returns 1
  * if the run ends here (r->reason set), else 0. */

@@ -65,6 +65,14 @@ with tempfile.TemporaryDirectory() as tmp:
             check(a[0] is not None and a[0] == b[0] and a[1] == b[1] and a[0]["converged"],
                   f"{scene} {level} on {max(mpi, 1)} rank(s): the same result and VTU without the serial K", r)
 
+# a tolerance below the roundoff floor of K u (hertz 32: about 2e-13): the
+# run stops the step after it gets there (8 steps to 1e-10, then one that
+# cannot halve the error), not at the stall window (50), and says why
+r = run(["solve", "hertz", "--level", "32", "--backend", "petsc", "--tol", "1e-16"])
+steps = [int(x) for x in re.findall(r"^\s+(\d+)\s+\d\.\d+e[-+]\d+\s", r.stdout, re.M)]
+check(r.returncode != 0 and "stalled" in r.stdout and "roundoff floor of K u" in r.stdout and steps
+      and steps[-1] <= 10, "hertz 32 to tol 1e-16: stopped at the roundoff floor, with the reason", r)
+
 # a contact row off the axes (node to segment between two bodies): refused with the reason
 r = run(["solve", "twoblocks", "--backend", "petsc"])
 check(r.returncode == 1 and "acts on more than one dof" in r.stderr and "flat obstacles along an axis" in r.stderr,
