@@ -392,6 +392,30 @@ static void scaling_petsc_rows(bench_table *t, const cx_scene *sc, const bench_p
 }
 #endif
 
+#if CX_HAVE_PETSC
+/* A rank that runs the PETSc backend alone (no direct path, baseline or
+ * reference here: every rank but 0, and rank 0 with --backend petsc)
+ * builds the scene without the serial K, which the backend does not read
+ * (it assembles its own); bench_build's checks otherwise. A perturbed
+ * problem is built whole (its perturbation may read K). */
+static int scaling_build_petsc(const bench_problem_spec *spec, cx_problem **p, double *t_assemble, cx_diag *d)
+{
+    if (spec->perturb)
+        return bench_build(spec, p, t_assemble, d);
+    double t0 = cx_clock_now();
+    CX_TRY(cx_scene_build_flags(spec->scene, spec->level, CX_SCENE_BUILD_NO_K, p, NULL, d));
+    cx_friction_state fr;
+    bench_friction(spec, &fr);
+    int st = cx_friction_check(&fr, 0, d);
+    if (st != CX_OK) {
+        cx_problem_destroy(p);
+        return st;
+    }
+    *t_assemble = cx_clock_now() - t0;
+    return CX_OK;
+}
+#endif
+
 /* The level from which the PETSc backend is faster than the direct path,
  * for one method both ran (method NULL: the fastest converged row of each
  * backend per level): the first level of the last run of levels, up to
@@ -503,6 +527,10 @@ static int bench_scaling_run(scaling_args *a, int rank, int nranks)
         int nm = 0, st;
         if (need_base)
             st = scaling_level_costs(&spec, a->c.repeat, &t_asm, &t_base, &fmb, &ord, &p, &d);
+#if CX_HAVE_PETSC
+        else if (a->petsc)
+            st = scaling_build_petsc(&spec, &p, &t_asm, &d);
+#endif
         else
             st = bench_build(&spec, &p, &t_asm, &d);
         if (!st && run_direct && bench_methods(direct_all ? NULL : direct_ids, p, spec.law, methods, 64, &nm, &d)) {

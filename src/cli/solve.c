@@ -47,8 +47,8 @@ static const cx_opt solve_own_opts[] = {
     {"quiet", 0, CX_OPT_FLAG, 0, 0, 0, NULL, NULL, "no per-iteration lines", offsetof(solve_args, quiet),
      NULL},
     {"backend", 0, CX_OPT_CHOICE, 0, 0, 0, "direct|petsc", "NAME",
-     "direct (sparse Cholesky, the default) | petsc (CG + GAMG on the MPI ranks: mpirun -n N signorini "
-     "solve ...; methods ssn-tresca, petsc-vi, petsc-tao)", offsetof(solve_args, backend), NULL},
+     "direct (sparse Cholesky, the default) | petsc (CG + algebraic multigrid on the MPI ranks, GAMG in 3D "
+     "and BoomerAMG in 2D: mpirun -n N signorini solve ...; methods ssn-tresca, petsc-vi, petsc-tao)", offsetof(solve_args, backend), NULL},
     {"vtu-series", 0, CX_OPT_STRING, 0, 0, 0, NULL, "DIR",
      "write every iterate as DIR/iter_NNNN.vtu and DIR/series.pvd (a ParaView time series, time = "
      "iteration); each iterate is completed first, as the explorer does", offsetof(solve_args, vtu_series),
@@ -343,7 +343,12 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
 
     cx_problem *p = NULL;
     cli_progress_start();   /* on a terminal: assembly, then the session's setup */
-    if (cx_scene_build(&sc, a.s.level, &p, NULL, &d))
+    /* --backend petsc assembles its own K from the mesh and reads no
+     * product with the serial one (its kkt error takes K u from its
+     * residual): the scene is built without it, unless --baseline
+     * factorises it (hertz 1024: 0.35 GB a rank, half the build's time) */
+    unsigned build_flags = a.backend && !a.baseline ? CX_SCENE_BUILD_NO_K : 0u;
+    if (cx_scene_build_flags(&sc, a.s.level, build_flags, &p, NULL, &d))
         return cli_fail(cmd, d.msg);
     double t_assemble = cx_clock_now() - t0;
     if (cli_render_check(&a.render, p->dim, &d)) {
@@ -363,13 +368,6 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
         return cli_fail(cmd, d.msg);
     }
     if (a.backend) {   /* cli/solve_petsc.c */
-        /* the backend assembles its own K from the mesh and reads no
-         * product with the serial one (its kkt error takes K u from its
-         * residual): freed here, that K is not held on every rank beside
-         * the distributed one (prism 9: 0.6 GB a rank). --baseline
-         * factorises it */
-        if (!a.baseline)
-            cx_csc_clear(&p->K);
         cli_petsc_args pa = {a.s.method, a.s.level, a.json, a.quiet, a.baseline, a.render.vtu, t_assemble};
         int code = cli_solve_petsc(cmd, &sc, p, &fr, &opt, &pa, summary);
         cx_problem_destroy(&p);

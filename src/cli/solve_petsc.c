@@ -126,11 +126,14 @@ int cli_solve_petsc(const char *cmd, const cx_scene *sc, const cx_problem *p, co
             mem += r.mem_peak[k];
         fprintf(summary, "petsc:   %d rank%s; ", r.nranks, r.nranks > 1 ? "s" : "");
         if (r.pc_setups)
-            fprintf(summary, "CG + GAMG: %ld Krylov iterations in %d solves (%.1f per solve)", r.krylov,
+            fprintf(summary, "%s: %ld Krylov iterations in %d solves (%.1f per solve)", r.solver, r.krylov,
                     r.pc_setups, (double)r.krylov / r.pc_setups);
         else
-            fprintf(summary, "%ld Krylov iterations in the method's inner solves", r.krylov);
+            fprintf(summary, "%ld Krylov iterations in the method's inner solves (%s)", r.krylov,
+                    r.solver[0] ? r.solver : "no Krylov solver");
         fprintf(summary, "; peak memory %.0f MB in all\n", mem / 1048576.0);
+        if (r.reason == CX_DIVERGED_STALL && r.message[0])   /* at the roundoff floor (petsc/run.c) */
+            fprintf(summary, "stalled: %s\n", r.message);
         for (int k = 0; k < r.nranks; k++)
             fprintf(summary, "  rank %d: %d rows, %d elements assembled, peak memory %.0f MB\n", k, r.rows[k],
                     r.elems[k], r.mem_peak[k] / 1048576.0);

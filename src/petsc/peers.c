@@ -203,6 +203,11 @@ int px_vi_solve(px_run *run, cx_diag *d)
     }
     PX(SNESSetOptionsPrefix(snes, "cx_"));
     PX(SNESSetFromOptions(snes));
+    {
+        KSP ksp;
+        PX(SNESGetKSP(snes, &ksp));
+        px_ksp_name(ksp, run->r->solver, sizeof run->r->solver);
+    }
     PX(SNESSolve(snes, NULL, x));
     if (c.status != CX_OK) {
         status = c.status;
@@ -296,6 +301,12 @@ int px_tao_solve(px_run *run, cx_diag *d)
     }
     PX(TaoSetOptionsPrefix(tao, "cx_"));
     PX(TaoSetFromOptions(tao));
+    {
+        KSP ksp = NULL;
+        PX(TaoGetKSP(tao, &ksp));
+        if (ksp)
+            px_ksp_name(ksp, run->r->solver, sizeof run->r->solver);
+    }
     PX(TaoSolve(tao));
     if (c.status != CX_OK) {
         status = c.status;

@@ -7,8 +7,9 @@
  * keeps its dim dofs: block size dim), the rigid-body modes attached as the
  * near null space. The methods on it solve contact rows that each pin one
  * dof (a flat obstacle along an axis): the primal semismooth Newton of
- * ssn-tresca with CG + GAMG per step, and PETSc's own SNES VI and TAO as
- * peers for frictionless contact.
+ * ssn-tresca with a Krylov solve per step (CG + GAMG in 3D, CG +
+ * BoomerAMG in 2D where PETSc has hypre), and PETSc's own SNES VI and TAO
+ * as peers for frictionless contact.
  *
  * This header includes no PETSc or MPI header: the program's other layers
  * see plain C. Only src/petsc/ includes them. Every call below is
@@ -63,11 +64,16 @@ typedef struct cx_petsc_result {
     int iterations;      /* Newton (or SNES, TAO) iterations */
     double kkt;
     cx_kkt kkt_parts;
+    double kkt_floor;    /* the roundoff floor of the kkt error at the last iterate where it was
+                            near it (eps max_i sum_j |K_ij u_j| over the force scale; run.c), else 0:
+                            a run that stops there ends CX_DIVERGED_STALL and says so */
     double *u, *lN, *lT; /* n, m, nt: the last iterate, on every rank */
     long krylov;         /* Krylov iterations in all */
     int pc_setups;       /* Krylov solves (each with its preconditioner set up, unless reused) */
     int pc_reused;       /* of which reused the last step's preconditioner (the sets unchanged) */
     int pc_rebuilt;      /* preconditioners built afresh after one failed */
+    char solver[96];     /* the inner solves' Krylov method and preconditioner as they ran:
+                            "CG + BoomerAMG"; after a failure ", from step 8 CG + GAMG (SOR)" */
     double t_setup;      /* parallel assembly, Dirichlet rows, near null space */
     double t_solve;      /* the method */
     int nranks;

@@ -58,6 +58,11 @@ int px_system_gather(px_system *sys, Vec v, double *u, cx_diag *d);
 /* Every rank's int or double into out (size entries) on every rank. */
 int px_allgather_int(const px_system *sys, int v, int *out, cx_diag *d);
 int px_allgather_double(const px_system *sys, double v, double *out, cx_diag *d);
+/* A preconditioner's name ("BoomerAMG", "GAMG", else PETSc's type), and
+ * a Krylov solver's with its preconditioner's ("CG + BoomerAMG"), as the
+ * objects are after their options (solver_name.c). */
+void px_pc_name(PC pc, char *buf, size_t len);
+void px_ksp_name(KSP ksp, char *buf, size_t len);
 /* The process's peak resident memory in bytes (getrusage). */
 double px_peak_memory(void);
 
@@ -79,6 +84,7 @@ typedef struct px_run {
     double t0;
     double best;                   /* the smallest kkt error so far, and its iteration */
     int best_iter;
+    double last_kkt;               /* the last step's kkt error */
 } px_run;
 /* The kkt error of r's iterate into r, and the observer told; returns 1
  * if the run ends here (r->reason set), else 0. */

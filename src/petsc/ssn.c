@@ -12,8 +12,10 @@
  * identity with their values moved to the right-hand side, the slip
  * forces added to it (2D: -s sign; 3D: -s q with the linearised
  * tangential stiffness beta P added to K's node block, as ssn-tresca
- * does), and the system solved by CG preconditioned with GAMG (the
- * rigid-body modes as its near null space). The multiplier of a pinned
+ * does), and the system solved by CG preconditioned with algebraic
+ * multigrid: in 3D GAMG (the rigid-body modes as its near null space), in
+ * 2D hypre's BoomerAMG where PETSc has hypre (ssn_ksp says why). The
+ * multiplier of a pinned
  * dof is what its equilibrium row lacks: (f - K u)_j / a_i.
  *
  * Inexact Newton: the step's relative residual (the forcing term) is
@@ -22,12 +24,14 @@
  * is the linear solve's error); where the step is then linear in u (no 3D
  * slip point) it is solved at once to a tenth of the tolerance over the
  * last error, with the last step's preconditioner (the matrix is the
- * same). Every other step sets GAMG up afresh on its own matrix. The run
+ * same). Every other step sets its preconditioner up on its own matrix
+ * (GAMG keeping its prolongator while the sets change little). The run
  * stops on the kkt error alone.
  *
  * Each step communicates: the matrix copy and the pinning (local), the
  * Krylov solve (each CG iteration one halo exchange of the product with K,
- * GAMG's smoothing and restriction on every level, two all-reduces), one
+ * the multigrid's smoothing and restriction on every level, two
+ * all-reduces), one
  * product f - K u, and two all-gathers of a vector of the system (u and
  * the residual), after which every rank holds the whole iterate and
  * predicts the same sets and computes the same kkt error. */
@@ -46,8 +50,11 @@ typedef struct {
     PetscInt *rows;            /* owned pinned rows */
     PetscScalar *vals;         /* their values */
     Mat A;
-    KSP ksp[3];                /* CG + GAMG with Chebyshev smoothing (GAMG's default), with SOR;
-                                  CG + hypre's BoomerAMG */
+    KSP ksp[3];                /* the stages (ssn_ksp): CG + the first preconditioner, then the
+                                  fallbacks */
+    int gamg[3];               /* stage k's preconditioner is GAMG (its prolongator kept or not per step) */
+    char name[3][64];          /* stage k's solver, as the summaries name it */
+    int nstage;
     int stage;                 /* the one in use: a failure moves on for the rest of the run */
     int failed;                /* the last solve failed: no reuse of its preconditioner */
     Vec U, B, X, R, U0;
@@ -225,52 +232,52 @@ static void ssn_clear(ssn_ctx *c)
 
 /* A Krylov solver of the steps: CG on the true residual, relative to the
  * step's initial residual (the Newton residual at the last iterate with
- * the new sets: the inexact-Newton condition), preconditioned by GAMG.
- * Prefix "cx_sor_": GAMG's levels smoothed by symmetric SOR instead of
+ * the new sets: the inexact-Newton condition), preconditioned by type
+ * (PETSC_OPTIONS with the prefix change it: -cx_pc_type gamg). The stages
+ * a run moves through when a preconditioner fails (px_ssn_solve):
+ *
+ * "cx_": the first. 3D: GAMG with Chebyshev smoothing (its default) and
+ * the rigid-body near null space. 2D: BoomerAMG where PETSc has hypre. On
+ * hertz GAMG's iterations per solve grew with the level whatever its
+ * settings (with the defaults 1.5x per level: 128 took 29, 256 45.6; with
+ * the graph's weak couplings dropped at 0.02 and three Chebyshev steps
+ * per level 10.6 at 128, 12.2 at 256, 26 at 512, and at 1024 on 2 ranks
+ * it did not converge): the mesh's elliptical map from the square
+ * (mesh/hertz.c) has a singular Jacobian at the corner u = v = 1, the
+ * point at 45 degrees on the arc, where the elements flatten more with
+ * each level, and GAMG's smoothed aggregation does not follow that
+ * anisotropy. BoomerAMG's
+ * classical coarsening does: 4.6-6.6 iterations per solve from hertz 128
+ * to 1024. Its per-iteration cost is about three of GAMG's (operator
+ * complexity 2.9 on hertz 256 with hypre's defaults; HMIS coarsening, ext+i
+ * interpolation or aggressive first-level coarsening, which lower it,
+ * took more iterations and more time there). -cx_pc_type gamg restores
+ * GAMG in 2D with its 2D settings above.
+ * "cx_sor_": GAMG's levels smoothed by symmetric SOR instead of
  * Chebyshev. A 3D slip point adds beta P with beta = s rho / (|z| - s), as
  * large as |z| is close to s, and Chebyshev's eigenvalue estimate then
  * made the preconditioner indefinite (prism 5; prism 3 on 2 ranks); SOR
  * in turn failed on a coarse level of hertz 128 (a zero pivot), so a run
- * starts with Chebyshev and changes for good at the first step where a
+ * starts with the first and changes for good at the first step where a
  * fresh set-up on that step's matrix fails too (with GAMG built afresh on
- * every step none of prism 3-7, block3d 8, hertz 16-512 gets there); and
- * where both failed (prism 8, step 8: "SUBPC_ERROR" after 4 iterations),
- * prefix "cx_hypre_" takes hypre's BoomerAMG, where PETSc has it. */
-static int ssn_ksp(px_system *sys, const char *prefix, KSP *ksp, cx_diag *d)
+ * every step none of prism 3-7, block3d 8, hertz 16-512 gets there).
+ * "cx_hypre_": where both GAMG stages failed (prism 8, step 8:
+ * "SUBPC_ERROR" after 4 iterations), BoomerAMG, where PETSc has it and
+ * the first stage was not BoomerAMG already. */
+static int ssn_ksp(px_system *sys, const char *prefix, PCType type, KSP *ksp, int *is_gamg, char *name,
+                   size_t len, cx_diag *d)
 {
     int status = CX_OK;
     PC pc;
+    PCType t;
     PX(KSPCreate(sys->comm, ksp));
     PX(KSPSetType(*ksp, KSPCG));
     PX(KSPSetNormType(*ksp, KSP_NORM_UNPRECONDITIONED));
     PX(KSPSetInitialGuessNonzero(*ksp, PETSC_TRUE));
     PX(KSPConvergedDefaultSetUIRNorm(*ksp));
     PX(KSPGetPC(*ksp, &pc));
-#ifdef PETSC_HAVE_HYPRE
-    PX(PCSetType(pc, strcmp(prefix, "cx_hypre_") == 0 ? PCHYPRE : PCGAMG));
-#else
-    PX(PCSetType(pc, PCGAMG));
-#endif
-#ifdef PETSC_HAVE_HYPRE
-    if (strcmp(prefix, "cx_hypre_") != 0)
-#endif
-        /* set per step by px_ssn_solve: kept while the sets change little */
-        PX(PCGAMGSetReuseInterpolation(pc, PETSC_FALSE));
+    PX(PCSetType(pc, type));
     PX(KSPSetOptionsPrefix(*ksp, prefix));   /* PETSC_OPTIONS="-cx_ksp_monitor ..." */
-    if (sys->dim == 2 && strcmp(prefix, "cx_") == 0) {
-        /* 2D (hertz's graded triangles): the graph's weak couplings
-         * dropped (threshold 0.02) and three Chebyshev steps per level
-         * instead of two; with GAMG's defaults the iterations per solve
-         * grew about 1.5x per level (hertz 128: 14.1, 256: 22.8 with the
-         * set-up afresh), with these they stay about 10 (10.3, 11.6);
-         * a higher threshold (0.05) was worse. 3D keeps the defaults */
-        PetscReal thr = 0.02;
-        PX(PCGAMGSetThreshold(pc, &thr, 1));
-        PetscBool has = PETSC_FALSE;
-        PX(PetscOptionsHasName(NULL, NULL, "-cx_mg_levels_ksp_max_it", &has));
-        if (!has)
-            PX(PetscOptionsSetValue(NULL, "-cx_mg_levels_ksp_max_it", "3"));
-    }
     if (strcmp(prefix, "cx_sor_") == 0) {
         static const char *const dflt[][2] = {{"-cx_sor_mg_levels_ksp_type", "richardson"},
                                               {"-cx_sor_mg_levels_pc_type", "sor"}};
@@ -282,6 +289,31 @@ static int ssn_ksp(px_system *sys, const char *prefix, KSP *ksp, cx_diag *d)
         }
     }
     PX(KSPSetFromOptions(*ksp));
+    PX(PCGetType(pc, &t));
+    *is_gamg = strcmp(t, PCGAMG) == 0;
+    if (*is_gamg)   /* set per step by px_ssn_solve: kept while the sets change little */
+        PX(PCGAMGSetReuseInterpolation(pc, PETSC_FALSE));
+    if (*is_gamg && sys->dim == 2 && strcmp(prefix, "cx_") == 0) {
+        /* GAMG in 2D (-cx_pc_type gamg, or no hypre): the graph's weak
+         * couplings dropped (threshold 0.02) and three Chebyshev steps
+         * per level instead of two; with GAMG's defaults the iterations
+         * per solve grew about 1.5x per level (hertz 128: 14.1, 256: 22.8
+         * with the set-up afresh), with these 10.3 and 11.6; a higher
+         * threshold (0.05) was worse. Options given win: the smoothers
+         * read theirs at the first set-up, after this */
+        PetscBool has = PETSC_FALSE;
+        PX(PetscOptionsHasName(NULL, NULL, "-cx_pc_gamg_threshold", &has));
+        if (!has) {
+            PetscReal thr = 0.02;
+            PX(PCGAMGSetThreshold(pc, &thr, 1));
+        }
+        PX(PetscOptionsHasName(NULL, NULL, "-cx_mg_levels_ksp_max_it", &has));
+        if (!has)
+            PX(PetscOptionsSetValue(NULL, "-cx_mg_levels_ksp_max_it", "3"));
+    }
+    px_ksp_name(*ksp, name, len);
+    if (strcmp(prefix, "cx_sor_") == 0 && *is_gamg)
+        snprintf(name + strlen(name), len - strlen(name), " (SOR)");
     return CX_OK;
 fail:
     return status;
@@ -323,10 +355,25 @@ int px_ssn_solve(px_run *run, cx_diag *d)
     PX(VecDuplicate(c.U, &c.X));
     PX(VecDuplicate(c.U, &c.R));
     PX(VecSet(c.U, 0.0));
-    if ((status = ssn_ksp(sys, "cx_", &c.ksp[0], d)) != CX_OK ||
-        (status = ssn_ksp(sys, "cx_sor_", &c.ksp[1], d)) != CX_OK ||
-        (status = ssn_ksp(sys, "cx_hypre_", &c.ksp[2], d)) != CX_OK)
+#ifdef PETSC_HAVE_HYPRE
+    PCType first = sys->dim == 2 ? PCHYPRE : PCGAMG;
+#else
+    PCType first = PCGAMG;
+#endif
+    if ((status = ssn_ksp(sys, "cx_", first, &c.ksp[0], &c.gamg[0], c.name[0], sizeof c.name[0], d)) != CX_OK ||
+        (status = ssn_ksp(sys, "cx_sor_", PCGAMG, &c.ksp[1], &c.gamg[1], c.name[1], sizeof c.name[1], d)) !=
+            CX_OK)
         goto fail;
+    c.nstage = 2;
+#ifdef PETSC_HAVE_HYPRE
+    if (c.gamg[0]) {
+        if ((status = ssn_ksp(sys, "cx_hypre_", PCHYPRE, &c.ksp[2], &c.gamg[2], c.name[2], sizeof c.name[2], d)) !=
+            CX_OK)
+            goto fail;
+        c.nstage = 3;
+    }
+#endif
+    snprintf(r->solver, sizeof r->solver, "%s", c.name[0]);
     PX(VecDuplicate(c.U, &c.U0));
 
     double kkt_prev = INFINITY, eta_prev = 1e-2;
@@ -390,7 +437,7 @@ int px_ssn_solve(px_run *run, cx_diag *d)
             KSP ksp = c.ksp[c.stage];
             PX(KSPSetOperators(ksp, c.A, c.A));
             PX(KSPSetReusePreconditioner(ksp, reuse ? PETSC_TRUE : PETSC_FALSE));
-            if (c.stage < 2 && !reuse) {
+            if (c.gamg[c.stage] && !reuse) {
                 PC pc;
                 PX(KSPGetPC(ksp, &pc));
                 PX(PCGAMGSetReuseInterpolation(pc, keep ? PETSC_TRUE : PETSC_FALSE));
@@ -408,7 +455,7 @@ int px_ssn_solve(px_run *run, cx_diag *d)
                 break;
             its0 = its;
             PX(VecCopy(c.U0, c.U));
-            if (!fresh && c.stage < 2) {
+            if (!fresh) {
                 /* first a fresh set-up of the same preconditioner on this
                  * step's matrix: a reused one, or GAMG's prolongator and
                  * Chebyshev bounds kept from an earlier step (whose
@@ -423,10 +470,12 @@ int px_ssn_solve(px_run *run, cx_diag *d)
                 r->pc_rebuilt++;
                 continue;
             }
-            if (c.stage == 2)
+            if (c.stage + 1 >= c.nstage)
                 break;
             /* the preconditioner failed afresh: this step and the next by the next one */
             c.stage++;
+            size_t l = strlen(r->solver);
+            snprintf(r->solver + l, sizeof r->solver - l, ", from step %d %s", k, c.name[c.stage]);
             fresh = 0;
             reuse = 0;
         }
@@ -435,8 +484,8 @@ int px_ssn_solve(px_run *run, cx_diag *d)
             PCFailedReason pr = PC_NOERROR;
             PX(KSPGetPC(c.ksp[c.stage], &pc));
             PX(PCGetFailedReasonRank(pc, &pr));
-            snprintf(r->message, sizeof r->message, "step %d: CG + GAMG stopped: %s after %d iterations%s%s", k,
-                     KSPConvergedReasons[kr], (int)its, pr != PC_NOERROR ? ", preconditioner: " : "",
+            snprintf(r->message, sizeof r->message, "step %d: %s stopped: %s after %d iterations%s%s", k,
+                     c.name[c.stage], KSPConvergedReasons[kr], (int)its, pr != PC_NOERROR ? ", preconditioner: " : "",
                      pr != PC_NOERROR ? PCFailedReasons[pr] : "");
             r->reason = CX_DIVERGED_BREAKDOWN;
             r->iterations = k;

@@ -326,6 +326,64 @@ static int build_file_mesh(const cx_scene *s, int level, cx_mesh **m, cx_mesh_gr
     return st;
 }
 
+/* Without the serial K (CX_SCENE_BUILD_NO_K), what the problem takes from
+ * it, element by element: the prescribed values' part of the load, fd -=
+ * K(free, prescribed) value, and K's diagonal over the free dofs (diag,
+ * nfree), whose largest entry is the stiffness scale. Each entry is summed
+ * over the elements in their order, with the same element matrices, as
+ * cx_fem_assemble_free sums it, so both are K's bitwise. */
+static int build_load_diag(const cx_mesh *m, const cx_material *mats, const cx_dofmap *map, double *fd,
+                           double *diag, cx_diag *d)
+{
+    int dim = m->dim, npe = m->npe, nd = dim * npe, ns = cx_fem_nstress(dim), nmat = cx_mesh_nmats(m);
+    double *D = CX_NEW(double, (size_t)ns * ns * (size_t)(nmat > 0 ? nmat : 1));
+    double *Ke = CX_NEW(double, (size_t)nd * nd), *xe = CX_NEW(double, nd);
+    int st = CX_OK;
+    if (!D || !Ke || !xe) {
+        st = CX_ENOMEM;
+        goto done;
+    }
+    for (int k = 0; k < nmat; k++)
+        cx_fem_elasticity(&mats[k], D + (size_t)ns * ns * k);
+    for (int e = 0; e < m->nelems; e++) {
+        const int *c = m->conn + (size_t)npe * e;
+        for (int a = 0; a < npe; a++)
+            for (int i = 0; i < dim; i++)
+                xe[dim * a + i] = m->x[(size_t)dim * c[a] + i];
+        if (cx_fem_element_stiffness(m->etype, xe, D + (size_t)ns * ns * cx_mesh_elem_mat(m, e), Ke)) {
+            st = cx_diag_set(d, CX_ENUMERIC, "element %d (%s) is degenerate or inverted", e,
+                             cx_elem_name(m->etype));
+            goto done;
+        }
+        for (int a = 0; a < npe; a++)
+            for (int i = 0; i < dim; i++) {
+                int r = map->free_of[dim * c[a] + i];
+                if (r >= 0)
+                    diag[r] += Ke[(size_t)nd * (dim * a + i) + dim * a + i];
+            }
+        /* column (b j) prescribed to v: -v times it into the free rows,
+         * (b, j) outer as the assembly's scatter has them */
+        for (int b = 0; b < npe; b++)
+            for (int j = 0; j < dim; j++) {
+                int col = dim * c[b] + j;
+                double v = map->value[col];
+                if (map->free_of[col] >= 0 || v == 0)
+                    continue;
+                for (int a = 0; a < npe; a++)
+                    for (int i = 0; i < dim; i++) {
+                        int r = map->free_of[dim * c[a] + i];
+                        if (r >= 0)
+                            fd[r] -= Ke[(size_t)nd * (dim * b + j) + dim * a + i] * v;
+                    }
+            }
+    }
+done:
+    cx_free(D);
+    cx_free(Ke);
+    cx_free(xe);
+    return st;
+}
+
 static int build_boundary(const cx_scene *s, const cx_mesh *m, const char *name,
                           const cx_boundary **b, cx_diag *d)
 {
@@ -382,6 +440,14 @@ int cx_scene_obstacles(const cx_scene *s, int level, cx_obstacle *ob, int max)
 int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_state *fr,
                    cx_diag *d)
 {
+    return cx_scene_build_flags(s, level, 0, pp, fr, d);
+}
+
+int cx_scene_build_flags(const cx_scene *s, int level, unsigned flags, cx_problem **pp,
+                         cx_friction_state *fr, cx_diag *d)
+{
+    int no_k = (flags & CX_SCENE_BUILD_NO_K) != 0;
+    double *diag = NULL;   /* no_k: K's diagonal over the free dofs */
     cx_mesh *m = NULL;
     cx_mesh_groups groups = {0};
     cx_material *mats = NULL;
@@ -434,9 +500,24 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
         st = cx_diag_set(d, CX_ENOMEM, "out of memory");
         goto fail;
     }
-    if ((st = cx_fem_assemble_free(m, mats, &map, &K, fd, d)))
+    if (no_k) {
+        /* an empty K over the free dofs for cx_problem_create to take;
+         * the load's prescribed part and the stiffness scale from the
+         * elements */
+        K.nrow = K.ncol = map.nfree;
+        K.p = CX_NEW(int, (size_t)map.nfree + 1);
+        diag = CX_NEW(double, map.nfree > 0 ? map.nfree : 1);
+        if (!K.p || !diag) {
+            st = cx_diag_set(d, CX_ENOMEM, "out of memory");
+            goto fail;
+        }
+        if ((st = build_load_diag(m, mats, &map, fd, diag, d)))
+            goto fail;
+    } else if ((st = cx_fem_assemble_free(m, mats, &map, &K, fd, d))) {
         goto fail;
-    if (!build_finite(K.x, cx_csc_nnz(&K))) {
+    }
+    if (no_k ? !build_finite(diag, (size_t)map.nfree) || !build_finite(fd, (size_t)map.nfree)
+             : !build_finite(K.x, cx_csc_nnz(&K))) {
         st = build_overflow(s, s->line_material, d, "section [material]: E = %g gives a stiffness "
                             "matrix", s->mat.E);
         goto fail;
@@ -495,6 +576,12 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     cx_problem *p = *pp;
     for (int r = 0; r < p->n; r++)
         p->f[r] += fd[r];
+    if (no_k) {   /* cx_problem_create's scale, from the diagonal it had not */
+        for (int r = 0; r < p->n; r++)
+            if (diag[r] > p->kscale)
+                p->kscale = diag[r];
+        cx_csc_clear(&p->K);
+    }
     defaults.Fi = p->contact.Fpt;   /* several contacts: their own values */
     defaults.s = p->contact.spt;
     /* the prescribed displacements fold into f and g */
@@ -514,6 +601,7 @@ int cx_scene_build(const cx_scene *s, int level, cx_problem **pp, cx_friction_st
     cx_csc_clear(&K);
     cx_free(f);
     cx_free(fd);
+    cx_free(diag);
     cx_mesh_groups_clear(&groups);
     return CX_OK;
 
@@ -528,5 +616,6 @@ fail:
     cx_csc_clear(&K);
     cx_free(f);
     cx_free(fd);
+    cx_free(diag);
     return st;
 }

@@ -217,6 +217,7 @@ int tui_backend_result(tui_state *st, tui_backend_outcome *out, cx_diag *d)
         out->t_solve = b->res.t_solve;
         out->mem_peak = b->res.nranks > 0 ? b->res.mem_peak[0] : 0;
         snprintf(out->message, sizeof out->message, "%s", b->res.message);
+        snprintf(out->solver, sizeof out->solver, "%s", b->res.solver);
         out->u = b->res.u;
         out->lN = b->res.lN;
         out->lT = b->res.lT;

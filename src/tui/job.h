@@ -84,6 +84,7 @@ typedef struct tui_backend_outcome {
     long krylov;
     double kkt, t_setup, t_solve, mem_peak;
     char message[CX_DIAG_LEN];
+    char solver[96];   /* the inner solves' Krylov method and preconditioner ("CG + BoomerAMG") */
     const double *u, *lN, *lT;
 } tui_backend_outcome;
 

@@ -425,8 +425,9 @@ static void state_after_petsc(tui_state *st)
     state_snapshot_of(st, o.u, o.lN, o.lT, pts, none);
     free(pts);
     free(none);
-    tui_msg(st, o.reason < 0, "petsc %s (%d rank%s, CG + GAMG: %ld Krylov iterations, peak %.0f MB): %s", run->method,
-            o.nranks, o.nranks > 1 ? "s" : "", o.krylov, o.mem_peak / 1048576.0, run->outcome);
+    tui_msg(st, o.reason < 0, "petsc %s (%d rank%s, %s: %ld Krylov iterations, peak %.0f MB): %s", run->method,
+            o.nranks, o.nranks > 1 ? "s" : "", o.solver[0] ? o.solver : "no Krylov solver", o.krylov,
+            o.mem_peak / 1048576.0, run->outcome);
 }
 
 int tui_state_poll(tui_state *st)

@@ -2,6 +2,7 @@
 """Shared by the PETSc backend's end-to-end tests: the program (argv[1])
 run alone or under mpirun -n N, checks that count and print the run's
 output when they fail, and the exit with the count."""
+import os
 import shutil
 import subprocess
 import sys
@@ -10,10 +11,12 @@ exe = sys.argv[1]
 _failed = 0
 
 
-def run(args, mpi=0):
-    """The program with args, under mpirun -n mpi when mpi > 0."""
+def run(args, mpi=0, env=None):
+    """The program with args, under mpirun -n mpi when mpi > 0, with the
+    variables of env added to the environment."""
     cmd = ([shutil.which("mpirun"), "-n", str(mpi)] if mpi else []) + [exe] + args
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=500)
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=500,
+                          env=dict(os.environ, **env) if env else None)
 
 
 def check(cond, what, r=None):

@@ -20,6 +20,14 @@ r = run(["solve", "hertz", "--level", "32", "--backend", "petsc"])
 check(r.returncode == 0 and "converged" in r.stdout and "(petsc, 1 rank)" in r.stdout
       and re.search(r"rank 0: \d+ rows, 2048 elements assembled", r.stdout), "hertz 32 alone", r)
 contact1 = re.search(r"contact x 0 y (\S+)", r.stdout)
+# the summary names the preconditioner that ran: BoomerAMG in 2D where
+# PETSc has hypre, else GAMG; -cx_pc_type gamg is named as it runs
+pc2d = re.search(r"petsc: +1 rank; CG \+ (BoomerAMG|GAMG): \d+ Krylov iterations in \d+ solves", r.stdout)
+check(pc2d is not None, "hertz 32: the summary names CG + BoomerAMG or CG + GAMG", r)
+r = run(["solve", "hertz", "--level", "32", "--backend", "petsc"], env={"PETSC_OPTIONS": "-cx_pc_type gamg"})
+check(r.returncode == 0 and "CG + GAMG: " in r.stdout, "hertz 32 with -cx_pc_type gamg: CG + GAMG named", r)
+r = run(["solve", "block3d", "--level", "4", "--backend", "petsc"])
+check(r.returncode == 0 and "CG + GAMG: " in r.stdout, "block3d 4: CG + GAMG named", r)
 
 # two ranks: one summary (rank 0's), both ranks' lines, the elements split
 if shutil.which("mpirun"):
@@ -30,6 +38,40 @@ if shutil.which("mpirun"):
     contact2 = re.search(r"contact x 0 y (\S+)", r.stdout)
     check(contact1 and contact2 and abs(float(contact1.group(1)) - float(contact2.group(1))) < 1e-6 * 800,
           "the same contact force on 1 and 2 ranks", r)
+
+# solve --backend petsc builds the scene without the serial K (--baseline
+# builds it, to factorise): the same run either way, bitwise, on 1 and 2
+# ranks; slider prescribes non-zero displacements (their share of f comes
+# from the element matrices without K), hertz none
+def without_times(j):
+    j = dict(j)
+    j.pop("time", None)
+    j["history"] = [{k: v for k, v in h.items() if k != "time"} for h in j.get("history", [])]
+    return j
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    for scene, level in (("slider", "2"), ("hertz", "32")):
+        for mpi in (0, 2) if shutil.which("mpirun") else (0,):
+            out = {}
+            for flag in ("", "--baseline"):
+                vtu = os.path.join(tmp, f"{scene}{mpi}{flag}.vtu")
+                r = run(["solve", scene, "--level", level, "--backend", "petsc", "--json", "--vtu", vtu]
+                        + ([flag] if flag else []), mpi=mpi)
+                ok = r.returncode == 0
+                out[flag] = (without_times(json.loads(r.stdout)) if ok else None,
+                             open(vtu, "rb").read() if ok else None)
+            a, b = out[""], out["--baseline"]
+            check(a[0] is not None and a[0] == b[0] and a[1] == b[1] and a[0]["converged"],
+                  f"{scene} {level} on {max(mpi, 1)} rank(s): the same result and VTU without the serial K", r)
+
+# a tolerance below the roundoff floor of K u (hertz 32: about 2e-13): the
+# run stops the step after it gets there (8 steps to 1e-10, then one that
+# cannot halve the error), not at the stall window (50), and says why
+r = run(["solve", "hertz", "--level", "32", "--backend", "petsc", "--tol", "1e-16"])
+steps = [int(x) for x in re.findall(r"^\s+(\d+)\s+\d\.\d+e[-+]\d+\s", r.stdout, re.M)]
+check(r.returncode != 0 and "stalled" in r.stdout and "roundoff floor of K u" in r.stdout and steps
+      and steps[-1] <= 10, "hertz 32 to tol 1e-16: stopped at the roundoff floor, with the reason", r)
 
 # a contact row off the axes (node to segment between two bodies): refused with the reason
 r = run(["solve", "twoblocks", "--backend", "petsc"])
