@@ -97,10 +97,11 @@ typedef struct cx_lcp_solver {
  * row by row touches about cx_ldlmod_row_cost entries of L per row, one
  * scalar multiply-add each along the etree paths, while a new factor is
  * a supernodal (BLAS 3) factorisation plus the conversion to the
- * simplicial LDL' the updates need. Measured on the walls at 1/100 (row
- * updates of a running-bond step against its refactorisation), a new
- * factor costs about as much as updates touching 38 x nnz(L) entries:
- * below that the updates are cheaper. The ratio is of work, not of time,
+ * simplicial LDL' the updates need. Measured on running bond (row updates
+ * of a step against its refactorisation), a new factor costs about as
+ * much as updates touching 25-38 x nnz(L) entries at 1/100 and 35 at
+ * 1/225 (nnz(L): the analysed factor's, cx_ldlmod_factor_nnz): below
+ * that the updates are cheaper. The ratio is of work, not of time,
  * so the choice is the same on every machine and every run. */
 #define CX_LCP_UPDATE_RATIO 38.0
 #define CX_LCP_PCG_MAXIT 40

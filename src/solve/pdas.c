@@ -16,10 +16,11 @@
  * sets and (model = 1, the default) the entries of L the row changes would
  * touch are below CX_LCP_UPDATE_RATIO x nnz(L), the previous factor is
  * changed row by row (CHOLMOD row delete / row add, lcp.c) instead of
- * refactorised; late iterations change a few joints. The updated and the new factor round differently, and the
- * regularised systems (condition near amax / eps = 1e10) can turn a joint
- * at a tie: the solution is the same to 1e-10, the iteration count may
- * differ by a few (test_masonry). update = 0 refactorises every time.
+ * refactorised; late iterations change a few joints. The updated and the
+ * new factor round differently, and the regularised systems (condition
+ * near amax / eps = 1e10) can turn a joint at a tie: the solution is the
+ * same to 1e-10, the iteration count from the paper's start may differ
+ * (test_masonry). update = 0 refactorises every time.
  * With updates the projection's first system (the regularised stage's
  * last set, eps = 0) is solved by CG on the regularised factor instead of
  * a new factorisation (lcp.c, cx_lcp_solver.pre).
