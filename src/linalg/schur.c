@@ -278,9 +278,10 @@ done:
     return st;
 }
 
-/* The AMD-then-c-last candidate beside CAMD's factor s->L: predicted from
- * its column counts, and analysed in full (replacing s->L) only when it
- * fills less. */
+/* The AMD-then-c-last candidate beside CAMD's prediction: analysed in
+ * full at once (a prediction first would cost as much again: the
+ * supernodal pattern is half the analysis), and kept in s->L only when it
+ * needs fewer flops (else s->L stays as it was: NULL, or CAMD's). */
 static int schur_try_amd(cx_schur *s, const cx_csc *A, cholmod_sparse *view, const int *cmember, cx_diag *d)
 {
     cx_schur_ordering *o = &s->ord;
@@ -291,16 +292,15 @@ static int schur_try_amd(cx_schur *s, const cx_csc *A, cholmod_sparse *view, con
     int st = schur_amd_last(s, A, cmember, pa, d);
     c1 = schur_cpu_now();
     o->cpu_ordering += c1 - c0;
-    if (st == CX_OK && s->force_order != CX_ORDER_AMD)
-        st = schur_predict(s, view, pa, &o->lnz[CX_ORDER_AMD], &o->flops[CX_ORDER_AMD], d);
-    if (st == CX_OK && (s->force_order == CX_ORDER_AMD || o->flops[CX_ORDER_AMD] < o->flops[o->chosen])) {
-        cholmod_factor *La = NULL;
+    cholmod_factor *La = NULL;
+    if (st == CX_OK)
         st = schur_analyse(s, view, pa, &La, &o->lnz[CX_ORDER_AMD], &o->flops[CX_ORDER_AMD], d);
-        if (st == CX_OK) {
-            cholmod_free_factor(&s->L, &s->cc);
-            s->L = La;
-            o->chosen = CX_ORDER_AMD;
-        }
+    if (st == CX_OK && (s->force_order == CX_ORDER_AMD || o->flops[CX_ORDER_AMD] < o->flops[o->chosen])) {
+        cholmod_free_factor(&s->L, &s->cc);   /* CAMD's, if analysed */
+        s->L = La;
+        o->chosen = CX_ORDER_AMD;
+    } else {
+        cholmod_free_factor(&La, &s->cc);
     }
     o->cpu_symbolic += schur_cpu_now() - c1;
     o->seconds[CX_ORDER_AMD] = cx_clock_now() - t0;
@@ -383,8 +383,9 @@ static int schur_order_3d(cx_schur *s, const cx_csc *A, cholmod_sparse *view, in
 }
 
 /* Constrained ordering (c last) and symbolic analysis with that ordering
- * kept as is. Two orderings compete: CAMD on the whole matrix with c
- * constrained last, and nested dissection on the interior with c
+ * kept as is. Three orderings compete: CAMD on the whole matrix with c
+ * constrained last, AMD on the whole with c then moved last
+ * (schur_amd_last), and nested dissection on the interior with c
  * appended; the one whose predicted factorisation flops, plus the
  * ordering's own cost, are fewer is kept. Their analyses alone are
  * compared, before any numeric work. */
@@ -404,12 +405,22 @@ static int schur_order(cx_schur *s, const cx_csc *A, int *cmember, int *perm, cx
         return cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering failed");
     double c1 = schur_cpu_now();
     o->cpu_ordering += c1 - c0;
-    CX_TRY(schur_analyse(s, &view, perm, &s->L, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d));
+    /* CAMD's analysis in full only if AMD's does not win (predicted first) */
+    int amd = (s->force_order == CX_ORDER_AUTO || s->force_order == CX_ORDER_AMD);
+    if (amd)
+        CX_TRY(schur_predict(s, &view, perm, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d));
+    else
+        CX_TRY(schur_analyse(s, &view, perm, &s->L, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d));
     o->cpu_symbolic += schur_cpu_now() - c1;
     o->seconds[CX_ORDER_CAMD] = cx_clock_now() - t0;
     o->chosen = CX_ORDER_CAMD;
-    if (s->force_order == CX_ORDER_AUTO || s->force_order == CX_ORDER_AMD)
+    if (amd)
         CX_TRY(schur_try_amd(s, A, &view, cmember, d));
+    if (!s->L) {
+        double lnz, fl, c2 = schur_cpu_now();   /* the same as predicted */
+        CX_TRY(schur_analyse(s, &view, perm, &s->L, &lnz, &fl, d));
+        o->cpu_symbolic += schur_cpu_now() - c2;
+    }
     double cost = schur_metis_cost(n - nc);
     if (s->force_order != CX_ORDER_CAMD && s->force_order != CX_ORDER_AMD &&
         (s->force_order == CX_ORDER_METIS || cost < o->flops[o->chosen])) {
