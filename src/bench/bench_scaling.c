@@ -23,8 +23,9 @@ static const char scaling_usage[] =
     "\n"
     "Mesh scaling: for each level (a..b doubles from a up to b; or a list a,b,c):\n"
     "dofs, contact points, assembly, the baseline (factorise + solve K), the\n"
-    "factor's size and the fill (predicted nnz(L)) of both contact-last\n"
-    "orderings (CAMD; METIS on the interior, when analysed) with the one chosen,\n"
+    "factor's size and the fill (predicted nnz(L)) of the contact-last\n"
+    "orderings (CAMD; AMD then contact last, METIS on the interior, when\n"
+    "analysed) with the one chosen,\n"
     "and for each method its time (setup + solve, from a fresh\n"
     "session) as a ratio to the baseline (ratio; setup/baseline; end_to_end,\n"
     "assembly + setup + solve), iterations, peak memory of the run against the\n"
@@ -44,7 +45,7 @@ static const char scaling_usage[] =
 
 static const char *const scaling_cols[] = {
     "scene", "level", "friction", "backend", "ranks", "dofs", "contact", "assembly", "baseline", "assembly/baseline",
-    "factor_mb", "ordering", "fill_camd", "fill_metis", "method", "converged", "reason", "iterations", "time", "ratio", "setup", "setup/baseline", "solve", "end_to_end",
+    "factor_mb", "ordering", "fill_camd", "fill_amd", "fill_metis", "method", "converged", "reason", "iterations", "time", "ratio", "setup", "setup/baseline", "solve", "end_to_end",
     "peak_mb", "peak/factor", "krylov", "kkt", "err_u", "message", NULL};
 
 #define SCALING_MAX_LEVELS 24
@@ -570,8 +571,11 @@ static int bench_scaling_run(scaling_args *a, int rank, int nranks)
             bench_set_num(&t, r, "assembly/baseline", t_asm / t_base);
             bench_set_num(&t, r, "factor_mb", fmb);
             if (ord.chosen != CX_ORDER_AUTO) {
-                bench_set_str(&t, r, "ordering", "%s", ord.chosen == CX_ORDER_METIS ? "metis" : "camd");
+                bench_set_str(&t, r, "ordering", "%s",
+                              ord.chosen == CX_ORDER_METIS ? "metis" : ord.chosen == CX_ORDER_AMD ? "amd" : "camd");
                 bench_set_num(&t, r, "fill_camd", ord.lnz[CX_ORDER_CAMD]);
+                if (ord.tried_amd)
+                    bench_set_num(&t, r, "fill_amd", ord.lnz[CX_ORDER_AMD]);
                 if (ord.tried)
                     bench_set_num(&t, r, "fill_metis", ord.lnz[CX_ORDER_METIS]);
             }

@@ -441,12 +441,17 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     else
         cli_solve_write_text(res, summary);
     const cx_schur *S = a.baseline && !a.json ? cx_session_schur_built(s) : NULL;
-    if (S) {   /* both orderings' predicted fill, when both were analysed */
+    if (S) {   /* the orderings' predicted fill, each that was analysed */
         const cx_schur_ordering *o = cx_schur_ordering_of(S);
-        fprintf(summary, "         ordering %s: CAMD %.3g nnz(L) %.3g Gflop %.3f s", o->chosen ? "METIS" : "CAMD",
-                o->lnz[0], o->flops[0] * 1e-9, o->seconds[0]);
+        const char *name = o->chosen == CX_ORDER_METIS ? "METIS" : o->chosen == CX_ORDER_AMD ? "AMD" : "CAMD";
+        fprintf(summary, "         ordering %s: CAMD %.3g nnz(L) %.3g Gflop %.3f s", name,
+                o->lnz[CX_ORDER_CAMD], o->flops[CX_ORDER_CAMD] * 1e-9, o->seconds[CX_ORDER_CAMD]);
+        if (o->tried_amd)
+            fprintf(summary, "; AMD then contact last %.3g nnz(L) %.3g Gflop %.3f s", o->lnz[CX_ORDER_AMD],
+                    o->flops[CX_ORDER_AMD] * 1e-9, o->seconds[CX_ORDER_AMD]);
         if (o->tried)
-            fprintf(summary, "; METIS %.3g nnz(L) %.3g Gflop %.3f s", o->lnz[1], o->flops[1] * 1e-9, o->seconds[1]);
+            fprintf(summary, "; METIS %.3g nnz(L) %.3g Gflop %.3f s", o->lnz[CX_ORDER_METIS],
+                    o->flops[CX_ORDER_METIS] * 1e-9, o->seconds[CX_ORDER_METIS]);
         fprintf(summary, "\n");
     }
     code = cli_exit_status(res->run.reason);

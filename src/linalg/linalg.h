@@ -221,19 +221,26 @@ typedef struct cx_schur cx_schur;
  * naming a column, if A_ii is not positive definite. */
 int cx_schur_create(cx_schur **S, const cx_csc *A, const int *c, int nc,
                     cx_counters *cnt, cx_diag *d);
-/* The fill-reducing ordering of the factor (c last in both): CAMD on the
- * whole matrix, or nested dissection (METIS) on the i dofs. AUTO analyses
- * CAMD's, then METIS's unless its own cost could not be won back, and
- * factorises the one with fewer predicted flops (the METIS run counted);
- * with 3 dofs per node (3D elasticity) METIS's first, CAMD's predicted
- * from its column counts only. */
-typedef enum cx_schur_order { CX_ORDER_CAMD = 0, CX_ORDER_METIS = 1, CX_ORDER_AUTO = 2 } cx_schur_order;
+/* The fill-reducing ordering of the factor (c last in all): CAMD on the
+ * whole matrix, nested dissection (METIS) on the i dofs, or AMD on the
+ * whole matrix with the c dofs then moved last. AUTO analyses CAMD's and
+ * (below 3 dofs per node) AMD's, then METIS's unless its own cost could
+ * not be won back, and factorises the one with fewer predicted flops (the
+ * METIS run counted); with 3 dofs per node (3D elasticity) METIS's first,
+ * CAMD's predicted from its column counts only. */
+typedef enum cx_schur_order {
+    CX_ORDER_CAMD = 0,
+    CX_ORDER_METIS = 1,
+    CX_ORDER_AMD = 2,
+    CX_ORDER_AUTO = 3
+} cx_schur_order;
 typedef struct cx_schur_ordering {
-    cx_schur_order chosen;   /* CAMD or METIS */
+    cx_schur_order chosen;   /* CAMD, METIS or AMD */
     int tried;               /* METIS analysed (its entries below are set) */
-    double lnz[2];           /* predicted factor non-zeros, by cx_schur_order */
-    double flops[2];         /* predicted factorisation flops */
-    double seconds[2];       /* ordering + symbolic analysis */
+    int tried_amd;           /* AMD-then-c-last analysed (likewise) */
+    double lnz[3];           /* predicted factor non-zeros, by cx_schur_order */
+    double flops[3];         /* predicted factorisation flops */
+    double seconds[3];       /* ordering + symbolic analysis */
     /* where the set-up's CPU time went (seconds of the process's CPU
      * clock): the orderings, their symbolic analyses, the numeric
      * factorisation, and forming S from the factor's trailing block */

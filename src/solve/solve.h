@@ -202,11 +202,11 @@ int cx_session_schur(cx_session *s, cx_schur **S, const double **fc, cx_diag *d)
  * (for reports: builds nothing). */
 const cx_schur *cx_session_schur_built(const cx_session *s);
 /* The same condensation onto the normal dofs only (the dofs the rows of N
- * touch: in 3D on flat obstacles a third of the contact dofs), for
- * frictionless runs, where the tangential contact dofs carry no force and
- * may be condensed away with the interior. Cached beside the full one, so
- * that a change of law refactorises nothing already factorised. It is the
- * full one itself (p->cdofs) in 2D, when N touches every contact dof, or
+ * touch: on flat obstacles a third of the contact dofs in 3D, half in 2D),
+ * for frictionless runs, where the tangential contact dofs carry no force
+ * and may be condensed away with the interior. Cached beside the full one,
+ * so that a change of law refactorises nothing already factorised. It is
+ * the full one itself (p->cdofs) when N touches every contact dof, or
  * when the full one is built and this one is not (nothing new is
  * factorised then).
  * *dofs: *nd ascending dof indices, S and *fc in their order (fc, dofs may

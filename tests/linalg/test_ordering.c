@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* linalg/schur.c's two orderings: nested dissection (METIS) on the interior
- * with the c dofs last gives the same Schur complement, condensed load and
+/* linalg/schur.c's orderings: nested dissection (METIS) on the interior
+ * with the c dofs last, and AMD with the c dofs moved last (2 dofs per
+ * node), give the same Schur complement, condensed load and
  * expansion as CAMD's constrained ordering, to 1e-12 relative, on a 3D
  * grid (SPD and singular); on that grid it predicts less fill; the
  * automatic choice reports both analyses and takes the cheaper one, and
@@ -110,13 +111,15 @@ static void compare_orderings(int m, int neumann)
     cx_schur *Sa = NULL;
     CX_CHECK_OK(cx_schur_create(&Sa, &A, c, nc, NULL, NULL));
     const cx_schur_ordering *oa = cx_schur_ordering_of(Sa);
+    CX_CHECK(oa->tried_amd);   /* one dof per vertex: the 2D path */
     if (oa->tried) {
         int metis = oa->flops[CX_ORDER_METIS] < oa->flops[CX_ORDER_CAMD];
         if (oa->chosen == CX_ORDER_METIS)
             CX_CHECK(metis);
-        CX_CHECK(cx_schur_factor_nnz(Sa) == cx_schur_factor_nnz(oa->chosen == CX_ORDER_METIS ? Sm : Sc));
+        if (oa->chosen != CX_ORDER_AMD)
+            CX_CHECK(cx_schur_factor_nnz(Sa) == cx_schur_factor_nnz(oa->chosen == CX_ORDER_METIS ? Sm : Sc));
     } else {
-        CX_CHECK(oa->chosen == CX_ORDER_CAMD);
+        CX_CHECK(oa->chosen == CX_ORDER_CAMD || oa->chosen == CX_ORDER_AMD);
     }
     CX_CHECK_LE(max_diff(nn, cx_schur_matrix(Sa), S1), 1e-12 * max_abs(nn, S1));
 
@@ -148,6 +151,95 @@ static void test_small_2d_skips_metis(void)
     CX_CHECK(!o->tried && o->chosen == CX_ORDER_CAMD);
     CX_CHECK(o->lnz[CX_ORDER_CAMD] > 0 && o->flops[CX_ORDER_CAMD] > 0);
     cx_schur_destroy(&S);
+    cx_csc_clear(&A);
+}
+
+/* The 2D 5-point Laplacian on an m x m grid times a 2 x 2 SPD block: 2
+ * dofs per node, coupled as in 2D elasticity. */
+static void vector_laplacian2(cx_csc *A, int m)
+{
+    static const double B[2][2] = {{2.0, 0.6}, {0.6, 1.5}};
+    cx_csc Ls = {0};
+    laplacian(&Ls, m, 0.05, 0);
+    cx_triplet t;
+    int n = 2 * Ls.nrow;
+    cx_triplet_init(&t, n, n, 4 * cx_csc_nnz(&Ls));
+    for (int j = 0; j < Ls.ncol; j++)
+        for (int q = Ls.p[j]; q < Ls.p[j + 1]; q++)
+            for (int a = 0; a < 2; a++)
+                for (int b = 0; b < 2; b++)
+                    cx_triplet_add(&t, 2 * Ls.i[q] + a, 2 * j + b, Ls.x[q] * B[a][b]);
+    CX_CHECK_OK(cx_csc_from_triplet(A, &t));
+    cx_triplet_clear(&t);
+    cx_csc_clear(&Ls);
+}
+
+/* AMD with c moved last against CAMD, 2 dofs per node, c the first grid
+ * row's nodes (both dofs, as under friction, or the second only, as the
+ * normal dofs of a frictionless run), listed out of order: S, the
+ * condensed load and the expansion agree to 1e-12 relative with CAMD's
+ * and S with cx_schur_by_solves; the automatic choice analyses both and
+ * factorises the one with the fewer predicted flops. */
+static void compare_amd_last(int m, int normal_only)
+{
+    cx_csc A = {0};
+    vector_laplacian2(&A, m);
+    int n = A.nrow, per = normal_only ? 1 : 2, nc = m * per;
+    int *c = malloc(sizeof(int) * (size_t)nc);
+    for (int q = 0, k = 0; q < m; q++)
+        for (int a = 0; a < per; a++, k++)
+            c[nc - 1 - k] = 2 * q + (normal_only ? 1 : a);
+    double *f = malloc(sizeof(double) * (size_t)n), *uc = malloc(sizeof(double) * (size_t)nc);
+    for (int i = 0; i < n; i++)
+        f[i] = sin(0.37 * i);
+    for (int k = 0; k < nc; k++)
+        uc[k] = cos(0.21 * k);
+    cx_schur *Sc = NULL, *Sd = NULL, *Sa = NULL;
+    CX_CHECK_OK(cx_schur_create_ordered(&Sc, &A, c, nc, CX_ORDER_CAMD, NULL, NULL));
+    CX_CHECK_OK(cx_schur_create_ordered(&Sd, &A, c, nc, CX_ORDER_AMD, NULL, NULL));
+    CX_CHECK_OK(cx_schur_create(&Sa, &A, c, nc, NULL, NULL));
+    const cx_schur_ordering *oc = cx_schur_ordering_of(Sc), *od = cx_schur_ordering_of(Sd),
+                            *oa = cx_schur_ordering_of(Sa);
+    CX_CHECK(oc->chosen == CX_ORDER_CAMD && !oc->tried_amd);
+    CX_CHECK(od->chosen == CX_ORDER_AMD && od->tried_amd && od->lnz[CX_ORDER_AMD] > 0);
+    size_t nn = (size_t)nc * (size_t)nc;
+    double *Sref = malloc(sizeof(double) * nn);
+    CX_CHECK_OK(cx_schur_by_solves(&A, c, nc, Sref, NULL, NULL));
+    double smax = max_abs(nn, Sref);
+    CX_CHECK_LE(max_diff(nn, cx_schur_matrix(Sc), Sref), 1e-12 * smax);
+    CX_CHECK_LE(max_diff(nn, cx_schur_matrix(Sd), Sref), 1e-12 * smax);
+    double *fc1 = malloc(sizeof(double) * (size_t)nc), *fc2 = malloc(sizeof(double) * (size_t)nc);
+    double *u1 = malloc(sizeof(double) * (size_t)n), *u2 = malloc(sizeof(double) * (size_t)n);
+    CX_CHECK_OK(cx_schur_condense(Sc, f, fc1));
+    CX_CHECK_OK(cx_schur_condense(Sd, f, fc2));
+    CX_CHECK_LE(max_diff((size_t)nc, fc1, fc2), 1e-12 * max_abs((size_t)nc, fc1));
+    CX_CHECK_OK(cx_schur_expand(Sc, f, uc, u1));
+    CX_CHECK_OK(cx_schur_expand(Sd, f, uc, u2));
+    CX_CHECK_LE(max_diff((size_t)n, u1, u2), 1e-12 * max_abs((size_t)n, u1));
+    for (int k = 0; k < nc; k++)   /* u_c exactly as given */
+        CX_CHECK(u2[c[k]] == uc[k]);
+
+    /* the automatic choice: both analysed, the same numbers as the forced
+     * runs', the one with fewer flops factorised */
+    CX_CHECK(oa->tried_amd && !oa->tried);   /* too small for METIS */
+    CX_CHECK(oa->flops[CX_ORDER_CAMD] == oc->flops[CX_ORDER_CAMD]);
+    CX_CHECK(oa->flops[CX_ORDER_AMD] == od->flops[CX_ORDER_AMD]);
+    int amd = oa->flops[CX_ORDER_AMD] < oa->flops[CX_ORDER_CAMD];
+    CX_CHECK(oa->chosen == (amd ? CX_ORDER_AMD : CX_ORDER_CAMD));
+    CX_CHECK(cx_schur_factor_nnz(Sa) == cx_schur_factor_nnz(amd ? Sd : Sc));
+    CX_CHECK_LE(max_diff(nn, cx_schur_matrix(Sa), Sref), 1e-12 * smax);
+
+    cx_schur_destroy(&Sa);
+    cx_schur_destroy(&Sc);
+    cx_schur_destroy(&Sd);
+    free(c);
+    free(f);
+    free(uc);
+    free(Sref);
+    free(fc1);
+    free(fc2);
+    free(u1);
+    free(u2);
     cx_csc_clear(&A);
 }
 
@@ -252,6 +344,8 @@ int main(void)
     compare_orderings(16, 0);   /* 4096 dofs, 256 on the face */
     compare_orderings(14, 1);   /* singular: held only through c */
     test_small_2d_skips_metis();
+    compare_amd_last(40, 0);   /* 3200 dofs, the 80 of the first row */
+    compare_amd_last(40, 1);   /* its 40 "normal" dofs */
     compare_vector(7, 0, 0);   /* 1029 dofs, 147 on the face: Tresca-like */
     compare_vector(7, 0, 1);   /* the 49 normal dofs: frictionless-like */
     compare_vector(6, 1, 0);   /* singular: held only through c */

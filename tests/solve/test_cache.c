@@ -67,21 +67,22 @@ static double energy_diff(const cx_problem *p, const double *u, const double *v,
     return sqrt(fmax(de, 0));
 }
 
-/* The two reductions of a 3D problem (session.c): a frictionless run
- * condenses onto the normal dofs only (a third of the contact dofs on
- * block3d's flat obstacle), a run with friction onto all of them, each
+/* The two reductions of a problem (session.c), in 3D and in 2D alike: a
+ * frictionless run condenses onto the normal dofs only (a third of the
+ * contact dofs on block3d's flat obstacle, half on hertz's), a run with
+ * friction onto all of them, each
  * built once and kept beside the other, so that switching the law back
  * and forth factorises nothing already factorised; a frictionless run
  * after one with friction takes the full reduction that is there. Both
  * give the same solution to 1e-10 in the energy norm. */
-static void test_normal_reduction(void)
+static void test_normal_reduction(const char *scene, int level, int dim)
 {
     cx_scene sc;
     cx_diag d;
     const cx_method *ssn = cx_method_find("ssn-tresca");
-    cx_session *a = fixture_session("block3d", 3, &sc);
+    cx_session *a = fixture_session(scene, level, &sc);
     const cx_problem *p = cx_session_problem(a);
-    CX_CHECK(p->dim == 3 && cx_session_friction(a)->law == CX_FRICTION_NONE);
+    CX_CHECK(p->dim == dim && cx_session_friction(a)->law == CX_FRICTION_NONE);
     const int *dofs = NULL;
     int nd = 0;
     cx_schur *S = NULL;
@@ -118,9 +119,10 @@ static void test_normal_reduction(void)
     CX_CHECK_OK(cx_session_set_tresca(a, 2e-3, &d));
     CX_CHECK_OK(cx_solver_solve(a, NULL, NULL, &d));
     CX_CHECK(cx_session_cache_counters(a)->factorizations == 2);
-    /* ssstar, frictionless, on the same normal reduction: the same solution */
+    /* ssstar (3D only; pdas in 2D), frictionless, on the same normal
+     * reduction: the same solution */
     CX_CHECK_OK(cx_session_set_frictionless(a, &d));
-    CX_CHECK_OK(cx_session_set_method(a, cx_method_find("ssstar"), NULL, NULL, &d));
+    CX_CHECK_OK(cx_session_set_method(a, cx_method_find(dim == 3 ? "ssstar" : "pdas"), NULL, NULL, &d));
     CX_CHECK_OK(cx_solver_solve(a, NULL, NULL, &d));
     CX_CHECK(cx_session_iterate(a)->reason > 0 && !cx_session_iterate(a)->u_partial);
     CX_CHECK(cx_session_cache_counters(a)->factorizations == 2);
@@ -129,7 +131,7 @@ static void test_normal_reduction(void)
     /* friction first, then frictionless: the full reduction serves, and
      * gives the normal one's solution */
     cx_scene sc2;
-    cx_session *b = fixture_session("block3d", 3, &sc2);
+    cx_session *b = fixture_session(scene, level, &sc2);
     CX_CHECK_OK(cx_session_set_tresca(b, 1e-3, &d));   /* before the method: its init builds */
     CX_CHECK_OK(cx_session_set_method(b, ssn, NULL, NULL, &d));
     CX_CHECK_OK(cx_solver_solve(b, NULL, NULL, &d));
@@ -141,7 +143,7 @@ static void test_normal_reduction(void)
     CX_CHECK(it->reason > 0 && !it->u_partial);
     CX_CHECK(cx_session_cache_counters(b)->factorizations == 1);
     double e = energy_diff(p, u_normal, it->u, &un);
-    fprintf(stderr, "block3d 3: normal-only against full reduction, energy norm %.3g of %.3g\n", e, un);
+    fprintf(stderr, "%s %d: normal-only against full reduction, energy norm %.3g of %.3g\n", scene, level, e, un);
     CX_CHECK(un > 0);
     CX_CHECK_LE(e, 1e-10 * un);
 
@@ -152,7 +154,8 @@ static void test_normal_reduction(void)
 
 int main(void)
 {
-    test_normal_reduction();
+    test_normal_reduction("block3d", 3, 3);
+    test_normal_reduction("hertz", 16, 2);
     cx_scene sc;
     cx_session *s = fixture_session("hertz", 4, &sc);
     cx_diag d;

@@ -3,8 +3,9 @@
 """The explorer end to end in a real terminal: tmux on a private socket,
 a fixed size, keys sent, the pane captured and polled (no fixed sleeps).
 Checks: the scene name; N step keys give iteration N and a falling kkt;
-a parameter, friction or tolerance change on ssn-tresca keeps
-"factorised: 1"; a second round of 'm' through the methods factorises
+a parameter or tolerance change on ssn-tresca keeps "factorised: 1",
+a friction change builds the second reduction (onto every contact dof)
+once: "factorised: 2"; a second round of 'm' through the methods factorises
 nothing (the counter read after the first round stays); the contact strip
 shows stick and slip on 'slider' with Tresca; '?' shows the help; a
 resize to 40x12 says "terminal too small" and back redraws; 'q' exits 0
@@ -266,7 +267,9 @@ try:
     check(max(rows) == 5, f"iteration counter 5: {sorted(rows)}")
     check(rows.get(5, 1) < rows.get(1, 0), f"kkt falls from step 1 to 5: {rows}")
 
-    # ---- parameter, friction, tolerance on ssn-tresca: factorised once ----------
+    # ---- parameter, friction, tolerance on ssn-tresca: once per reduction ------
+    # (frictionless condenses onto the normal dofs, Tresca onto every
+    # contact dof: the law change builds the second reduction, once)
     keys("Down", "Down", "Down", "Right")   # method -> tol -> max iter -> rho, x2
     wait_for(lambda t: re.search(r"rho\s+.0\.002", t) is not None, "rho 0.002")
     settled("the rho change")
@@ -274,14 +277,14 @@ try:
     keys("f")                     # Tresca; the cursor goes to the friction row
     wait_for(lambda t: header() is not None and header()[1] == "tresca", "Tresca in the header")
     settled("the friction change")
-    check(header() == ("ssn-tresca", "tresca", 1), f"factorised: 1 after the friction change: {header()}")
+    check(header() == ("ssn-tresca", "tresca", 2), f"factorised: 2 after the friction change: {header()}")
     keys("Down", "Down", "Down", "Right")   # friction -> slip s -> method -> tol, x10
     wait_for(has("tolerance 1e-09"), "the tolerance 1e-09")
     check(re.search(r"tol\s+.1e-09", screen()) is not None, "tol 1e-09 in the setup")
     keys("r")
     wait_for(has("converged"), "the Tresca run to converge")
-    check(header() == ("ssn-tresca", "tresca", 1),
-          f"factorised: 1 after parameter, friction and tolerance changes: {header()}")
+    check(header() == ("ssn-tresca", "tresca", 2),
+          f"factorised: 2 after parameter, friction and tolerance changes: {header()}")
 
     # ---- 'm' round the methods twice: the second round factorises nothing ---------
     def round_of_methods(n):
@@ -427,17 +430,22 @@ try:
     wait_for(lambda t: re.search(r"tol\s+.1e-10", t) and "◂1e-10" in t, "a click on the tol row selects it")
     sgr(64, 3, row_of(screen(), "friction") + 1)   # the wheel up: the next law
     wait_for(lambda t: header() and header()[1] == "tresca", "the wheel on the friction row to choose tresca")
+    keys("r")   # Tresca builds its reduction (onto every contact dof) once
+    wait_for(lambda t: re.search(r"converged in \d+ iterations: kkt", status_block()) and header()[2] == 2,
+             "the Tresca run to converge")
+    sgr(65, 3, row_of(screen(), "friction") + 1)   # the wheel down: back to none
+    wait_for(lambda t: header() and header()[1] == "none", "the wheel on the friction row to choose none again")
     keys("r")
     wait_for(lambda t: re.search(r"cached \(0 fact\.\): converged in \d+ iterations: kkt", status_block()),
-             "the second run to converge, said to be served by the cache")
+             "the third run to converge, said to be served by the cache")
     t = screen()
-    check(any("■ ssn-tresca tresca" in l and "cached" in l for l in t.splitlines()),
+    check(any("■ ssn-tresca none" in l and "cached" in l for l in t.splitlines()),
           "the runs table labels the later run cached")
     check("cached: 0 fact." in t, "the session block says the run factorised nothing")
-    check(header()[2] == 1, f"factorised stays 1: {header()}")
-    y = row_of(t, "■ ssn-tresca none")
-    sgr(0, t.splitlines()[y].index("■ ssn-tresca none") + 4, y + 1)
-    wait_for(lambda t: "run 1 highlighted: ssn-tresca" in status_block(), "a click on the first run highlights it")
+    check(header()[2] == 2, f"factorised stays 2: {header()}")
+    y = row_of(t, "■ ssn-tresca tresca")
+    sgr(0, t.splitlines()[y].index("■ ssn-tresca tresca") + 4, y + 1)
+    wait_for(lambda t: "run 2 highlighted: ssn-tresca" in status_block(), "a click on the Tresca run highlights it")
     keys("q")
     exited_cleanly("q after the mouse")
 
