@@ -443,15 +443,16 @@ int cli_solve_as(const char *cmd, const char *usage, int argc, char **argv)
     const cx_schur *S = a.baseline && !a.json ? cx_session_schur_built(s) : NULL;
     if (S) {   /* the orderings' predicted fill, each that was analysed */
         const cx_schur_ordering *o = cx_schur_ordering_of(S);
-        const char *name = o->chosen == CX_ORDER_METIS ? "METIS" : o->chosen == CX_ORDER_AMD ? "AMD" : "CAMD";
-        fprintf(summary, "         ordering %s: CAMD %.3g nnz(L) %.3g Gflop %.3f s", name,
-                o->lnz[CX_ORDER_CAMD], o->flops[CX_ORDER_CAMD] * 1e-9, o->seconds[CX_ORDER_CAMD]);
-        if (o->tried_amd)
-            fprintf(summary, "; AMD then contact last %.3g nnz(L) %.3g Gflop %.3f s", o->lnz[CX_ORDER_AMD],
-                    o->flops[CX_ORDER_AMD] * 1e-9, o->seconds[CX_ORDER_AMD]);
-        if (o->tried)
-            fprintf(summary, "; METIS %.3g nnz(L) %.3g Gflop %.3f s", o->lnz[CX_ORDER_METIS],
-                    o->flops[CX_ORDER_METIS] * 1e-9, o->seconds[CX_ORDER_METIS]);
+        static const char *const what[] = {[CX_ORDER_CAMD] = "CAMD", [CX_ORDER_METIS] = "METIS",
+                                           [CX_ORDER_AMD] = "AMD then contact last"};
+        const int shown[] = {CX_ORDER_CAMD, o->tried_amd ? CX_ORDER_AMD : -1, o->tried ? CX_ORDER_METIS : -1};
+        fprintf(summary, "         contact-last ordering:");
+        for (int k = 0, sep = 0; k < 3; k++)
+            if (shown[k] >= 0) {
+                int j = shown[k];
+                fprintf(summary, "%s %s%s %.3g nnz(L) %.3g Gflop %.3f s", sep++ ? ";" : "", what[j],
+                        j == (int)o->chosen ? " (chosen)" : "", o->lnz[j], o->flops[j] * 1e-9, o->seconds[j]);
+            }
         fprintf(summary, "\n");
     }
     code = cli_exit_status(res->run.reason);

@@ -64,7 +64,7 @@ def main():
     check(code2 == 0, f"solve on pipes ({code2}, {err2})")
     check("\x1b[K" not in err2 and "dofs..." not in err2 and "\x1b[K" not in out2,
           f"no progress on a pipe: {err2[:200]!r}")
-    strip = lambda s: [l for l in s.splitlines() if not l.startswith(("time:", "         baseline", "         ordering"))
+    strip = lambda s: [l for l in s.splitlines() if not l.startswith(("time:", "         baseline", "         contact-last ordering"))
                        and "(s)" not in l and not re.match(r"^ +\d+ ", l)]
     check(strip(out) == strip(out2), "the same summary with and without the terminal")
 
