@@ -131,37 +131,35 @@ static double schur_dofs_per_vertex(const cx_csc *M, const int *cmember)
     return ng > 0 ? (double)ni / ng : 0;
 }
 
-/* perm = nested dissection (METIS) of the graph of M_ii, then the c dofs
- * in the caller's order (the trailing block is dense whatever its order,
- * and in the caller's order S needs no permutation). The graph is first
- * compressed: consecutive interior dofs whose columns of M have the same
+/* The graph of M over the dofs that skip does not mark (skip NULL: all),
+ * compressed: consecutive kept dofs whose columns of M have the same
  * pattern (the 2 or 3 dofs of a node in elasticity) become one vertex, so
- * METIS and CHOLMOD's pre- and post-processing around it see a graph
- * d times smaller in vertices and d^2 in edges; the separators found are
- * those of the node graph, which is what the dof graph's are anyway. */
-static int schur_metis(cx_schur *s, const cx_csc *M, const int *cmember, const int *c, int *perm,
-                       cx_diag *d)
+ * the ordering and CHOLMOD's pre- and post-processing around it see a
+ * graph d times smaller in vertices and d^2 in edges. It is ordered by
+ * nested dissection (METIS, nd = 1) or minimum degree (AMD, nd = 0), and
+ * perm receives the kept dofs in that order, each vertex's dofs together. */
+static int schur_node_order(cx_schur *s, const cx_csc *M, const int *skip, int nd, int *perm, cx_diag *d)
 {
-    int n = s->n, ni = s->n - s->nc, st = CX_ENOMEM;
+    int n = s->n, st = CX_ENOMEM;
     size_t cap = cx_csc_nnz(M) ? cx_csc_nnz(M) : 1;
-    int *old = CX_NEW(int, ni + 1), *grp = CX_NEW(int, n), *gfirst = CX_NEW(int, ni + 1);
-    int *gperm = CX_NEW(int, ni + 1);
+    int *old = CX_NEW(int, n + 1), *grp = CX_NEW(int, n + 1), *gfirst = CX_NEW(int, n + 1);
+    int *gperm = CX_NEW(int, n + 1);
     cx_csc G = {0};
-    G.p = CX_NEW(int, ni + 1);
+    G.p = CX_NEW(int, n + 1);
     G.i = CX_NEW(int, cap);
     if (!old || !grp || !gfirst || !gperm || !G.p || !G.i)
         goto done;
-    /* the interior dofs in order, grouped: grp[dof] = its vertex */
-    int ng = 0;
-    for (int j = 0, k = 0; j < n; j++) {
-        if (cmember[j])
+    /* the kept dofs in order, grouped: grp[dof] = its vertex */
+    int ng = 0, nk = 0;
+    for (int j = 0; j < n; j++) {
+        if (skip && skip[j])
             continue;
-        if (k == 0 || old[k - 1] != j - 1 || !schur_same_column(M, j - 1, j))
-            gfirst[ng++] = k;
+        if (nk == 0 || old[nk - 1] != j - 1 || !schur_same_column(M, j - 1, j))
+            gfirst[ng++] = nk;
         grp[j] = ng - 1;
-        old[k++] = j;
+        old[nk++] = j;
     }
-    gfirst[ng] = ni;
+    gfirst[ng] = nk;
     /* the upper triangle of the vertex graph, from each vertex's first
      * dof; rows come sorted by dof, so their vertices are nondecreasing
      * and a repeat is always the previous entry */
@@ -171,7 +169,7 @@ static int schur_metis(cx_schur *s, const cx_csc *M, const int *cmember, const i
         G.p[g] = nz;
         for (int q = M->p[j]; q < M->p[j + 1]; q++) {
             int i = M->i[q];
-            if (cmember[i] || grp[i] > g || grp[i] == last)
+            if ((skip && skip[i]) || grp[i] > g || grp[i] == last)
                 continue;
             G.i[nz++] = last = grp[i];
         }
@@ -183,17 +181,17 @@ static int schur_metis(cx_schur *s, const cx_csc *M, const int *cmember, const i
     view.x = NULL;
     st = CX_OK;
     if (ng > 0) {
-        int ok = cholmod_metis(&view, NULL, 0, 1, gperm, &s->cc);
-        st = cx_cholmod_check(&s->cc, NULL, "schur: nested dissection", d);
+        const char *what = nd ? "schur: nested dissection" : "schur: minimum degree ordering";
+        int ok = nd ? cholmod_metis(&view, NULL, 0, 1, gperm, &s->cc) : cholmod_amd(&view, NULL, 0, gperm, &s->cc);
+        st = cx_cholmod_check(&s->cc, NULL, what, d);
         if (st == CX_OK && !ok)
-            st = cx_diag_set(d, CX_EEXTERNAL, "schur: nested dissection failed");
+            st = cx_diag_set(d, CX_EEXTERNAL, "%s failed", what);
     }
     if (st == CX_OK) {
         int t = 0;
         for (int k = 0; k < ng; k++)
             for (int q = gfirst[gperm[k]]; q < gfirst[gperm[k] + 1]; q++)
                 perm[t++] = old[q];
-        memcpy(perm + ni, c, sizeof(int) * (size_t)s->nc);
     }
 done:
     if (st == CX_ENOMEM)
@@ -207,6 +205,19 @@ done:
     return st;
 }
 
+/* perm = nested dissection (METIS) of the node graph of M_ii
+ * (schur_node_order), then the c dofs in the caller's order (the
+ * trailing block is dense whatever its order, and in the caller's order S
+ * needs no permutation); the separators found on the node graph are what
+ * the dof graph's are anyway. */
+static int schur_metis(cx_schur *s, const cx_csc *M, const int *cmember, const int *c, int *perm,
+                       cx_diag *d)
+{
+    CX_TRY(schur_node_order(s, M, cmember, 1, perm, d));
+    memcpy(perm + (s->n - s->nc), c, sizeof(int) * (size_t)s->nc);
+    return CX_OK;
+}
+
 /* perm = AMD on the whole of A (the ordering the baseline factorises
  * with), then the c dofs moved last in the caller's order, the others
  * keeping AMD's order. Where c is a scattered subset of the contact face
@@ -214,67 +225,39 @@ done:
  * CAMD, which orders the interior around a constraint it knows from the
  * start (hertz 256, 257 normal dofs: 3.39 against 3.90 Gflop); where c is
  * the whole face CAMD wins (513 dofs: 4.61 against 3.99). AMD runs on the
- * graph compressed as schur_metis's is (a node's dofs, consecutive with
- * the same column, one vertex), c dofs included: on hertz 256 that cuts
+ * node graph (schur_node_order), c dofs included: on hertz 256 that cuts
  * its time about four times. */
 static int schur_amd_last(cx_schur *s, const cx_csc *M, const int *cmember, int *perm, cx_diag *d)
 {
-    int n = s->n, st = CX_ENOMEM;
-    size_t cap = cx_csc_nnz(M) ? cx_csc_nnz(M) : 1;
-    int *grp = CX_NEW(int, n + 1), *gfirst = CX_NEW(int, n + 1), *gperm = CX_NEW(int, n + 1);
-    cx_csc G = {0};
-    G.p = CX_NEW(int, n + 1);
-    G.i = CX_NEW(int, cap);
-    if (!grp || !gfirst || !gperm || !G.p || !G.i)
-        goto done;
-    int ng = 0;
-    for (int j = 0; j < n; j++) {
-        if (j == 0 || !schur_same_column(M, j - 1, j))
-            gfirst[ng++] = j;
-        grp[j] = ng - 1;
+    CX_TRY(schur_node_order(s, M, NULL, 0, perm, d));
+    int t = 0;
+    for (int k = 0; k < s->n; k++)
+        if (!cmember[perm[k]])
+            perm[t++] = perm[k];
+    memcpy(perm + t, s->c, sizeof(int) * (size_t)s->nc);
+    return CX_OK;
+}
+
+/* The METIS candidate (schur_metis), analysed in full into *Lm: its
+ * fill, flops and times into the ordering record. */
+static int schur_try_metis(cx_schur *s, const cx_csc *A, cholmod_sparse *view, const int *cmember,
+                           cholmod_factor **Lm, cx_diag *d)
+{
+    cx_schur_ordering *o = &s->ord;
+    double t0 = cx_clock_now(), c0 = schur_cpu_now(), c1;
+    int *pm = CX_NEW(int, s->n > 0 ? s->n : 1), st;
+    if (!pm)
+        return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
+    if ((st = schur_metis(s, A, cmember, s->c, pm, d)) == CX_OK) {
+        c1 = schur_cpu_now();
+        o->cpu_ordering += c1 - c0;
+        st = schur_analyse(s, view, pm, Lm, &o->lnz[CX_ORDER_METIS], &o->flops[CX_ORDER_METIS], d);
+        o->cpu_symbolic += schur_cpu_now() - c1;
     }
-    gfirst[ng] = n;
-    /* the upper triangle of the vertex graph (rows sorted: a repeat is
-     * always the previous entry) */
-    int nz = 0;
-    for (int g = 0; g < ng; g++) {
-        int j = gfirst[g], last = -1;
-        G.p[g] = nz;
-        for (int q = M->p[j]; q < M->p[j + 1]; q++) {
-            int i = M->i[q];
-            if (grp[i] > g || grp[i] == last)
-                continue;
-            G.i[nz++] = last = grp[i];
-        }
-    }
-    G.p[ng] = nz;
-    G.nrow = G.ncol = ng;
-    cholmod_sparse view = cx_cholmod_view(&G, 1);
-    view.xtype = CHOLMOD_PATTERN;
-    view.x = NULL;
-    st = CX_OK;
-    if (ng > 0) {
-        int ok = cholmod_amd(&view, NULL, 0, gperm, &s->cc);
-        st = cx_cholmod_check(&s->cc, NULL, "schur: minimum degree ordering", d);
-        if (st == CX_OK && !ok)
-            st = cx_diag_set(d, CX_EEXTERNAL, "schur: minimum degree ordering failed");
-    }
-    if (st == CX_OK) {
-        int t = 0;
-        for (int k = 0; k < ng; k++)
-            for (int j = gfirst[gperm[k]]; j < gfirst[gperm[k] + 1]; j++)
-                if (!cmember[j])
-                    perm[t++] = j;
-        memcpy(perm + t, s->c, sizeof(int) * (size_t)s->nc);
-    }
-done:
-    if (st == CX_ENOMEM)
-        cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
-    cx_free(grp);
-    cx_free(gfirst);
-    cx_free(gperm);
-    cx_free(G.p);
-    cx_free(G.i);
+    o->seconds[CX_ORDER_METIS] = cx_clock_now() - t0;
+    cx_free(pm);
+    if (st == CX_OK)
+        o->tried = 1;
     return st;
 }
 
@@ -335,23 +318,8 @@ static int schur_order_3d(cx_schur *s, const cx_csc *A, cholmod_sparse *view, in
     int n = s->n, nc = s->nc, st;
     cx_schur_ordering *o = &s->ord;
     cholmod_factor *Lm = NULL;
+    CX_TRY(schur_try_metis(s, A, view, cmember, &Lm, d));
     double t0 = cx_clock_now(), c0 = schur_cpu_now(), c1;
-    int *pm = CX_NEW(int, n);
-    if (!pm)
-        return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
-    if ((st = schur_metis(s, A, cmember, s->c, pm, d)) == CX_OK) {
-        c1 = schur_cpu_now();
-        o->cpu_ordering += c1 - c0;
-        st = schur_analyse(s, view, pm, &Lm, &o->lnz[CX_ORDER_METIS], &o->flops[CX_ORDER_METIS], d);
-        o->cpu_symbolic += schur_cpu_now() - c1;
-    }
-    o->seconds[CX_ORDER_METIS] = cx_clock_now() - t0;
-    cx_free(pm);
-    if (st)
-        return st;
-    o->tried = 1;
-    t0 = cx_clock_now();
-    c0 = schur_cpu_now();
     int ok = cholmod_camd(view, NULL, 0, cmember, perm, &s->cc);
     st = cx_cholmod_check(&s->cc, NULL, "schur: constrained ordering", d);
     if (st == CX_OK && !ok)
@@ -391,7 +359,7 @@ static int schur_order_3d(cx_schur *s, const cx_csc *A, cholmod_sparse *view, in
  * compared, before any numeric work. */
 static int schur_order(cx_schur *s, const cx_csc *A, int *cmember, int *perm, cx_diag *d)
 {
-    int n = s->n, nc = s->nc, st = CX_OK;
+    int n = s->n, nc = s->nc;
     cholmod_common *cc = &s->cc;
     cx_schur_ordering *o = &s->ord;
     cholmod_sparse view = cx_cholmod_view(A, 1);
@@ -424,23 +392,8 @@ static int schur_order(cx_schur *s, const cx_csc *A, int *cmember, int *perm, cx
     double cost = schur_metis_cost(n - nc);
     if (s->force_order != CX_ORDER_CAMD && s->force_order != CX_ORDER_AMD &&
         (s->force_order == CX_ORDER_METIS || cost < o->flops[o->chosen])) {
-        int *pm = CX_NEW(int, n);
-        if (!pm)
-            return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
-        t0 = cx_clock_now();
-        c0 = schur_cpu_now();
         cholmod_factor *Lm = NULL;
-        if ((st = schur_metis(s, A, cmember, s->c, pm, d)) == CX_OK) {
-            c1 = schur_cpu_now();
-            o->cpu_ordering += c1 - c0;
-            st = schur_analyse(s, &view, pm, &Lm, &o->lnz[CX_ORDER_METIS], &o->flops[CX_ORDER_METIS], d);
-            o->cpu_symbolic += schur_cpu_now() - c1;
-        }
-        o->seconds[CX_ORDER_METIS] = cx_clock_now() - t0;
-        cx_free(pm);
-        if (st)
-            return st;
-        o->tried = 1;
+        CX_TRY(schur_try_metis(s, A, &view, cmember, &Lm, d));
         if (s->force_order == CX_ORDER_METIS || o->flops[CX_ORDER_METIS] + cost < o->flops[o->chosen]) {
             cholmod_free_factor(&s->L, cc);
             s->L = Lm;

@@ -57,6 +57,28 @@ static double max_abs(size_t n, const double *x)
     return e;
 }
 
+/* Two reductions of one matrix onto the same nc dofs c condense the load
+ * f and expand (f, uc) to the same vectors, to 1e-12 relative, and both
+ * expansions hold u_c exactly as given. */
+static void check_same_reduction(cx_schur *Sa, cx_schur *Sb, int n, int nc, const int *c, const double *f,
+                                 const double *uc)
+{
+    double *fc1 = malloc(sizeof(double) * (size_t)nc), *fc2 = malloc(sizeof(double) * (size_t)nc);
+    double *u1 = malloc(sizeof(double) * (size_t)n), *u2 = malloc(sizeof(double) * (size_t)n);
+    CX_CHECK_OK(cx_schur_condense(Sa, f, fc1));
+    CX_CHECK_OK(cx_schur_condense(Sb, f, fc2));
+    CX_CHECK_LE(max_diff((size_t)nc, fc1, fc2), 1e-12 * max_abs((size_t)nc, fc1));
+    CX_CHECK_OK(cx_schur_expand(Sa, f, uc, u1));
+    CX_CHECK_OK(cx_schur_expand(Sb, f, uc, u2));
+    CX_CHECK_LE(max_diff((size_t)n, u1, u2), 1e-12 * max_abs((size_t)n, u1));
+    for (int k = 0; k < nc; k++)
+        CX_CHECK(u1[c[k]] == uc[k] && u2[c[k]] == uc[k]);
+    free(fc1);
+    free(fc2);
+    free(u1);
+    free(u2);
+}
+
 /* c = the top face (k = m - 1), listed in reverse so that the caller's
  * order is not the trailing block's. */
 static void compare_orderings(int m, int neumann)
@@ -97,14 +119,7 @@ static void compare_orderings(int m, int neumann)
     size_t nn = (size_t)nc * (size_t)nc;
     const double *S1 = cx_schur_matrix(Sc), *S2 = cx_schur_matrix(Sm);
     CX_CHECK_LE(max_diff(nn, S1, S2), 1e-12 * max_abs(nn, S1));
-    double *fc1 = malloc(sizeof(double) * (size_t)nc), *fc2 = malloc(sizeof(double) * (size_t)nc);
-    double *u1 = malloc(sizeof(double) * (size_t)n), *u2 = malloc(sizeof(double) * (size_t)n);
-    CX_CHECK_OK(cx_schur_condense(Sc, f, fc1));
-    CX_CHECK_OK(cx_schur_condense(Sm, f, fc2));
-    CX_CHECK_LE(max_diff((size_t)nc, fc1, fc2), 1e-12 * max_abs((size_t)nc, fc1));
-    CX_CHECK_OK(cx_schur_expand(Sc, f, uc, u1));
-    CX_CHECK_OK(cx_schur_expand(Sm, f, uc, u2));
-    CX_CHECK_LE(max_diff((size_t)n, u1, u2), 1e-12 * max_abs((size_t)n, u1));
+    check_same_reduction(Sc, Sm, n, nc, c, f, uc);
 
     /* the automatic choice analyses both here (CAMD's flops exceed METIS's
      * cost on this grid) and factorises the one it reports */
@@ -129,10 +144,6 @@ static void compare_orderings(int m, int neumann)
     free(c);
     free(f);
     free(uc);
-    free(fc1);
-    free(fc2);
-    free(u1);
-    free(u2);
     cx_csc_clear(&A);
 }
 
@@ -208,16 +219,7 @@ static void compare_amd_last(int m, int normal_only)
     double smax = max_abs(nn, Sref);
     CX_CHECK_LE(max_diff(nn, cx_schur_matrix(Sc), Sref), 1e-12 * smax);
     CX_CHECK_LE(max_diff(nn, cx_schur_matrix(Sd), Sref), 1e-12 * smax);
-    double *fc1 = malloc(sizeof(double) * (size_t)nc), *fc2 = malloc(sizeof(double) * (size_t)nc);
-    double *u1 = malloc(sizeof(double) * (size_t)n), *u2 = malloc(sizeof(double) * (size_t)n);
-    CX_CHECK_OK(cx_schur_condense(Sc, f, fc1));
-    CX_CHECK_OK(cx_schur_condense(Sd, f, fc2));
-    CX_CHECK_LE(max_diff((size_t)nc, fc1, fc2), 1e-12 * max_abs((size_t)nc, fc1));
-    CX_CHECK_OK(cx_schur_expand(Sc, f, uc, u1));
-    CX_CHECK_OK(cx_schur_expand(Sd, f, uc, u2));
-    CX_CHECK_LE(max_diff((size_t)n, u1, u2), 1e-12 * max_abs((size_t)n, u1));
-    for (int k = 0; k < nc; k++)   /* u_c exactly as given */
-        CX_CHECK(u2[c[k]] == uc[k]);
+    check_same_reduction(Sc, Sd, n, nc, c, f, uc);
 
     /* the automatic choice: both analysed, the same numbers as the forced
      * runs', the one with fewer flops factorised */
@@ -236,10 +238,6 @@ static void compare_amd_last(int m, int normal_only)
     free(f);
     free(uc);
     free(Sref);
-    free(fc1);
-    free(fc2);
-    free(u1);
-    free(u2);
     cx_csc_clear(&A);
 }
 
@@ -299,14 +297,7 @@ static void compare_vector(int m, int neumann, int normal_only)
     for (int a = 0; a < nc; a++)   /* stored full, exactly symmetric */
         for (int b = 0; b < a; b++)
             CX_CHECK(S2[a + (size_t)b * nc] == S2[b + (size_t)a * nc]);
-    double *fc1 = malloc(sizeof(double) * (size_t)nc), *fc2 = malloc(sizeof(double) * (size_t)nc);
-    double *u1 = malloc(sizeof(double) * (size_t)n), *u2 = malloc(sizeof(double) * (size_t)n);
-    CX_CHECK_OK(cx_schur_condense(Sc, f, fc1));
-    CX_CHECK_OK(cx_schur_condense(Sm, f, fc2));
-    CX_CHECK_LE(max_diff((size_t)nc, fc1, fc2), 1e-12 * max_abs((size_t)nc, fc1));
-    CX_CHECK_OK(cx_schur_expand(Sc, f, uc, u1));
-    CX_CHECK_OK(cx_schur_expand(Sm, f, uc, u2));
-    CX_CHECK_LE(max_diff((size_t)n, u1, u2), 1e-12 * max_abs((size_t)n, u1));
+    check_same_reduction(Sc, Sm, n, nc, c, f, uc);
 
     /* the automatic choice on 3 dofs per node: METIS analysed first, CAMD
      * predicted from its column counts alone, the same numbers as CAMD's
@@ -332,10 +323,6 @@ static void compare_vector(int m, int neumann, int normal_only)
     free(f);
     free(uc);
     free(Sref);
-    free(fc1);
-    free(fc2);
-    free(u1);
-    free(u2);
     cx_csc_clear(&A);
 }
 
