@@ -666,6 +666,15 @@ static int act_run(tui_state *st)
         tui_msg(st, 0, "paused (r runs on)");
         return TUI_REDRAW;
     }
+    /* typed during a switch or a build (or with one waiting): the run it
+     * asks for is the one that job opens, not the ended one on screen */
+    int switching = (tui_state_busy(st) && st->job.kind != TUI_JOB_STEP && st->job.kind != TUI_JOB_PETSC) ||
+                    st->pending;
+    if (switching) {
+        st->running = 1;
+        tui_msg(st, 0, "runs when the switch ends");
+        return TUI_REDRAW;
+    }
     const tui_run *run = tui_state_run(st);
     if (tui_state_run_ended(st)) {
         tui_msg(st, run->reason < 0, "run ended (%s); x starts again", cx_reason_str(run->reason));

@@ -509,6 +509,9 @@ int tui_state_poll(tui_state *st)
         else
             st->cache = *cx_session_cache_counters(st->session);   /* the attempt's work */
     }
+    /* a run asked for during a switch that failed is not the old one's */
+    if (j->status != CX_OK)
+        st->running = 0;
     if (j->status != CX_OK && kind == TUI_JOB_RESOLVE && j->method &&
         !strstr(cx_diag_msg(&j->diag, j->status), j->method->id))
         /* which switch was refused, and that nothing changed */

@@ -14,6 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 static int count_status(const tui_state *st, int a, int b)
@@ -382,6 +383,49 @@ static void test_cycle(void)
     tui_state_clear(&st);
 }
 
+/* The loop's part without a terminal: poll the job, step while running. */
+static void drive(tui_state *st, double seconds)
+{
+    double end = cx_clock_now() + seconds;
+    while (cx_clock_now() < end) {
+        tui_state_poll(st);
+        if (tui_state_running(st) && !tui_state_busy(st))
+            tui_state_step(st);
+        if (!tui_state_busy(st) && !tui_state_running(st) && !st->queued_steps)
+            return;
+        nanosleep(&(struct timespec){0, 1000000}, NULL);
+    }
+}
+
+/* With the jobs on their thread, as in the terminal: 'r' typed while a
+ * friction switch runs asks for the run that switch opens (it said "run
+ * ended" of the converged run on screen before). */
+static void test_run_during_switch(void)
+{
+    static tui_state st;
+    cx_diag d;
+    cx_diag_clear(&d);
+    CX_CHECK_OK(tui_state_init(&st, "hertz", 16, "ssn-tresca", CX_FRICTION_NONE, 0, &d));
+    drive(&st, 120);
+    CX_CHECK(st.session && st.cur_law == CX_FRICTION_NONE);
+    tui_key(&st, 'r');
+    drive(&st, 120);
+    CX_CHECK(tui_state_run(&st)->reason == CX_CONVERGED_KKT);
+    int nruns = tui_state_nruns(&st);
+    tui_state_apply(&st, tui_key(&st, 'f'));
+    int busy = tui_state_busy(&st);
+    CX_CHECK(tui_key(&st, 'r') == TUI_REDRAW && st.running);
+    CX_CHECK(!busy || strstr(st.msg, "runs when the switch ends") != NULL);
+    drive(&st, 120);
+    const tui_run *run = tui_state_run(&st);
+    CX_CHECK(st.cur_law == CX_FRICTION_TRESCA && tui_state_nruns(&st) == nruns + 1);
+    CX_CHECK(run->law == CX_FRICTION_TRESCA && run->reason == CX_CONVERGED_KKT && run->nsteps > 0);
+    CX_CHECK(strstr(st.msg, "converged in ") != NULL);
+    if (!strstr(st.msg, "converged in "))
+        fprintf(stderr, "after f r: %s\n", st.msg);
+    tui_state_clear(&st);
+}
+
 /* A scene that fails to build (the block starts inside the plane): the
  * message says why and the explorer stays on the scene it had. */
 static void test_failed_build(void)
@@ -677,6 +721,7 @@ int main(void)
     test_colours_and_pace();
     test_slider();
     test_cycle();
+    test_run_during_switch();
     test_failed_build();
     test_scenes_open_converging();
     return check_finish("tui_actions");

@@ -114,8 +114,18 @@ def settled(what):
     keys("?")
     ok = wait_for(has("help: keys of the explorer"), f"the help (a barrier after {what})")
     keys("z")
-    return ok and wait_for(lambda t: "help: keys" not in t and "(keys still work)" not in t and header(),
-                           f"the job of {what} to end")
+
+    def calm(t):
+        return "help: keys" not in t and "(keys still work)" not in t and header()
+
+    # twice, 0.15 s apart: a capture can fall inside a redraw (the help
+    # erased, the progress line not yet written), above all under ASan
+    def calm_twice(t):
+        if not calm(t):
+            return False
+        time.sleep(0.15)
+        return calm(screen())
+    return ok and wait_for(calm_twice, f"the job of {what} to end")
 
 
 rcfile = os.path.join(workdir, "rc")
@@ -241,8 +251,11 @@ try:
           f"'p' renders the converged iterate: {png and png.group(0)}")
     laws = []
     for _ in range(4):
+        was = header()
         keys("f")
         settled("'f'")
+        # the header names the law the session runs once the switch ended
+        wait_for(lambda t: header() and was and header()[1] != was[1], "the header to show the new law")
         h = header()
         laws.append(h[1] if h else None)
         keys("r")
