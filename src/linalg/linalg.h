@@ -88,6 +88,10 @@ void cx_csc_gemv_t(const cx_csc *A, double alpha, const double *x, double beta, 
 /* C = A B (C must be empty; sorted columns, no explicit zeros dropped).
  * CX_EINVAL if the sizes do not fit, CX_ENOMEM (C left empty). */
 int cx_csc_multiply(cx_csc *C, const cx_csc *A, const cx_csc *B);
+/* C = T' K T (K square, T with K's rows; C empty on entry): one pass per
+ * column, K T never stored, the output allocated once. Sorted columns,
+ * explicit zeros kept. CX_EINVAL if the sizes do not fit, CX_ENOMEM. */
+int cx_csc_congruence(cx_csc *C, const cx_csc *K, const cx_csc *T);
 /* A(i, j), 0 if not stored (binary search). */
 double cx_csc_get(const cx_csc *A, int i, int j);
 /* The place of (i, j) in A->i / A->x, -1 if not stored (binary search). */
