@@ -180,6 +180,10 @@ void cx_ldlmod_destroy(cx_ldlmod **F);
 int cx_ldlmod_refactor(cx_ldlmod *F, const cx_csc *A, cx_diag *d);
 /* CX_ENUMERIC if a pivot of D is below CX_PIVOT_RTOL amax (singular). */
 int cx_ldlmod_check(cx_ldlmod *F, double amax, cx_diag *d);
+/* The same over the pivots that row changes (add, delete) altered since
+ * the factorisation or the last call: the factor passed a check before
+ * them, the other pivots are as they were. */
+int cx_ldlmod_check_updated(cx_ldlmod *F, double amax, cx_diag *d);
 /* The smallest entry of D. */
 double cx_ldlmod_min_pivot(const cx_ldlmod *F);
 /* Row and column k become the identity's. */

@@ -374,7 +374,7 @@ static int lcp_factor_mod(cx_lcp_solver *s, double eps, const unsigned char *zer
                     s->fkeep[i] = 1;
                 }
             if (st == CX_OK)
-                st = cx_ldlmod_check(s->ldl, amax, d);
+                st = cx_ldlmod_check_updated(s->ldl, amax, d);
             if (st == CX_OK)
                 return CX_OK;
             if (st != CX_ENUMERIC)
