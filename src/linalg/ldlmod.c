@@ -103,7 +103,8 @@ static void ldlmod_drop_zeros(cx_ldlmod *f)
  * pattern symmetric), so walking r upwards fills each column's rows in
  * order; each value is read from A's upper triangle, as CHOLMOD's view of
  * A (stype 1) reads it, so that the factor is the same to the last bit
- * when A's triangles differ by roundoff (T' K T can). */
+ * when A's triangles differ by roundoff (T' K T can). The same walk
+ * gives the elimination tree (as ldlmod_etree, which it saves a pass). */
 static int ldlmod_permuted(cx_ldlmod *f, const cx_csc *A)
 {
     int n = f->n, st = CX_ENOMEM;
@@ -144,18 +145,31 @@ static int ldlmod_permuted(cx_ldlmod *f, const cx_csc *A)
     f->smap = CX_NEW(int, nz + 1);
     if (!f->si || !f->sx || !f->smap)
         goto done;
+    /* the same walk gives the elimination tree (ldlmod_etree's, fused) */
+    int *anc = f->mark;
     memcpy(pos, f->sp, sizeof(int) * (size_t)n);
     for (int r = 0; r < n; r++) {
         int col = perm ? perm[r] : r;
+        f->parent[r] = -1, anc[r] = -1;
         for (int q = A->p[col]; q < A->p[col + 1]; q++) {
             int c = pinv[A->i[q]];
-            if (c <= r) {
-                int t = pos[c]++;
-                f->si[t] = r;
-                f->smap[t] = upper[q];
+            if (c > r)
+                continue;
+            int t = pos[c]++;
+            f->si[t] = r;
+            f->smap[t] = upper[q];
+            for (int i = c; i != -1 && i < r;) {
+                int next = anc[i];
+                anc[i] = r;
+                if (next == -1)
+                    f->parent[i] = r;
+                i = next;
             }
         }
     }
+    for (int k = 0; k < n; k++)
+        f->mark[k] = 0;
+    f->stamp = 0;
     st = CX_OK;
 done:
     cx_free(pos);
@@ -288,7 +302,8 @@ static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod
     }
     for (int k = 0; k < n; k++)
         f->pinv[cx_cholmod_column(f->L, k)] = k;
-    ldlmod_etree(f, A);
+    if (!f->sp)   /* else ldlmod_permuted built it */
+        ldlmod_etree(f, A);
     *F = f;
     return CX_OK;
 }
