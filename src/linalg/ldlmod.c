@@ -182,7 +182,34 @@ done:
  * super the supernodal LL' converted to the simplicial LDL' that Modify
  * needs (the supernodal factorisation is several times faster on the
  * larger meshes; the conversion is one pass over L). */
-static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
+/* The mask of a factorisation (cx_ldlmod_create_masked): NULL, or keep
+ * (n: 1 where row and column are A's, 0 where the identity's) and the
+ * shift added to the kept diagonal. */
+typedef struct {
+    const unsigned char *keep;
+    double shift;
+} ldlmod_mask;
+
+/* Entry (i, j) of the masked matrix, a its value in A. */
+static inline double ldlmod_masked(const ldlmod_mask *m, int i, int j, double a)
+{
+    if (!m->keep[i] || !m->keep[j])
+        return i == j;
+    return i == j ? a + m->shift : a;
+}
+
+/* A copy of A masked (the simplicial path, which factorises A itself). */
+static int ldlmod_masked_copy(cx_csc *M, const cx_csc *A, const ldlmod_mask *m)
+{
+    if (cx_csc_copy(M, A))
+        return CX_ENOMEM;
+    for (int j = 0; j < A->ncol; j++)
+        for (int q = A->p[j]; q < A->p[j + 1]; q++)
+            M->x[q] = ldlmod_masked(m, A->i[q], j, A->x[q]);
+    return CX_OK;
+}
+
+static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, const ldlmod_mask *mask, cx_diag *d)
 {
     for (int a = 0; a < f->ndirty; a++)   /* a new factor is checked in full */
         f->isdirty[f->dirty[a]] = 0;
@@ -194,8 +221,21 @@ static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
         /* P A P' gathered, factorised in the natural order (the order
          * restored after: the solves and updates permute through L->Perm) */
         int n = f->n, ord = f->L->ordering;
-        for (int t = 0; t < f->sp[n]; t++)
-            f->sx[t] = A->x[f->smap[t]];
+        if (!mask) {
+            for (int t = 0; t < f->sp[n]; t++)
+                f->sx[t] = A->x[f->smap[t]];
+        } else {
+            /* the mask applied as the values are gathered: the masked
+             * matrix is never formed */
+            const int *perm = f->sym->Perm;
+            for (int c = 0; c < n; c++) {
+                int j = perm ? perm[c] : c;
+                for (int t = f->sp[c]; t < f->sp[c + 1]; t++) {
+                    int i = perm ? perm[f->si[t]] : f->si[t];
+                    f->sx[t] = ldlmod_masked(mask, i, j, A->x[f->smap[t]]);
+                }
+            }
+        }
         cholmod_sparse s;
         memset(&s, 0, sizeof s);
         s.nrow = s.ncol = (size_t)n;
@@ -207,8 +247,12 @@ static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
         cholmod_factorize(&s, f->L, &f->c);
         f->L->ordering = ord;
     } else {
-        cholmod_sparse s = cx_cholmod_view(A, 1);
+        cx_csc M = {0};
+        if (mask && ldlmod_masked_copy(&M, A, mask))
+            return cx_diag_set(d, CX_ENOMEM, "out of memory");
+        cholmod_sparse s = cx_cholmod_view(mask ? &M : A, 1);
         cholmod_factorize(&s, f->L, &f->c);
+        cx_csc_clear(&M);
     }
     CX_TRY(cx_cholmod_check(&f->c, f->L, "LDL' factorisation", d));
     if (f->cnt)
@@ -254,8 +298,8 @@ static void ldlmod_etree(cx_ldlmod *f, const cx_csc *A)
     f->stamp = 0;
 }
 
-static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod *like, cx_counters *cnt,
-                      cx_diag *d)
+static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, const ldlmod_mask *mask, int super,
+                      const cx_ldlmod *like, cx_counters *cnt, cx_diag *d)
 {
     int n = A->ncol;
     cx_ldlmod *f = CX_NEW(cx_ldlmod, 1);
@@ -295,7 +339,7 @@ static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod
     if (st == CX_OK && super && ldlmod_permuted(f, A) != CX_OK)
         st = cx_diag_set(d, CX_ENOMEM, "out of memory");
     if (st == CX_OK)
-        st = ldlmod_factor(f, A, d);
+        st = ldlmod_factor(f, A, mask, d);
     if (st != CX_OK) {
         cx_ldlmod_destroy(&f);
         return st;
@@ -310,19 +354,28 @@ static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod
 
 int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
 {
-    return ldlmod_new(F, A, 0, NULL, cnt, d);
+    return ldlmod_new(F, A, NULL, 0, NULL, cnt, d);
 }
 
 int cx_ldlmod_create_super(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
 {
-    return ldlmod_new(F, A, 1, NULL, cnt, d);
+    return ldlmod_new(F, A, NULL, 1, NULL, cnt, d);
 }
 
 int cx_ldlmod_create_like(cx_ldlmod **F, const cx_ldlmod *like, const cx_csc *A, cx_counters *cnt, cx_diag *d)
 {
     if (like->n != A->ncol)
         return cx_diag_set(d, CX_EINVAL, "ldlmod: the matrix is not of the other factor's order");
-    return ldlmod_new(F, A, like->super, like, cnt, d);
+    return ldlmod_new(F, A, NULL, like->super, like, cnt, d);
+}
+
+int cx_ldlmod_create_masked(cx_ldlmod **F, const cx_csc *A, const unsigned char *keep, double shift,
+                            const cx_ldlmod *like, cx_counters *cnt, cx_diag *d)
+{
+    if (like && like->n != A->ncol)
+        return cx_diag_set(d, CX_EINVAL, "ldlmod: the matrix is not of the other factor's order");
+    ldlmod_mask m = {keep, shift};
+    return ldlmod_new(F, A, keep ? &m : NULL, like ? like->super : 1, like, cnt, d);
 }
 
 int cx_ldlmod_check(cx_ldlmod *f, double amax, cx_diag *d)
@@ -353,10 +406,21 @@ double cx_ldlmod_min_pivot(const cx_ldlmod *f)
 
 int cx_ldlmod_refactor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
 {
-    CX_TRY(ldlmod_factor(f, A, d));
+    CX_TRY(ldlmod_factor(f, A, NULL, d));
     double amax = 0;
     for (int j = 0; j < A->ncol; j++)
         amax = fmax(amax, fabs(cx_csc_get(A, j, j)));
+    return cx_ldlmod_check(f, amax, d);
+}
+
+int cx_ldlmod_refactor_masked(cx_ldlmod *f, const cx_csc *A, const unsigned char *keep, double shift,
+                              cx_diag *d)
+{
+    ldlmod_mask m = {keep, shift};
+    CX_TRY(ldlmod_factor(f, A, keep ? &m : NULL, d));
+    double amax = 0;   /* the masked matrix's largest diagonal entry */
+    for (int j = 0; j < A->ncol; j++)
+        amax = fmax(amax, fabs(keep ? ldlmod_masked(&m, j, j, cx_csc_get(A, j, j)) : cx_csc_get(A, j, j)));
     return cx_ldlmod_check(f, amax, d);
 }
 

@@ -175,9 +175,20 @@ int cx_ldlmod_create_super(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_
  * order): like's analysis is copied, not redone. */
 int cx_ldlmod_create_like(cx_ldlmod **F, const cx_ldlmod *like, const cx_csc *A, cx_counters *cnt,
                           cx_diag *d);
+/* The factor of A masked: rows and columns k with keep[k] = 0 the
+ * identity's, shift added to the other diagonal entries (keep NULL: A
+ * itself), factorised supernodal and converted (or, with like, from
+ * like's analysis); the masked matrix is never formed (its values are
+ * gathered into the factorisation's input). A is the matrix analysed and
+ * the one the later adds and deletes read. */
+int cx_ldlmod_create_masked(cx_ldlmod **F, const cx_csc *A, const unsigned char *keep, double shift,
+                            const cx_ldlmod *like, cx_counters *cnt, cx_diag *d);
 void cx_ldlmod_destroy(cx_ldlmod **F);
 /* A new numeric factorisation of A (same pattern), the analysis kept. */
 int cx_ldlmod_refactor(cx_ldlmod *F, const cx_csc *A, cx_diag *d);
+/* The same for A masked (cx_ldlmod_create_masked). */
+int cx_ldlmod_refactor_masked(cx_ldlmod *F, const cx_csc *A, const unsigned char *keep, double shift,
+                              cx_diag *d);
 /* CX_ENUMERIC if a pivot of D is below CX_PIVOT_RTOL amax (singular). */
 int cx_ldlmod_check(cx_ldlmod *F, double amax, cx_diag *d);
 /* The same over the pivots that row changes (add, delete) altered since

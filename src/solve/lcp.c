@@ -399,19 +399,18 @@ static int lcp_refactor(cx_lcp_solver *s, double eps, const unsigned char *zero,
     int n = L->n;
     double amax = fmax(1.0, L->amax + eps);
     s->pre = 0;
-    cx_lcp_factor_values(s, eps, zero, NULL);
     s->fvalid = 0;
-    if (!s->ldl) {
-        if (s->like && s->like->L == s->L && s->like->ldl)
-            CX_TRY(cx_ldlmod_create_like(&s->ldl, s->like->ldl, &s->M, s->cnt, d));
-        else
-            CX_TRY(cx_ldlmod_create_super(&s->ldl, &s->M, s->cnt, d));
-        CX_TRY(cx_ldlmod_check(s->ldl, amax, d));
-    } else {
-        CX_TRY(cx_ldlmod_refactor(s->ldl, &s->M, d));
-    }
+    /* the mask as fkeep (1: A's row) goes to ldlmod, which gathers the
+     * masked values itself: s->M is not formed on this path */
     for (int i = 0; i < n; i++)
         s->fkeep[i] = !(zero && zero[i]);
+    if (!s->ldl) {
+        const cx_ldlmod *like = s->like && s->like->L == s->L ? s->like->ldl : NULL;
+        CX_TRY(cx_ldlmod_create_masked(&s->ldl, &L->A, s->fkeep, eps, like, s->cnt, d));
+        CX_TRY(cx_ldlmod_check(s->ldl, amax, d));
+    } else {
+        CX_TRY(cx_ldlmod_refactor_masked(s->ldl, &L->A, s->fkeep, eps, d));
+    }
     s->feps = eps;
     s->fvalid = 1;
     return CX_OK;
