@@ -23,6 +23,13 @@ struct cx_ldlmod {
     double *w;         /* n: solve workspace */
     int *parent;       /* n: elimination tree of the analysed pattern, in L's order (-1: root) */
     int *mark;         /* n: visit stamps of the row reaches */
+    int *sp, *si;      /* super: the lower triangle of P A P' (CSC, sorted), factorised in
+                          place of A so that CHOLMOD need not permute A each time */
+    double *sx;
+    int *smap;         /* its entries' places in A->x */
+    int *dirty;        /* n: the columns whose pivot an update changed since the last check */
+    int ndirty;
+    unsigned char *isdirty;   /* n: 1 on those */
     int stamp;
     cholmod_dense *X, *Y, *E;   /* cholmod_solve2's workspace, kept between solves */
     double lnz_full;   /* entries of L as factorised, before the zeros are dropped */
@@ -40,7 +47,8 @@ void cx_ldlmod_destroy(cx_ldlmod **F)
     cholmod_free_dense(&f->E, &f->c);
     cholmod_finish(&f->c);
     cx_free(f->pinv), cx_free(f->ri), cx_free(f->rx), cx_free(f->w);
-    cx_free(f->parent), cx_free(f->mark);
+    cx_free(f->parent), cx_free(f->mark), cx_free(f->dirty), cx_free(f->isdirty);
+    cx_free(f->sp), cx_free(f->si), cx_free(f->sx), cx_free(f->smap);
     cx_free(f);
     *F = NULL;
 }
@@ -49,23 +57,124 @@ void cx_ldlmod_destroy(cx_ldlmod **F)
  * relaxed supernodes' padding, and the rows and columns that the mask
  * holds at the identity (the closed start masks every contact unknown, so
  * its factor has the pattern of A's but far fewer non-zeros). Solves and
- * updates then walk only the true non-zeros. The columns keep their
- * space (Lp), so a later update that fills an entry again finds room;
- * CHOLMOD's Modify grows a column's pattern as its updates need. */
+ * updates then walk only the true non-zeros. The columns are packed
+ * towards the front, in order, each left one free slot where the space
+ * allows (the space dropped before it; the first columns may have none),
+ * and the space freed goes to the end of L (Lp[n], CHOLMOD's free
+ * space). CHOLMOD's row add moves a column to that free space whenever
+ * the column is full, even when it already holds the new row; with the
+ * columns packed as they were (the zeros left in place, no space at the
+ * end) the first such move grew the whole factor (a copy of L, 30-40 ms
+ * at 1/100), and every column keeps room for what its updates add:
+ * the masked matrices' patterns are all within A's. */
 static void ldlmod_drop_zeros(cx_ldlmod *f)
 {
     cholmod_factor *L = f->L;
     int *lp = L->p, *li = L->i, *lnz = L->nz;
     double *lx = L->x;
+    /* a new factor's columns lie in order (monotonic): packing keeps it */
+    int packs = L->is_monotonic, end = 0;   /* end: of the packed columns so far */
     for (int j = 0; j < f->n; j++) {
-        int p0 = lp[j], q = p0 + 1;   /* the diagonal (D) stays first */
-        for (int p = p0 + 1; p < p0 + lnz[j]; p++)
+        int p0 = lp[j], pend = p0 + lnz[j];
+        /* end <= p0 (the columns before ended there at most) */
+        int start = !packs ? p0 : j == 0 ? p0 : end + 1 <= p0 ? end + 1 : p0;
+        li[start] = li[p0];   /* the diagonal (D) stays first */
+        lx[start] = lx[p0];
+        int w = start + 1;
+        for (int p = p0 + 1; p < pend; p++)
             if (lx[p] != 0) {
-                li[q] = li[p];
-                lx[q++] = lx[p];
+                li[w] = li[p];
+                lx[w++] = lx[p];
             }
-        lnz[j] = q - p0;
+        lp[j] = start;
+        lnz[j] = w - start;
+        end = w;
     }
+    if (packs)   /* the last column's slot, then CHOLMOD's free space */
+        lp[f->n] = (size_t)end + 1 <= L->nzmax ? end + 1 : end;
+}
+
+/* The lower triangle of P A P' (P: the analysis's order) as its own
+ * pattern, with the place in A of each entry's value, built once: a
+ * factorisation then gathers A's values into it and hands CHOLMOD the
+ * permuted matrix with the natural order, where CHOLMOD otherwise
+ * transposes A through P at every factorisation (a sixth of a
+ * refactorisation at 1/100). Row r of P A P' is column perm[r] of A (the
+ * pattern symmetric), so walking r upwards fills each column's rows in
+ * order; each value is read from A's upper triangle, as CHOLMOD's view of
+ * A (stype 1) reads it, so that the factor is the same to the last bit
+ * when A's triangles differ by roundoff (T' K T can). The same walk
+ * gives the elimination tree (as ldlmod_etree, which it saves a pass). */
+static int ldlmod_permuted(cx_ldlmod *f, const cx_csc *A)
+{
+    int n = f->n, st = CX_ENOMEM;
+    size_t anz = cx_csc_nnz(A);
+    const int *perm = f->sym->Perm;
+    int *pinv = f->pinv, *pos = CX_NEW(int, n + 1), *upper = CX_NEW(int, anz + 1);
+    f->sp = CX_NEW(int, n + 1);
+    if (!pos || !upper || !f->sp)
+        goto done;
+    /* upper[q]: the place of A(j, i) for a lower entry q = A(i, j), i > j
+     * (itself if not stored): column i's rows ascend as j does */
+    for (int c = 0; c < n; c++)
+        pos[c] = A->p[c];
+    for (int j = 0; j < n; j++)
+        for (int q = A->p[j]; q < A->p[j + 1]; q++) {
+            int i = A->i[q];
+            upper[q] = q;
+            if (i <= j)
+                continue;
+            while (pos[i] < A->p[i + 1] && A->i[pos[i]] < j)
+                pos[i]++;
+            if (pos[i] < A->p[i + 1] && A->i[pos[i]] == j)
+                upper[q] = pos[i];
+        }
+    for (int r = 0; r < n; r++)
+        pinv[perm ? perm[r] : r] = r;
+    for (int r = 0; r < n; r++) {
+        int col = perm ? perm[r] : r;
+        for (int q = A->p[col]; q < A->p[col + 1]; q++)
+            if (pinv[A->i[q]] <= r)
+                f->sp[pinv[A->i[q]] + 1]++;
+    }
+    for (int c = 0; c < n; c++)
+        f->sp[c + 1] += f->sp[c];
+    size_t nz = (size_t)f->sp[n];
+    f->si = CX_NEW(int, nz + 1);
+    f->sx = CX_NEW(double, nz + 1);
+    f->smap = CX_NEW(int, nz + 1);
+    if (!f->si || !f->sx || !f->smap)
+        goto done;
+    /* the same walk gives the elimination tree (ldlmod_etree's, fused) */
+    int *anc = f->mark;
+    memcpy(pos, f->sp, sizeof(int) * (size_t)n);
+    for (int r = 0; r < n; r++) {
+        int col = perm ? perm[r] : r;
+        f->parent[r] = -1, anc[r] = -1;
+        for (int q = A->p[col]; q < A->p[col + 1]; q++) {
+            int c = pinv[A->i[q]];
+            if (c > r)
+                continue;
+            int t = pos[c]++;
+            f->si[t] = r;
+            f->smap[t] = upper[q];
+            for (int i = c; i != -1 && i < r;) {
+                int next = anc[i];
+                anc[i] = r;
+                if (next == -1)
+                    f->parent[i] = r;
+                i = next;
+            }
+        }
+    }
+    for (int k = 0; k < n; k++)
+        f->mark[k] = 0;
+    f->stamp = 0;
+    st = CX_OK;
+done:
+    cx_free(pos);
+    cx_free(upper);
+    return st;
 }
 
 /* The numeric factor of A from the kept analysis: a copy of the symbolic
@@ -73,13 +182,78 @@ static void ldlmod_drop_zeros(cx_ldlmod *f)
  * super the supernodal LL' converted to the simplicial LDL' that Modify
  * needs (the supernodal factorisation is several times faster on the
  * larger meshes; the conversion is one pass over L). */
-static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
+/* The mask of a factorisation (cx_ldlmod_create_masked): NULL, or keep
+ * (n: 1 where row and column are A's, 0 where the identity's) and the
+ * shift added to the kept diagonal. */
+typedef struct {
+    const unsigned char *keep;
+    double shift;
+} ldlmod_mask;
+
+/* Entry (i, j) of the masked matrix, a its value in A. */
+static inline double ldlmod_masked(const ldlmod_mask *m, int i, int j, double a)
 {
+    if (!m->keep[i] || !m->keep[j])
+        return i == j;
+    return i == j ? a + m->shift : a;
+}
+
+/* A copy of A masked (the simplicial path, which factorises A itself). */
+static int ldlmod_masked_copy(cx_csc *M, const cx_csc *A, const ldlmod_mask *m)
+{
+    if (cx_csc_copy(M, A))
+        return CX_ENOMEM;
+    for (int j = 0; j < A->ncol; j++)
+        for (int q = A->p[j]; q < A->p[j + 1]; q++)
+            M->x[q] = ldlmod_masked(m, A->i[q], j, A->x[q]);
+    return CX_OK;
+}
+
+static int ldlmod_factor(cx_ldlmod *f, const cx_csc *A, const ldlmod_mask *mask, cx_diag *d)
+{
+    for (int a = 0; a < f->ndirty; a++)   /* a new factor is checked in full */
+        f->isdirty[f->dirty[a]] = 0;
+    f->ndirty = 0;
     cholmod_free_factor(&f->L, &f->c);
     f->L = cholmod_copy_factor(f->sym, &f->c);
     CX_TRY(cx_cholmod_check(&f->c, f->L, "copy of the analysis (ldlmod)", d));
-    cholmod_sparse s = cx_cholmod_view(A, 1);
-    cholmod_factorize(&s, f->L, &f->c);
+    if (f->sp) {
+        /* P A P' gathered, factorised in the natural order (the order
+         * restored after: the solves and updates permute through L->Perm) */
+        int n = f->n, ord = f->L->ordering;
+        if (!mask) {
+            for (int t = 0; t < f->sp[n]; t++)
+                f->sx[t] = A->x[f->smap[t]];
+        } else {
+            /* the mask applied as the values are gathered: the masked
+             * matrix is never formed */
+            const int *perm = f->sym->Perm;
+            for (int c = 0; c < n; c++) {
+                int j = perm ? perm[c] : c;
+                for (int t = f->sp[c]; t < f->sp[c + 1]; t++) {
+                    int i = perm ? perm[f->si[t]] : f->si[t];
+                    f->sx[t] = ldlmod_masked(mask, i, j, A->x[f->smap[t]]);
+                }
+            }
+        }
+        cholmod_sparse s;
+        memset(&s, 0, sizeof s);
+        s.nrow = s.ncol = (size_t)n;
+        s.nzmax = (size_t)f->sp[n] + 1;
+        s.p = f->sp, s.i = f->si, s.x = f->sx;
+        s.stype = -1, s.itype = CHOLMOD_INT, s.xtype = CHOLMOD_REAL, s.dtype = CHOLMOD_DOUBLE;
+        s.sorted = 1, s.packed = 1;
+        f->L->ordering = CHOLMOD_NATURAL;
+        cholmod_factorize(&s, f->L, &f->c);
+        f->L->ordering = ord;
+    } else {
+        cx_csc M = {0};
+        if (mask && ldlmod_masked_copy(&M, A, mask))
+            return cx_diag_set(d, CX_ENOMEM, "out of memory");
+        cholmod_sparse s = cx_cholmod_view(mask ? &M : A, 1);
+        cholmod_factorize(&s, f->L, &f->c);
+        cx_csc_clear(&M);
+    }
     CX_TRY(cx_cholmod_check(&f->c, f->L, "LDL' factorisation", d));
     if (f->cnt)
         f->cnt->factorizations++;
@@ -124,8 +298,8 @@ static void ldlmod_etree(cx_ldlmod *f, const cx_csc *A)
     f->stamp = 0;
 }
 
-static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod *like, cx_counters *cnt,
-                      cx_diag *d)
+static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, const ldlmod_mask *mask, int super,
+                      const cx_ldlmod *like, cx_counters *cnt, cx_diag *d)
 {
     int n = A->ncol;
     cx_ldlmod *f = CX_NEW(cx_ldlmod, 1);
@@ -145,7 +319,9 @@ static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod
     f->w = CX_NEW(double, n);
     f->parent = CX_NEW(int, n);
     f->mark = CX_NEW(int, n);
-    if (!f->pinv || !f->ri || !f->rx || !f->w || !f->parent || !f->mark) {
+    f->dirty = CX_NEW(int, n + 1);
+    f->isdirty = CX_NEW(unsigned char, n + 1);
+    if (!f->pinv || !f->ri || !f->rx || !f->w || !f->parent || !f->mark || !f->dirty || !f->isdirty) {
         cx_ldlmod_destroy(&f);
         return cx_diag_set(d, CX_ENOMEM, "out of memory");
     }
@@ -160,34 +336,46 @@ static int ldlmod_new(cx_ldlmod **F, const cx_csc *A, int super, const cx_ldlmod
         f->sym = cholmod_analyze(&s, &f->c);
         st = cx_cholmod_check(&f->c, f->sym, "analyse (ldlmod)", d);
     }
+    if (st == CX_OK && super && ldlmod_permuted(f, A) != CX_OK)
+        st = cx_diag_set(d, CX_ENOMEM, "out of memory");
     if (st == CX_OK)
-        st = ldlmod_factor(f, A, d);
+        st = ldlmod_factor(f, A, mask, d);
     if (st != CX_OK) {
         cx_ldlmod_destroy(&f);
         return st;
     }
     for (int k = 0; k < n; k++)
         f->pinv[cx_cholmod_column(f->L, k)] = k;
-    ldlmod_etree(f, A);
+    if (!f->sp)   /* else ldlmod_permuted built it */
+        ldlmod_etree(f, A);
     *F = f;
     return CX_OK;
 }
 
 int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
 {
-    return ldlmod_new(F, A, 0, NULL, cnt, d);
+    return ldlmod_new(F, A, NULL, 0, NULL, cnt, d);
 }
 
 int cx_ldlmod_create_super(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d)
 {
-    return ldlmod_new(F, A, 1, NULL, cnt, d);
+    return ldlmod_new(F, A, NULL, 1, NULL, cnt, d);
 }
 
 int cx_ldlmod_create_like(cx_ldlmod **F, const cx_ldlmod *like, const cx_csc *A, cx_counters *cnt, cx_diag *d)
 {
     if (like->n != A->ncol)
         return cx_diag_set(d, CX_EINVAL, "ldlmod: the matrix is not of the other factor's order");
-    return ldlmod_new(F, A, like->super, like, cnt, d);
+    return ldlmod_new(F, A, NULL, like->super, like, cnt, d);
+}
+
+int cx_ldlmod_create_masked(cx_ldlmod **F, const cx_csc *A, const unsigned char *keep, double shift,
+                            const cx_ldlmod *like, cx_counters *cnt, cx_diag *d)
+{
+    if (like && like->n != A->ncol)
+        return cx_diag_set(d, CX_EINVAL, "ldlmod: the matrix is not of the other factor's order");
+    ldlmod_mask m = {keep, shift};
+    return ldlmod_new(F, A, keep ? &m : NULL, like ? like->super : 1, like, cnt, d);
 }
 
 int cx_ldlmod_check(cx_ldlmod *f, double amax, cx_diag *d)
@@ -218,16 +406,59 @@ double cx_ldlmod_min_pivot(const cx_ldlmod *f)
 
 int cx_ldlmod_refactor(cx_ldlmod *f, const cx_csc *A, cx_diag *d)
 {
-    CX_TRY(ldlmod_factor(f, A, d));
+    CX_TRY(ldlmod_factor(f, A, NULL, d));
     double amax = 0;
     for (int j = 0; j < A->ncol; j++)
         amax = fmax(amax, fabs(cx_csc_get(A, j, j)));
     return cx_ldlmod_check(f, amax, d);
 }
 
+int cx_ldlmod_refactor_masked(cx_ldlmod *f, const cx_csc *A, const unsigned char *keep, double shift,
+                              cx_diag *d)
+{
+    ldlmod_mask m = {keep, shift};
+    CX_TRY(ldlmod_factor(f, A, keep ? &m : NULL, d));
+    double amax = 0;   /* the masked matrix's largest diagonal entry */
+    for (int j = 0; j < A->ncol; j++)
+        amax = fmax(amax, fabs(keep ? ldlmod_masked(&m, j, j, cx_csc_get(A, j, j)) : cx_csc_get(A, j, j)));
+    return cx_ldlmod_check(f, amax, d);
+}
+
+/* A row change at k alters the pivots on the path from k to the root of
+ * the elimination tree of the factor modified, which lies on the path in
+ * A's tree (a subset pattern's tree has each column's parent among its
+ * ancestors in A's): recorded for cx_ldlmod_check_updated. A column
+ * already recorded has its ancestors recorded too. */
+static void ldlmod_touch(cx_ldlmod *f, int k)
+{
+    for (int j = f->pinv[k]; j != -1 && !f->isdirty[j]; j = f->parent[j]) {
+        f->isdirty[j] = 1;
+        f->dirty[f->ndirty++] = j;
+    }
+}
+
+int cx_ldlmod_check_updated(cx_ldlmod *f, double amax, cx_diag *d)
+{
+    const int *lp = f->L->p;
+    const double *lx = f->L->x;
+    int st = CX_OK;
+    for (int a = 0; a < f->ndirty; a++) {
+        int k = f->dirty[a];
+        f->isdirty[k] = 0;
+        double dk = lx[lp[k]];
+        if (st == CX_OK && !(dk > CX_PIVOT_RTOL * amax))
+            st = cx_diag_set(d, CX_ENUMERIC,
+                             "LDL' factor: matrix singular to working precision (pivot %g at column %d)",
+                             dk, cx_cholmod_column(f->L, k));
+    }
+    f->ndirty = 0;
+    return st;
+}
+
 int cx_ldlmod_delete(cx_ldlmod *f, int k, cx_diag *d)
 {
     cholmod_rowdel((size_t)f->pinv[k], NULL, f->L, &f->c);
+    ldlmod_touch(f, k);
     CX_TRY(cx_cholmod_check(&f->c, f->L, "row delete", d));
     if (f->cnt)
         f->cnt->updates++;
@@ -269,6 +500,7 @@ int cx_ldlmod_delete_row(cx_ldlmod *f, int k, const cx_csc *A, const unsigned ch
     R.stype = 0, R.itype = CHOLMOD_INT, R.xtype = CHOLMOD_PATTERN, R.dtype = CHOLMOD_DOUBLE;
     R.sorted = 0, R.packed = 1;
     cholmod_rowdel((size_t)f->pinv[k], &R, f->L, &f->c);
+    ldlmod_touch(f, k);
     CX_TRY(cx_cholmod_check(&f->c, f->L, "row delete", d));
     if (f->cnt)
         f->cnt->updates++;
@@ -320,6 +552,7 @@ int cx_ldlmod_add(cx_ldlmod *f, int k, const cx_csc *A, const unsigned char *kee
     R.stype = 0, R.itype = CHOLMOD_INT, R.xtype = CHOLMOD_REAL, R.dtype = CHOLMOD_DOUBLE;
     R.sorted = 1, R.packed = 1;
     cholmod_rowadd((size_t)f->pinv[k], &R, f->L, &f->c);
+    ldlmod_touch(f, k);
     CX_TRY(cx_cholmod_check(&f->c, f->L, "row add", d));
     if (f->L->minor < f->L->n)
         return cx_diag_set(d, CX_ENUMERIC, "row add: the matrix is no longer positive definite");

@@ -88,6 +88,10 @@ void cx_csc_gemv_t(const cx_csc *A, double alpha, const double *x, double beta, 
 /* C = A B (C must be empty; sorted columns, no explicit zeros dropped).
  * CX_EINVAL if the sizes do not fit, CX_ENOMEM (C left empty). */
 int cx_csc_multiply(cx_csc *C, const cx_csc *A, const cx_csc *B);
+/* C = T' K T (K square, T with K's rows; C empty on entry): one pass per
+ * column, K T never stored, the output allocated once. Sorted columns,
+ * explicit zeros kept. CX_EINVAL if the sizes do not fit, CX_ENOMEM. */
+int cx_csc_congruence(cx_csc *C, const cx_csc *K, const cx_csc *T);
 /* A(i, j), 0 if not stored (binary search). */
 double cx_csc_get(const cx_csc *A, int i, int j);
 /* The place of (i, j) in A->i / A->x, -1 if not stored (binary search). */
@@ -171,11 +175,26 @@ int cx_ldlmod_create_super(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_
  * order): like's analysis is copied, not redone. */
 int cx_ldlmod_create_like(cx_ldlmod **F, const cx_ldlmod *like, const cx_csc *A, cx_counters *cnt,
                           cx_diag *d);
+/* The factor of A masked: rows and columns k with keep[k] = 0 the
+ * identity's, shift added to the other diagonal entries (keep NULL: A
+ * itself), factorised supernodal and converted (or, with like, from
+ * like's analysis); the masked matrix is never formed (its values are
+ * gathered into the factorisation's input). A is the matrix analysed and
+ * the one the later adds and deletes read. */
+int cx_ldlmod_create_masked(cx_ldlmod **F, const cx_csc *A, const unsigned char *keep, double shift,
+                            const cx_ldlmod *like, cx_counters *cnt, cx_diag *d);
 void cx_ldlmod_destroy(cx_ldlmod **F);
 /* A new numeric factorisation of A (same pattern), the analysis kept. */
 int cx_ldlmod_refactor(cx_ldlmod *F, const cx_csc *A, cx_diag *d);
+/* The same for A masked (cx_ldlmod_create_masked). */
+int cx_ldlmod_refactor_masked(cx_ldlmod *F, const cx_csc *A, const unsigned char *keep, double shift,
+                              cx_diag *d);
 /* CX_ENUMERIC if a pivot of D is below CX_PIVOT_RTOL amax (singular). */
 int cx_ldlmod_check(cx_ldlmod *F, double amax, cx_diag *d);
+/* The same over the pivots that row changes (add, delete) altered since
+ * the factorisation or the last call: the factor passed a check before
+ * them, the other pivots are as they were. */
+int cx_ldlmod_check_updated(cx_ldlmod *F, double amax, cx_diag *d);
 /* The smallest entry of D. */
 double cx_ldlmod_min_pivot(const cx_ldlmod *F);
 /* Row and column k become the identity's. */

@@ -58,7 +58,7 @@ static int lcp_build_map(void **obj, const cx_problem *p, const void *arg, cx_co
 {
     (void)arg, (void)cnt;
     int n = p->n, m = p->m, st = CX_ENOMEM;
-    cx_csc Nt = {0}, Tt = {0}, KT = {0};
+    cx_csc Nt = {0};
     cx_triplet tr = {0};
     double *r = NULL;
     cx_lcp_map *map = CX_NEW(cx_lcp_map, 1);
@@ -94,8 +94,8 @@ static int lcp_build_map(void **obj, const cx_problem *p, const void *arg, cx_co
             if (Nt.i[q] != pv && cx_triplet_add(&tr, pv, Nt.i[q], -Nt.x[q] / npv))
                 goto fail;
     }
-    if (cx_csc_from_triplet(&map->T, &tr) || cx_csc_transpose(&Tt, &map->T) ||
-        cx_csc_multiply(&KT, &p->K, &map->T) || cx_csc_multiply(&map->full.A, &Tt, &KT))
+    /* A = T' K T in one pass (cx_csc_congruence): K T is never stored */
+    if (cx_csc_from_triplet(&map->T, &tr) || cx_csc_congruence(&map->full.A, &p->K, &map->T))
         goto fail;
     /* b = T' (f - K u0) */
     cx_csc_gemv(&p->K, -1.0, map->u0, 0.0, r);
@@ -110,11 +110,11 @@ static int lcp_build_map(void **obj, const cx_problem *p, const void *arg, cx_co
         if (a > map->full.amax)
             map->full.amax = a;
     }
-    cx_csc_clear(&Nt), cx_csc_clear(&Tt), cx_csc_clear(&KT), cx_triplet_clear(&tr), cx_free(r);
+    cx_csc_clear(&Nt), cx_triplet_clear(&tr), cx_free(r);
     *obj = map;
     return CX_OK;
 fail:
-    cx_csc_clear(&Nt), cx_csc_clear(&Tt), cx_csc_clear(&KT), cx_triplet_clear(&tr), cx_free(r);
+    cx_csc_clear(&Nt), cx_triplet_clear(&tr), cx_free(r);
     lcp_map_destroy(map);
     return st == CX_ENOMEM ? cx_diag_set(d, CX_ENOMEM, "out of memory building the LCP") : st;
 }
@@ -374,7 +374,7 @@ static int lcp_factor_mod(cx_lcp_solver *s, double eps, const unsigned char *zer
                     s->fkeep[i] = 1;
                 }
             if (st == CX_OK)
-                st = cx_ldlmod_check(s->ldl, amax, d);
+                st = cx_ldlmod_check_updated(s->ldl, amax, d);
             if (st == CX_OK)
                 return CX_OK;
             if (st != CX_ENUMERIC)
@@ -399,19 +399,18 @@ static int lcp_refactor(cx_lcp_solver *s, double eps, const unsigned char *zero,
     int n = L->n;
     double amax = fmax(1.0, L->amax + eps);
     s->pre = 0;
-    cx_lcp_factor_values(s, eps, zero, NULL);
     s->fvalid = 0;
-    if (!s->ldl) {
-        if (s->like && s->like->L == s->L && s->like->ldl)
-            CX_TRY(cx_ldlmod_create_like(&s->ldl, s->like->ldl, &s->M, s->cnt, d));
-        else
-            CX_TRY(cx_ldlmod_create_super(&s->ldl, &s->M, s->cnt, d));
-        CX_TRY(cx_ldlmod_check(s->ldl, amax, d));
-    } else {
-        CX_TRY(cx_ldlmod_refactor(s->ldl, &s->M, d));
-    }
+    /* the mask as fkeep (1: A's row) goes to ldlmod, which gathers the
+     * masked values itself: s->M is not formed on this path */
     for (int i = 0; i < n; i++)
         s->fkeep[i] = !(zero && zero[i]);
+    if (!s->ldl) {
+        const cx_ldlmod *like = s->like && s->like->L == s->L ? s->like->ldl : NULL;
+        CX_TRY(cx_ldlmod_create_masked(&s->ldl, &L->A, s->fkeep, eps, like, s->cnt, d));
+        CX_TRY(cx_ldlmod_check(s->ldl, amax, d));
+    } else {
+        CX_TRY(cx_ldlmod_refactor_masked(s->ldl, &L->A, s->fkeep, eps, d));
+    }
     s->feps = eps;
     s->fvalid = 1;
     return CX_OK;
