@@ -45,5 +45,14 @@ int cx_cholmod_column(const cholmod_factor *L, int k);
  * L' x = [y1; u_c] gives x_i = A_ii^-1 (f_i - A_ic u_c). CX_ENUMERIC
  * naming a column if A_ii is not (numerically) positive definite. */
 int cx_schur_numeric(cholmod_factor *L, const cx_csc *A, int nstop, double *W, cholmod_common *cc, cx_diag *d);
+/* Called by cx_schur_numeric on the symbolic factor L (before any value):
+ * the interior columns of each supernode (those before nstop) reordered
+ * within the supernode by the first supernode whose rows hold them (ties
+ * by position), so that the rows a descendant is the first to update are
+ * consecutive in each supernode it updates. L->s (each supernode's rows
+ * below its columns kept ascending), L->Perm, L->ColCount (and L->IPerm
+ * if present) are renumbered; the supernodes, their sizes and the columns
+ * from nstop on are unchanged. CX_ENOMEM, L unchanged. */
+int cx_schur_arrange(cholmod_factor *L, int nstop);
 
 #endif
