@@ -45,6 +45,12 @@ int cx_cholmod_column(const cholmod_factor *L, int k);
  * L' x = [y1; u_c] gives x_i = A_ii^-1 (f_i - A_ic u_c). CX_ENUMERIC
  * naming a column if A_ii is not (numerically) positive definite. */
 int cx_schur_numeric(cholmod_factor *L, const cx_csc *A, int nstop, double *W, cholmod_common *cc, cx_diag *d);
+/* cx_schur_numeric with the panel size given: an update of more than
+ * max(panel, 64 rows of the largest supernode) entries is
+ * formed and scattered a panel of its columns at a time (the default, 1M
+ * entries, is reached on large 3D problems only; tests pass a small one). */
+int cx_schur_numeric_panel(cholmod_factor *L, const cx_csc *A, int nstop, double *W, size_t panel,
+                           cholmod_common *cc, cx_diag *d);
 /* Called by cx_schur_numeric on the symbolic factor L (before any value):
  * the interior columns of each supernode (those before nstop) reordered
  * within the supernode by the first supernode whose rows hold them (ties

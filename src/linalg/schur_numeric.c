@@ -42,8 +42,16 @@ typedef struct numeric_work {
     int *lpos;      /* nsuper: a supernode's first row not yet used */
     int *rmap;      /* the rows of one update, in the target supernode */
     int *rstart;    /* where each run of consecutive target rows starts */
-    double *C;      /* one descendant's update */
+    double *C;      /* one descendant's update, or a panel of its columns */
+    size_t csize;   /* C's length */
 } numeric_work;
+
+/* An update larger than this many entries (8 MB) is formed and scattered
+ * a panel of its columns at a time, at least CX_SCHUR_PANEL_MIN wide: the
+ * panel is still in cache when it is scattered, and C stays small (on
+ * prism 7 Tresca the largest update is 11.5M entries, 92 MB). */
+#define CX_SCHUR_PANEL_ENTRIES ((size_t)1 << 20)
+#define CX_SCHUR_PANEL_MIN 64
 
 static void work_free(numeric_work *w)
 {
@@ -73,7 +81,7 @@ static size_t work_csize(const cholmod_factor *L)
     return m;
 }
 
-static int work_alloc(numeric_work *w, const cholmod_factor *L)
+static int work_alloc(numeric_work *w, const cholmod_factor *L, size_t panel)
 {
     size_t n = L->n, ns = L->nsuper, maxrow = 1;
     for (size_t s = 0; s < ns; s++) {
@@ -89,7 +97,11 @@ static int work_alloc(numeric_work *w, const cholmod_factor *L)
     w->lpos = CX_NEW(int, ns + 1);
     w->rmap = CX_NEW(int, maxrow);
     w->rstart = CX_NEW(int, maxrow + 1);
-    w->C = CX_NEW(double, work_csize(L));
+    size_t cs = work_csize(L), cap = panel;
+    if (cap < maxrow * CX_SCHUR_PANEL_MIN)
+        cap = maxrow * CX_SCHUR_PANEL_MIN;
+    w->csize = cs < cap ? cs : cap;
+    w->C = CX_NEW(double, w->csize);
     if (!w->map || !w->smap || !w->pinv || !w->head || !w->next || !w->lpos || !w->rmap || !w->rstart ||
         !w->C) {
         work_free(w);
@@ -99,17 +111,18 @@ static int work_alloc(numeric_work *w, const cholmod_factor *L)
 }
 
 /* Supernode s's columns [k1, k2) of P A P', lower part, into its block
- * (zeroed first). A holds both triangles. The block's strict upper
+ * (zeroed first, unless zeroed says numeric_prefault_factor did it). A
+ * holds both triangles. The block's strict upper
  * triangle is never read (every BLAS call here and every CHOLMOD solve
  * takes the lower one) and is not zeroed: those pages of a fresh
  * allocation are then never touched (on prism 7 the last supernode alone
  * is 4968 x 4968, half of it above the diagonal). */
-static void numeric_assemble(const cholmod_factor *L, const cx_csc *A, numeric_work *w, int s)
+static void numeric_assemble(const cholmod_factor *L, const cx_csc *A, numeric_work *w, int s, int zeroed)
 {
     const int *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s, *perm = L->Perm;
     double *lx = (double *)L->x + px[s];
     int k1 = super[s], k2 = super[s + 1], nsrow = pi[s + 1] - pi[s];
-    for (int k = k1; k < k2; k++)
+    for (int k = k1; k < k2 && !zeroed; k++)
         memset(lx + (size_t)(k - k1) * (size_t)nsrow + (k - k1), 0, sizeof(double) * (size_t)(nsrow - (k - k1)));
     for (int r = 0; r < nsrow; r++)
         w->map[ls[pi[s] + r]] = r;
@@ -171,11 +184,24 @@ static void numeric_updates(const cholmod_factor *L, numeric_work *w, int s, int
         int ndrow1 = p2 - p1, ndrow2 = pdend - p1, ndrow3 = ndrow2 - ndrow1;
         const double *lr = (const double *)L->x + px[dd] + (p1 - pdi);
         double *C = w->C;
-        dsyrk_("L", "N", &ndrow1, &ndcol, &one, lr, &ndrow, &zero, C, &ndrow2);
-        if (ndrow3 > 0)
-            dgemm_("N", "T", &ndrow3, &ndrow1, &ndcol, &one, lr + ndrow1, &ndrow, lr, &ndrow, &zero,
-                   C + ndrow1, &ndrow2);
-        numeric_scatter(w, ls + p1, C, ndrow1, ndrow2, lxs, k1, nsrow);
+        if ((size_t)ndrow2 * (size_t)ndrow1 <= w->csize) {
+            dsyrk_("L", "N", &ndrow1, &ndcol, &one, lr, &ndrow, &zero, C, &ndrow2);
+            if (ndrow3 > 0)
+                dgemm_("N", "T", &ndrow3, &ndrow1, &ndcol, &one, lr + ndrow1, &ndrow, lr, &ndrow, &zero,
+                       C + ndrow1, &ndrow2);
+            numeric_scatter(w, ls + p1, C, ndrow1, ndrow2, lxs, k1, nsrow);
+        } else {
+            /* columns [j0, j0 + pw) of the update, rows from j0 down */
+            int pw = (int)(w->csize / (size_t)ndrow2);
+            for (int j0 = 0; j0 < ndrow1; j0 += pw) {
+                int nw = ndrow1 - j0 < pw ? ndrow1 - j0 : pw, m2 = ndrow2 - j0, mb = m2 - nw;
+                dsyrk_("L", "N", &nw, &ndcol, &one, lr + j0, &ndrow, &zero, C, &m2);
+                if (mb > 0)
+                    dgemm_("N", "T", &mb, &nw, &ndcol, &one, lr + j0 + nw, &ndrow, lr + j0, &ndrow, &zero,
+                           C + nw, &m2);
+                numeric_scatter(w, ls + p1 + j0, C, nw, m2, lxs, k1, nsrow);
+            }
+        }
         w->lpos[dd] = p2 - pdi;
         if (p2 < pdend) {
             int sp = w->smap[ls[p2]];
@@ -335,29 +361,41 @@ int cx_schur_arrange(cholmod_factor *L, int nstop)
     return CX_OK;
 }
 
-/* Fault in the whole pages of [p, p + bytes) at once (MADV_POPULATE_WRITE,
- * Linux 5.14), before they are written: one call instead of a page fault
- * for each 4 KiB page on its first write. Only advice: where the kernel
- * lacks it, the call fails and the pages fault one by one as before. */
-static void numeric_prefault(void *p, size_t bytes)
+/* [p, p + bytes) as zeros, its whole pages faulted in at once: dropped
+ * first (MADV_DONTNEED: a private anonymous page then reads as zeros,
+ * whether malloc gave fresh pages or reused ones) and populated
+ * (MADV_POPULATE_WRITE, Linux 5.14: one call instead of a page fault for
+ * each 4 KiB page on its first write); the partial pages at the ends
+ * zeroed here. 0 if the kernel refused either call (the range is then
+ * left as it was, and the caller zeroes it). */
+static int numeric_zero_pages(double *p, size_t count)
 {
-#ifdef MADV_POPULATE_WRITE
+#if defined(MADV_POPULATE_WRITE) && defined(MADV_DONTNEED)
     const uintptr_t page = 4096;
-    uintptr_t lo = ((uintptr_t)p + page - 1) & ~(page - 1), hi = ((uintptr_t)p + bytes) & ~(page - 1);
-    if (hi > lo)
-        (void)madvise((void *)lo, hi - lo, MADV_POPULATE_WRITE);
+    uintptr_t a = (uintptr_t)p, b = (uintptr_t)(p + count);
+    uintptr_t lo = (a + page - 1) & ~(page - 1), hi = b & ~(page - 1);
+    if (hi <= lo)
+        return 0;
+    if (madvise((void *)lo, hi - lo, MADV_DONTNEED) != 0 || madvise((void *)lo, hi - lo, MADV_POPULATE_WRITE) != 0)
+        return 0;
+    memset(p, 0, lo - a);
+    memset((void *)hi, 0, b - hi);
+    return 1;
 #else
     (void)p;
-    (void)bytes;
+    (void)count;
+    return 0;
 #endif
 }
 
-/* The factor's values, fresh from CHOLMOD's allocation, prefaulted where
- * the factorisation writes: each column from its diagonal down, the
- * ranges that lie less than a page apart taken as one. The strict upper
- * triangles of the diagonal blocks are never written; that of the last
- * supernode (prism 7 Tresca: 4968 columns, 99 MB) stays untouched. */
-static void numeric_prefault_factor(const cholmod_factor *L)
+/* The factor's values, fresh from CHOLMOD's allocation, zeroed and
+ * faulted in where the factorisation writes: each column from its
+ * diagonal down, the ranges that lie less than a page apart taken as one.
+ * The strict upper triangles of the diagonal blocks are never written;
+ * that of the last supernode (prism 7 Tresca: 4968 columns, 99 MB) stays
+ * untouched. 1 if every range was zeroed so (numeric_assemble then
+ * writes no zeros of its own), 0 if the kernel refused. */
+static int numeric_prefault_factor(const cholmod_factor *L)
 {
     const int *super = L->super, *pi = L->pi, *px = L->px;
     double *x = L->x;
@@ -367,19 +405,27 @@ static void numeric_prefault_factor(const cholmod_factor *L)
         for (size_t j = 0; j < nscol; j++) {
             size_t start = (size_t)px[s] + j * nsrow + j, end = (size_t)px[s] + (j + 1) * nsrow;
             if (start > b + gap) {
-                numeric_prefault(x + a, sizeof(double) * (b - a));
+                if (b > a && !numeric_zero_pages(x + a, b - a))
+                    return 0;
                 a = start;
             }
             b = end;
         }
     }
-    numeric_prefault(x + a, sizeof(double) * (b - a));
+    return b > a ? numeric_zero_pages(x + a, b - a) : 1;
 }
 
 int cx_schur_numeric(cholmod_factor *L, const cx_csc *A, int nstop, double *W, cholmod_common *cc, cx_diag *d)
 {
+    return cx_schur_numeric_panel(L, A, nstop, W, CX_SCHUR_PANEL_ENTRIES, cc, d);
+}
+
+int cx_schur_numeric_panel(cholmod_factor *L, const cx_csc *A, int nstop, double *W, size_t panel,
+                           cholmod_common *cc, cx_diag *d)
+{
     if (!L->is_super)
         return cx_diag_set(d, CX_EEXTERNAL, "schur: expected a supernodal analysis");
+    int zeroed = 0;   /* the lower parts of the blocks already zero */
     if (L->xtype == CHOLMOD_PATTERN) {
         if (cx_schur_arrange(L, nstop))
             return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
@@ -387,10 +433,10 @@ int cx_schur_numeric(cholmod_factor *L, const cx_csc *A, int nstop, double *W, c
         CX_TRY(cx_cholmod_check(cc, L, "schur: factor values", d));
         if (L->xtype != CHOLMOD_REAL || !L->is_super)
             return cx_diag_set(d, CX_EEXTERNAL, "schur: factor values not allocated");
-        numeric_prefault_factor(L);
+        zeroed = numeric_prefault_factor(L);
     }
     numeric_work w;
-    if (work_alloc(&w, L))
+    if (work_alloc(&w, L, panel))
         return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
     int n = (int)L->n, ns = (int)L->nsuper, st = CX_OK;
     const int *perm = L->Perm, *super = L->super;
@@ -405,7 +451,7 @@ int cx_schur_numeric(cholmod_factor *L, const cx_csc *A, int nstop, double *W, c
     for (int j = 0; j < A->ncol; j++)
         amax = fmax(amax, fabs(cx_csc_get(A, j, j)));
     for (int s = 0; s < ns && st == CX_OK; s++) {
-        numeric_assemble(L, A, &w, s);
+        numeric_assemble(L, A, &w, s, zeroed);
         numeric_updates(L, &w, s, nstop);
         st = numeric_factor(L, &w, s, nstop, amax, d);
     }

@@ -6,7 +6,8 @@
  * it, the interior rows a descendant is the first to update are
  * consecutive in every supernode it updates, and the updates land in fewer runs than
  * before. cx_schur_numeric on the arranged factor gives S equal to the one
- * computed column by column (cx_schur_by_solves), to 1e-12 relative. */
+ * computed column by column (cx_schur_by_solves), to 1e-12 relative, also
+ * when every large update is formed a panel of its columns at a time. */
 #include "linalg/linalg_impl.h"
 #include "check.h"
 
@@ -189,6 +190,30 @@ static void test_arrange(int m)
         }
     CX_CHECK(smax > 0);
     CX_CHECK_LE(err, 1e-12 * smax);
+    cholmod_free_factor(&L, &cc);
+
+    /* the same with the updates formed a panel of 64 columns at a time
+     * (the panel size 1 stands for the smallest): the factor's largest
+     * update must then be wider than one panel */
+    L = cholmod_analyze_p(&view, perm, NULL, 0, &cc);
+    CX_CHECK(L != NULL);
+    if (L) {
+        size_t maxrow = 0;
+        for (size_t s = 0; s < L->nsuper; s++) {
+            size_t r = (size_t)(((int *)L->pi)[s + 1] - ((int *)L->pi)[s]);
+            maxrow = r > maxrow ? r : maxrow;
+        }
+        CX_CHECK(L->maxcsize > 64 * maxrow);
+        memset(W, 0, sizeof(double) * nn);
+        CX_CHECK_OK(cx_schur_numeric_panel(L, &A, ni, W, 1, &cc, &d));
+        double err2 = 0;
+        for (int b = 0; b < nc; b++)
+            for (int a = b; a < nc; a++)
+                err2 = fmax(err2, fabs(W[a + (size_t)b * nc] - Sref[a + (size_t)b * nc]));
+        CX_CHECK_LE(err2, 1e-12 * smax);
+        printf("panels of 64 columns (largest update %zu entries, %zu rows at most): error %.2g of %.2g\n",
+               L->maxcsize, maxrow, err2, smax);
+    }
 
     cholmod_free_factor(&L, &cc);
     cholmod_finish(&cc);
