@@ -14,14 +14,11 @@
  * for each descendant's update, dpotrf and dtrsm for the supernode).
  * No code of CHOLMOD's is used here: only its symbolic factor's layout
  * (super, pi, px, s), which cholmod.h documents. */
-#define _DEFAULT_SOURCE   /* madvise */
 #include "linalg/linalg_impl.h"
 
 #include <math.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
 extern void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k, const double *alpha,
                    const double *a, const int *lda, const double *beta, double *c, const int *ldc);
@@ -111,18 +108,17 @@ static int work_alloc(numeric_work *w, const cholmod_factor *L, size_t panel)
 }
 
 /* Supernode s's columns [k1, k2) of P A P', lower part, into its block
- * (zeroed first, unless zeroed says numeric_prefault_factor did it). A
- * holds both triangles. The block's strict upper
+ * (zeroed first). A holds both triangles. The block's strict upper
  * triangle is never read (every BLAS call here and every CHOLMOD solve
  * takes the lower one) and is not zeroed: those pages of a fresh
  * allocation are then never touched (on prism 7 the last supernode alone
  * is 4968 x 4968, half of it above the diagonal). */
-static void numeric_assemble(const cholmod_factor *L, const cx_csc *A, numeric_work *w, int s, int zeroed)
+static void numeric_assemble(const cholmod_factor *L, const cx_csc *A, numeric_work *w, int s)
 {
     const int *super = L->super, *pi = L->pi, *px = L->px, *ls = L->s, *perm = L->Perm;
     double *lx = (double *)L->x + px[s];
     int k1 = super[s], k2 = super[s + 1], nsrow = pi[s + 1] - pi[s];
-    for (int k = k1; k < k2 && !zeroed; k++)
+    for (int k = k1; k < k2; k++)
         memset(lx + (size_t)(k - k1) * (size_t)nsrow + (k - k1), 0, sizeof(double) * (size_t)(nsrow - (k - k1)));
     for (int r = 0; r < nsrow; r++)
         w->map[ls[pi[s] + r]] = r;
@@ -361,60 +357,6 @@ int cx_schur_arrange(cholmod_factor *L, int nstop)
     return CX_OK;
 }
 
-/* [p, p + bytes) as zeros, its whole pages faulted in at once: dropped
- * first (MADV_DONTNEED: a private anonymous page then reads as zeros,
- * whether malloc gave fresh pages or reused ones) and populated
- * (MADV_POPULATE_WRITE, Linux 5.14: one call instead of a page fault for
- * each 4 KiB page on its first write); the partial pages at the ends
- * zeroed here. 0 if the kernel refused either call (the range is then
- * left as it was, and the caller zeroes it). */
-static int numeric_zero_pages(double *p, size_t count)
-{
-#if defined(MADV_POPULATE_WRITE) && defined(MADV_DONTNEED)
-    const uintptr_t page = 4096;
-    uintptr_t a = (uintptr_t)p, b = (uintptr_t)(p + count);
-    uintptr_t lo = (a + page - 1) & ~(page - 1), hi = b & ~(page - 1);
-    if (hi <= lo)
-        return 0;
-    if (madvise((void *)lo, hi - lo, MADV_DONTNEED) != 0 || madvise((void *)lo, hi - lo, MADV_POPULATE_WRITE) != 0)
-        return 0;
-    memset(p, 0, lo - a);
-    memset((void *)hi, 0, b - hi);
-    return 1;
-#else
-    (void)p;
-    (void)count;
-    return 0;
-#endif
-}
-
-/* The factor's values, fresh from CHOLMOD's allocation, zeroed and
- * faulted in where the factorisation writes: each column from its
- * diagonal down, the ranges that lie less than a page apart taken as one.
- * The strict upper triangles of the diagonal blocks are never written;
- * that of the last supernode (prism 7 Tresca: 4968 columns, 99 MB) stays
- * untouched. 1 if every range was zeroed so (numeric_assemble then
- * writes no zeros of its own), 0 if the kernel refused. */
-static int numeric_prefault_factor(const cholmod_factor *L)
-{
-    const int *super = L->super, *pi = L->pi, *px = L->px;
-    double *x = L->x;
-    size_t a = 0, b = 0, gap = 4096 / sizeof(double);
-    for (size_t s = 0; s < L->nsuper; s++) {
-        size_t nscol = (size_t)(super[s + 1] - super[s]), nsrow = (size_t)(pi[s + 1] - pi[s]);
-        for (size_t j = 0; j < nscol; j++) {
-            size_t start = (size_t)px[s] + j * nsrow + j, end = (size_t)px[s] + (j + 1) * nsrow;
-            if (start > b + gap) {
-                if (b > a && !numeric_zero_pages(x + a, b - a))
-                    return 0;
-                a = start;
-            }
-            b = end;
-        }
-    }
-    return b > a ? numeric_zero_pages(x + a, b - a) : 1;
-}
-
 int cx_schur_numeric(cholmod_factor *L, const cx_csc *A, int nstop, double *W, cholmod_common *cc, cx_diag *d)
 {
     return cx_schur_numeric_panel(L, A, nstop, W, CX_SCHUR_PANEL_ENTRIES, cc, d);
@@ -425,7 +367,6 @@ int cx_schur_numeric_panel(cholmod_factor *L, const cx_csc *A, int nstop, double
 {
     if (!L->is_super)
         return cx_diag_set(d, CX_EEXTERNAL, "schur: expected a supernodal analysis");
-    int zeroed = 0;   /* the lower parts of the blocks already zero */
     if (L->xtype == CHOLMOD_PATTERN) {
         if (cx_schur_arrange(L, nstop))
             return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
@@ -433,7 +374,6 @@ int cx_schur_numeric_panel(cholmod_factor *L, const cx_csc *A, int nstop, double
         CX_TRY(cx_cholmod_check(cc, L, "schur: factor values", d));
         if (L->xtype != CHOLMOD_REAL || !L->is_super)
             return cx_diag_set(d, CX_EEXTERNAL, "schur: factor values not allocated");
-        zeroed = numeric_prefault_factor(L);
     }
     numeric_work w;
     if (work_alloc(&w, L, panel))
@@ -451,7 +391,7 @@ int cx_schur_numeric_panel(cholmod_factor *L, const cx_csc *A, int nstop, double
     for (int j = 0; j < A->ncol; j++)
         amax = fmax(amax, fabs(cx_csc_get(A, j, j)));
     for (int s = 0; s < ns && st == CX_OK; s++) {
-        numeric_assemble(L, A, &w, s, zeroed);
+        numeric_assemble(L, A, &w, s);
         numeric_updates(L, &w, s, nstop);
         st = numeric_factor(L, &w, s, nstop, amax, d);
     }
