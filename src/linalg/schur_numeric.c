@@ -137,7 +137,10 @@ static void numeric_assemble(const cholmod_factor *L, const cx_csc *A, numeric_w
  * from the target supernode (block lxs, first column k1, nsrow rows),
  * by runs of rows consecutive in the target: each run is one contiguous
  * loop, which the compiler vectorises, instead of one indexed store per
- * entry (numeric_arrange makes the runs long). */
+ * entry (cx_schur_arrange makes the runs long). Where the runs average
+ * fewer than CX_SCHUR_RUN_MIN rows (small supernodes, 2D orderings) the
+ * loop over runs costs more than it saves, and the store is indexed. */
+#define CX_SCHUR_RUN_MIN 4
 static void numeric_scatter(numeric_work *w, const int *rows, const double *C, int ndrow1, int ndrow2,
                             double *lxs, int k1, int nsrow)
 {
@@ -148,6 +151,15 @@ static void numeric_scatter(numeric_work *w, const int *rows, const double *C, i
             rs[nrun++] = ii;
     }
     rs[nrun] = ndrow2;
+    if (ndrow2 < CX_SCHUR_RUN_MIN * nrun) {   /* short runs: one indexed store per entry */
+        for (int jj = 0; jj < ndrow1; jj++) {
+            double *col = lxs + (size_t)(rows[jj] - k1) * (size_t)nsrow;
+            const double *cj = C + (size_t)jj * (size_t)ndrow2;
+            for (int ii = jj; ii < ndrow2; ii++)
+                col[rmap[ii]] -= cj[ii];
+        }
+        return;
+    }
     for (int jj = 0, r = 0; jj < ndrow1; jj++) {
         double *col = lxs + (size_t)(rows[jj] - k1) * (size_t)nsrow;
         const double *cj = C + (size_t)jj * (size_t)ndrow2;
@@ -295,6 +307,21 @@ static int numeric_cmp_int(const void *a, const void *b)
  * the rows a descendant brings first are consecutive (prism 7 Tresca: the
  * updates with more than 64 runs carried 62 % of the scattered entries,
  * now none). */
+/* Sort the ints a[0..m) (insertion below 16: most chunks are short). */
+static void numeric_sort_ints(int *a, int m)
+{
+    if (m > 16) {
+        qsort(a, (size_t)m, sizeof *a, numeric_cmp_int);
+        return;
+    }
+    for (int i = 1; i < m; i++) {
+        int v = a[i], j = i;
+        for (; j > 0 && a[j - 1] > v; j--)
+            a[j] = a[j - 1];
+        a[j] = v;
+    }
+}
+
 int cx_schur_arrange(cholmod_factor *L, int nstop)
 {
     int n = (int)L->n, ns = (int)L->nsuper;
@@ -302,11 +329,13 @@ int cx_schur_arrange(cholmod_factor *L, int nstop)
     int *ls = L->s, *perm = L->Perm, *count = L->ColCount;
     int *first = CX_NEW(int, n + 1), *newpos = CX_NEW(int, n + 1), *tmp = CX_NEW(int, n + 1);
     long long *key = CX_NEW(long long, n + 1);
-    if (!first || !newpos || !tmp || !key) {
+    char *moved = CX_NEW(char, ns + 1);
+    if (!first || !newpos || !tmp || !key || !moved) {
         cx_free(first);
         cx_free(newpos);
         cx_free(tmp);
         cx_free(key);
+        cx_free(moved);
         return CX_ENOMEM;
     }
     for (int k = 0; k < n; k++) {
@@ -319,25 +348,32 @@ int cx_schur_arrange(cholmod_factor *L, int nstop)
                 first[ls[p]] = d;
     for (int s = 0; s < ns; s++) {
         int k1 = super[s], k2 = super[s + 1] < nstop ? super[s + 1] : nstop;
-        if (k2 - k1 < 2)
+        for (int k = super[s]; k < super[s + 1]; k++)
+            tmp[k] = s;   /* tmp: column -> its supernode, for the rows' pass */
+        if (k2 - k1 < CX_SCHUR_ARRANGE_MIN)
             continue;
         for (int k = k1; k < k2; k++)
             key[k - k1] = (long long)first[k] * (n + 1) + k;
         qsort(key, (size_t)(k2 - k1), sizeof *key, numeric_cmp_long);
-        for (int t = 0; t < k2 - k1; t++)
-            newpos[key[t] % (n + 1)] = k1 + t;
+        for (int t = 0; t < k2 - k1; t++) {
+            int k = (int)(key[t] % (n + 1));
+            newpos[k] = k1 + t;
+            moved[s] |= k != k1 + t;
+        }
     }
-    /* each supernode's rows: its own columns, then the rows below in
-     * ascending order (renumbering moves rows only within a supernode's
-     * range, so each target's rows stay together) */
-    for (int s = 0; s < ns; s++) {
-        int nscol = super[s + 1] - super[s], below = pi[s + 1] - pi[s] - nscol;
-        for (int t = 0; t < nscol; t++)
-            ls[pi[s] + t] = super[s] + t;
-        for (int p = pi[s] + nscol; p < pi[s + 1]; p++)
-            ls[p] = newpos[ls[p]];
-        if (below > 1)
-            qsort(ls + pi[s] + nscol, (size_t)below, sizeof *ls, numeric_cmp_int);
+    /* each supernode's rows below its columns renumbered; those in a
+     * rearranged supernode sorted again (renumbering moves rows only within
+     * a supernode's range, so each target's rows stay together) */
+    for (int d = 0; d < ns; d++) {
+        int p = pi[d] + (super[d + 1] - super[d]);
+        while (p < pi[d + 1]) {
+            int t = tmp[ls[p]], q = p;
+            for (; q < pi[d + 1] && tmp[ls[q]] == t; q++)
+                ls[q] = newpos[ls[q]];
+            if (moved[t])
+                numeric_sort_ints(ls + p, q - p);
+            p = q;
+        }
     }
     for (int k = 0; k < n; k++)
         tmp[newpos[k]] = perm[k];
@@ -354,6 +390,7 @@ int cx_schur_arrange(cholmod_factor *L, int nstop)
     cx_free(newpos);
     cx_free(tmp);
     cx_free(key);
+    cx_free(moved);
     return CX_OK;
 }
 

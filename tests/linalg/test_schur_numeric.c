@@ -64,8 +64,10 @@ static void first_updaters(const cholmod_factor *L, int *first)
 /* The runs of consecutive rows over every update (descendant d into a
  * later supernode s): the count the scatter loops over. If first is
  * given, also check that the interior rows (before nstop) of d in s whose
- * first updater is d are consecutive (one run); *bad counts the pairs
- * where they are not. (The contact rows keep the caller's order.) */
+ * first updater is d are consecutive (one run) where s has at least
+ * CX_SCHUR_ARRANGE_MIN interior columns (narrower ones keep their order);
+ * *bad counts the pairs where they are not. (The contact rows keep the
+ * caller's order.) */
 static long count_runs(const cholmod_factor *L, int nstop, const int *first, int *bad)
 {
     const int *super = L->super, *pi = L->pi, *ls = L->s;
@@ -87,7 +89,8 @@ static long count_runs(const cholmod_factor *L, int nstop, const int *first, int
                     own_last = ls[q];
                 }
             }
-            if (first && own_runs > 1)
+            int width = (super[s + 1] < nstop ? super[s + 1] : nstop) - super[s];
+            if (first && own_runs > 1 && width >= CX_SCHUR_ARRANGE_MIN)
                 (*bad)++;
             p = q;
         }
