@@ -45,26 +45,5 @@ int cx_cholmod_column(const cholmod_factor *L, int k);
  * L' x = [y1; u_c] gives x_i = A_ii^-1 (f_i - A_ic u_c). CX_ENUMERIC
  * naming a column if A_ii is not (numerically) positive definite. */
 int cx_schur_numeric(cholmod_factor *L, const cx_csc *A, int nstop, double *W, cholmod_common *cc, cx_diag *d);
-/* cx_schur_numeric with the panel size given: an update of more than
- * max(panel, 64 rows of the largest supernode) entries is
- * formed and scattered a panel of its columns at a time (the default, 1M
- * entries, is reached on large 3D problems only; tests pass a small one). */
-int cx_schur_numeric_panel(cholmod_factor *L, const cx_csc *A, int nstop, double *W, size_t panel,
-                           cholmod_common *cc, cx_diag *d);
-/* Supernodes with fewer interior columns than this keep their order in
- * cx_schur_arrange: their updates are short and cached, and sorting their
- * rows cost more than it saved (hertz 256, 2D, small supernodes: set-up
- * 4 % slower with every one arranged). */
-#define CX_SCHUR_ARRANGE_MIN 16
-/* Called by cx_schur_numeric on the symbolic factor L (before any value):
- * the interior columns of each supernode (those before nstop; at least
- * CX_SCHUR_ARRANGE_MIN of them) reordered
- * within the supernode by the first supernode whose rows hold them (ties
- * by position), so that the rows a descendant is the first to update are
- * consecutive in each supernode it updates. L->s (each supernode's rows
- * below its columns kept ascending), L->Perm, L->ColCount (and L->IPerm
- * if present) are renumbered; the supernodes, their sizes and the columns
- * from nstop on are unchanged. CX_ENOMEM, L unchanged. */
-int cx_schur_arrange(cholmod_factor *L, int nstop);
 
 #endif

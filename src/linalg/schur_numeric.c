@@ -17,7 +17,6 @@
 #include "linalg/linalg_impl.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 extern void dsyrk_(const char *uplo, const char *trans, const int *n, const int *k, const double *alpha,
@@ -38,17 +37,8 @@ typedef struct numeric_work {
     int *next;      /* nsuper: the list's links */
     int *lpos;      /* nsuper: a supernode's first row not yet used */
     int *rmap;      /* the rows of one update, in the target supernode */
-    int *rstart;    /* where each run of consecutive target rows starts */
-    double *C;      /* one descendant's update, or a panel of its columns */
-    size_t csize;   /* C's length */
+    double *C;      /* one descendant's update */
 } numeric_work;
-
-/* An update larger than this many entries (8 MB) is formed and scattered
- * a panel of its columns at a time, at least CX_SCHUR_PANEL_MIN wide: the
- * panel is still in cache when it is scattered, and C stays small (on
- * prism 7 Tresca the largest update is 11.5M entries, 92 MB). */
-#define CX_SCHUR_PANEL_ENTRIES ((size_t)1 << 20)
-#define CX_SCHUR_PANEL_MIN 64
 
 static void work_free(numeric_work *w)
 {
@@ -59,7 +49,6 @@ static void work_free(numeric_work *w)
     cx_free(w->next);
     cx_free(w->lpos);
     cx_free(w->rmap);
-    cx_free(w->rstart);
     cx_free(w->C);
 }
 
@@ -78,7 +67,7 @@ static size_t work_csize(const cholmod_factor *L)
     return m;
 }
 
-static int work_alloc(numeric_work *w, const cholmod_factor *L, size_t panel)
+static int work_alloc(numeric_work *w, const cholmod_factor *L)
 {
     size_t n = L->n, ns = L->nsuper, maxrow = 1;
     for (size_t s = 0; s < ns; s++) {
@@ -93,14 +82,8 @@ static int work_alloc(numeric_work *w, const cholmod_factor *L, size_t panel)
     w->next = CX_NEW(int, ns + 1);
     w->lpos = CX_NEW(int, ns + 1);
     w->rmap = CX_NEW(int, maxrow);
-    w->rstart = CX_NEW(int, maxrow + 1);
-    size_t cs = work_csize(L), cap = panel;
-    if (cap < maxrow * CX_SCHUR_PANEL_MIN)
-        cap = maxrow * CX_SCHUR_PANEL_MIN;
-    w->csize = cs < cap ? cs : cap;
-    w->C = CX_NEW(double, w->csize);
-    if (!w->map || !w->smap || !w->pinv || !w->head || !w->next || !w->lpos || !w->rmap || !w->rstart ||
-        !w->C) {
+    w->C = CX_NEW(double, work_csize(L));
+    if (!w->map || !w->smap || !w->pinv || !w->head || !w->next || !w->lpos || !w->rmap || !w->C) {
         work_free(w);
         return CX_ENOMEM;
     }
@@ -133,46 +116,6 @@ static void numeric_assemble(const cholmod_factor *L, const cx_csc *A, numeric_w
     }
 }
 
-/* Subtract the update C (ndrow2 x ndrow1, lower) of the rows rows[0..ndrow2)
- * from the target supernode (block lxs, first column k1, nsrow rows),
- * by runs of rows consecutive in the target: each run is one contiguous
- * loop, which the compiler vectorises, instead of one indexed store per
- * entry (cx_schur_arrange makes the runs long). Where the runs average
- * fewer than CX_SCHUR_RUN_MIN rows (small supernodes, 2D orderings) the
- * loop over runs costs more than it saves, and the store is indexed. */
-#define CX_SCHUR_RUN_MIN 4
-static void numeric_scatter(numeric_work *w, const int *rows, const double *C, int ndrow1, int ndrow2,
-                            double *lxs, int k1, int nsrow)
-{
-    int *rmap = w->rmap, *rs = w->rstart, nrun = 0;
-    for (int ii = 0; ii < ndrow2; ii++) {
-        rmap[ii] = w->map[rows[ii]];
-        if (ii == 0 || rmap[ii] != rmap[ii - 1] + 1)
-            rs[nrun++] = ii;
-    }
-    rs[nrun] = ndrow2;
-    if (ndrow2 < CX_SCHUR_RUN_MIN * nrun) {   /* short runs: one indexed store per entry */
-        for (int jj = 0; jj < ndrow1; jj++) {
-            double *col = lxs + (size_t)(rows[jj] - k1) * (size_t)nsrow;
-            const double *cj = C + (size_t)jj * (size_t)ndrow2;
-            for (int ii = jj; ii < ndrow2; ii++)
-                col[rmap[ii]] -= cj[ii];
-        }
-        return;
-    }
-    for (int jj = 0, r = 0; jj < ndrow1; jj++) {
-        double *col = lxs + (size_t)(rows[jj] - k1) * (size_t)nsrow;
-        const double *cj = C + (size_t)jj * (size_t)ndrow2;
-        while (rs[r + 1] <= jj)
-            r++;
-        for (int q = r; q < nrun; q++) {
-            double *dst = col + (rmap[rs[q]] - rs[q]);   /* dst[ii]: row ii's place */
-            for (int ii = rs[q] > jj ? rs[q] : jj; ii < rs[q + 1]; ii++)
-                dst[ii] -= cj[ii];
-        }
-    }
-}
-
 /* Subtract from supernode s the updates of every descendant listed in
  * head[s] (their factored columns times their rows in s), then pass each
  * descendant on to the next supernode its rows reach. */
@@ -192,23 +135,17 @@ static void numeric_updates(const cholmod_factor *L, numeric_work *w, int s, int
         int ndrow1 = p2 - p1, ndrow2 = pdend - p1, ndrow3 = ndrow2 - ndrow1;
         const double *lr = (const double *)L->x + px[dd] + (p1 - pdi);
         double *C = w->C;
-        if ((size_t)ndrow2 * (size_t)ndrow1 <= w->csize) {
-            dsyrk_("L", "N", &ndrow1, &ndcol, &one, lr, &ndrow, &zero, C, &ndrow2);
-            if (ndrow3 > 0)
-                dgemm_("N", "T", &ndrow3, &ndrow1, &ndcol, &one, lr + ndrow1, &ndrow, lr, &ndrow, &zero,
-                       C + ndrow1, &ndrow2);
-            numeric_scatter(w, ls + p1, C, ndrow1, ndrow2, lxs, k1, nsrow);
-        } else {
-            /* columns [j0, j0 + pw) of the update, rows from j0 down */
-            int pw = (int)(w->csize / (size_t)ndrow2);
-            for (int j0 = 0; j0 < ndrow1; j0 += pw) {
-                int nw = ndrow1 - j0 < pw ? ndrow1 - j0 : pw, m2 = ndrow2 - j0, mb = m2 - nw;
-                dsyrk_("L", "N", &nw, &ndcol, &one, lr + j0, &ndrow, &zero, C, &m2);
-                if (mb > 0)
-                    dgemm_("N", "T", &mb, &nw, &ndcol, &one, lr + j0 + nw, &ndrow, lr + j0, &ndrow, &zero,
-                           C + nw, &m2);
-                numeric_scatter(w, ls + p1 + j0, C, nw, m2, lxs, k1, nsrow);
-            }
+        dsyrk_("L", "N", &ndrow1, &ndcol, &one, lr, &ndrow, &zero, C, &ndrow2);
+        if (ndrow3 > 0)
+            dgemm_("N", "T", &ndrow3, &ndrow1, &ndcol, &one, lr + ndrow1, &ndrow, lr, &ndrow, &zero,
+                   C + ndrow1, &ndrow2);
+        for (int ii = 0; ii < ndrow2; ii++)
+            w->rmap[ii] = w->map[ls[p1 + ii]];
+        for (int jj = 0; jj < ndrow1; jj++) {
+            double *col = lxs + (size_t)(ls[p1 + jj] - k1) * (size_t)nsrow;
+            const double *cj = C + (size_t)jj * (size_t)ndrow2;
+            for (int ii = jj; ii < ndrow2; ii++)
+                col[w->rmap[ii]] -= cj[ii];
         }
         w->lpos[dd] = p2 - pdi;
         if (p2 < pdend) {
@@ -285,135 +222,18 @@ static void numeric_take_trailing(const cholmod_factor *L, int nstop, double *W)
     }
 }
 
-static int numeric_cmp_long(const void *a, const void *b)
-{
-    long long x = *(const long long *)a, y = *(const long long *)b;
-    return (x > y) - (x < y);
-}
-
-static int numeric_cmp_int(const void *a, const void *b)
-{
-    int x = *(const int *)a, y = *(const int *)b;
-    return (x > y) - (x < y);
-}
-
-/* The columns of a supernode may be taken in any order: its diagonal
- * block is dense and its columns have the same rows below, so the pattern
- * of L, its supernodes and its flops are the same whatever their order.
- * The order decides where a descendant's update lands: its rows lie among
- * the target's rows in runs, and the scatter goes run by run. METIS's
- * order within a separator leaves runs of one node's dofs; ordered by the
- * first descendant that updates them (in the order of the factorisation),
- * the rows a descendant brings first are consecutive (prism 7 Tresca: the
- * updates with more than 64 runs carried 62 % of the scattered entries,
- * now none). */
-/* Sort the ints a[0..m) (insertion below 16: most chunks are short). */
-static void numeric_sort_ints(int *a, int m)
-{
-    if (m > 16) {
-        qsort(a, (size_t)m, sizeof *a, numeric_cmp_int);
-        return;
-    }
-    for (int i = 1; i < m; i++) {
-        int v = a[i], j = i;
-        for (; j > 0 && a[j - 1] > v; j--)
-            a[j] = a[j - 1];
-        a[j] = v;
-    }
-}
-
-int cx_schur_arrange(cholmod_factor *L, int nstop)
-{
-    int n = (int)L->n, ns = (int)L->nsuper;
-    const int *super = L->super, *pi = L->pi;
-    int *ls = L->s, *perm = L->Perm, *count = L->ColCount;
-    int *first = CX_NEW(int, n + 1), *newpos = CX_NEW(int, n + 1), *tmp = CX_NEW(int, n + 1);
-    long long *key = CX_NEW(long long, n + 1);
-    char *moved = CX_NEW(char, ns + 1);
-    if (!first || !newpos || !tmp || !key || !moved) {
-        cx_free(first);
-        cx_free(newpos);
-        cx_free(tmp);
-        cx_free(key);
-        cx_free(moved);
-        return CX_ENOMEM;
-    }
-    for (int k = 0; k < n; k++) {
-        first[k] = ns;
-        newpos[k] = k;
-    }
-    for (int d = 0; d < ns; d++)
-        for (int p = pi[d] + (super[d + 1] - super[d]); p < pi[d + 1]; p++)
-            if (first[ls[p]] == ns)
-                first[ls[p]] = d;
-    for (int s = 0; s < ns; s++) {
-        int k1 = super[s], k2 = super[s + 1] < nstop ? super[s + 1] : nstop;
-        for (int k = super[s]; k < super[s + 1]; k++)
-            tmp[k] = s;   /* tmp: column -> its supernode, for the rows' pass */
-        if (k2 - k1 < CX_SCHUR_ARRANGE_MIN)
-            continue;
-        for (int k = k1; k < k2; k++)
-            key[k - k1] = (long long)first[k] * (n + 1) + k;
-        qsort(key, (size_t)(k2 - k1), sizeof *key, numeric_cmp_long);
-        for (int t = 0; t < k2 - k1; t++) {
-            int k = (int)(key[t] % (n + 1));
-            newpos[k] = k1 + t;
-            moved[s] |= k != k1 + t;
-        }
-    }
-    /* each supernode's rows below its columns renumbered; those in a
-     * rearranged supernode sorted again (renumbering moves rows only within
-     * a supernode's range, so each target's rows stay together) */
-    for (int d = 0; d < ns; d++) {
-        int p = pi[d] + (super[d + 1] - super[d]);
-        while (p < pi[d + 1]) {
-            int t = tmp[ls[p]], q = p;
-            for (; q < pi[d + 1] && tmp[ls[q]] == t; q++)
-                ls[q] = newpos[ls[q]];
-            if (moved[t])
-                numeric_sort_ints(ls + p, q - p);
-            p = q;
-        }
-    }
-    for (int k = 0; k < n; k++)
-        tmp[newpos[k]] = perm[k];
-    memcpy(perm, tmp, sizeof(int) * (size_t)n);
-    for (int k = 0; k < n; k++)
-        tmp[newpos[k]] = count[k];
-    memcpy(count, tmp, sizeof(int) * (size_t)n);
-    if (L->IPerm) {
-        int *iperm = L->IPerm;
-        for (int k = 0; k < n; k++)
-            iperm[perm[k]] = k;
-    }
-    cx_free(first);
-    cx_free(newpos);
-    cx_free(tmp);
-    cx_free(key);
-    cx_free(moved);
-    return CX_OK;
-}
-
 int cx_schur_numeric(cholmod_factor *L, const cx_csc *A, int nstop, double *W, cholmod_common *cc, cx_diag *d)
-{
-    return cx_schur_numeric_panel(L, A, nstop, W, CX_SCHUR_PANEL_ENTRIES, cc, d);
-}
-
-int cx_schur_numeric_panel(cholmod_factor *L, const cx_csc *A, int nstop, double *W, size_t panel,
-                           cholmod_common *cc, cx_diag *d)
 {
     if (!L->is_super)
         return cx_diag_set(d, CX_EEXTERNAL, "schur: expected a supernodal analysis");
     if (L->xtype == CHOLMOD_PATTERN) {
-        if (cx_schur_arrange(L, nstop))
-            return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
         cholmod_change_factor(CHOLMOD_REAL, 1, 1, 1, 1, L, cc);
         CX_TRY(cx_cholmod_check(cc, L, "schur: factor values", d));
         if (L->xtype != CHOLMOD_REAL || !L->is_super)
             return cx_diag_set(d, CX_EEXTERNAL, "schur: factor values not allocated");
     }
     numeric_work w;
-    if (work_alloc(&w, L, panel))
+    if (work_alloc(&w, L))
         return cx_diag_set(d, CX_ENOMEM, "schur: out of memory");
     int n = (int)L->n, ns = (int)L->nsuper, st = CX_OK;
     const int *perm = L->Perm, *super = L->super;
