@@ -94,6 +94,20 @@ static void ldlmod_drop_zeros(cx_ldlmod *f)
         lp[f->n] = (size_t)end + 1 <= L->nzmax ? end + 1 : end;
 }
 
+/* One entry A(i, k), i < k, of Liu's ancestor walk with path compression:
+ * climb from i to the root of its subtree so far, pointing each node on the
+ * way at k; the root found becomes k's child. */
+static inline void etree_visit(int *anc, int *parent, int i, int k)
+{
+    while (i != -1 && i < k) {
+        int next = anc[i];
+        anc[i] = k;
+        if (next == -1)
+            parent[i] = k;
+        i = next;
+    }
+}
+
 /* The lower triangle of P A P' (P: the analysis's order) as its own
  * pattern, with the place in A of each entry's value, built once: a
  * factorisation then gathers A's values into it and hands CHOLMOD the
@@ -158,13 +172,7 @@ static int ldlmod_permuted(cx_ldlmod *f, const cx_csc *A)
             int t = pos[c]++;
             f->si[t] = r;
             f->smap[t] = upper[q];
-            for (int i = c; i != -1 && i < r;) {
-                int next = anc[i];
-                anc[i] = r;
-                if (next == -1)
-                    f->parent[i] = r;
-                i = next;
-            }
+            etree_visit(anc, f->parent, c, r);
         }
     }
     for (int k = 0; k < n; k++)
@@ -283,14 +291,7 @@ static void ldlmod_etree(cx_ldlmod *f, const cx_csc *A)
         f->parent[k] = -1, anc[k] = -1;
         int col = cx_cholmod_column(f->L, k);
         for (int q = A->p[col]; q < A->p[col + 1]; q++) {
-            int i = f->pinv[A->i[q]];
-            while (i != -1 && i < k) {
-                int next = anc[i];
-                anc[i] = k;
-                if (next == -1)
-                    f->parent[i] = k;
-                i = next;
-            }
+            etree_visit(anc, f->parent, f->pinv[A->i[q]], k);
         }
     }
     for (int k = 0; k < n; k++)
