@@ -385,6 +385,16 @@ static int method_step(tui_state *st, int i, int dir)
 static int method_enter(tui_state *st, int i, const char *text)
 {
     (void)i;
+    if (st->sel_backend) {
+        for (int k = 0; tui_backend_method(k); k++)
+            if (strcmp(tui_backend_method(k), text) == 0) {
+                st->sel_backend = k + 1;
+                tui_msg(st, 0, "backend petsc, method %s (1 rank)", text);
+                return TUI_REDRAW;
+            }
+        tui_msg(st, 1, "the PETSc backend has no method '%s' (b: back to the direct path's methods)", text);
+        return TUI_REDRAW;
+    }
     const cx_method *m = cx_method_find(text);
     if (!m) {
         tui_msg(st, 1, "unknown method '%s' (see 'signorini list')", text);
@@ -396,24 +406,48 @@ static int method_enter(tui_state *st, int i, const char *text)
     return TUI_REDRAW;
 }
 
+/* On the PETSc backend the list, the grey reasons and the description
+ * are the backend's methods', whose parameters are PETSc options (no
+ * parameter rows: tui_state_nfields). */
 static const char *method_greyed(const tui_state *st, int i, char *why, size_t len)
 {
     (void)i;
+    if (st->sel_backend) {
+        snprintf(why, len, "%s", tui_backend_refusal(st->sel_backend - 1, st->sel_law));
+        return why;
+    }
     return tui_state_method_reason(st, st->sel_method, why, len);
 }
 
 static void method_describe(const tui_state *st, int i, char *buf, size_t len)
 {
     (void)i;
+    if (st->sel_backend) {
+        snprintf(buf, len, "PETSc, 1 rank: %s (PETSc options prefixed cx_, as PETSC_OPTIONS=-cx_pc_type gamg)",
+                 tui_backend_summary(st->sel_backend - 1));
+        return;
+    }
     const cx_method *m = tui_state_sel_method(st);
     snprintf(buf, len, "%s (%s)", m->name, m->source);
 }
 
-static int method_count(const tui_state *st) { (void)st; return cx_method_count(); }
-static int method_current(const tui_state *st) { return st->sel_method; }
+static int method_count(const tui_state *st)
+{
+    int n = 0;
+    if (st->sel_backend)
+        while (tui_backend_method(n))
+            n++;
+    return st->sel_backend ? n : cx_method_count();
+}
+
+static int method_current(const tui_state *st) { return st->sel_backend ? st->sel_backend - 1 : st->sel_method; }
 
 static const char *method_item(const tui_state *st, int k, char *why, size_t len)
 {
+    if (st->sel_backend) {
+        snprintf(why, len, "%s", tui_backend_refusal(k, st->sel_law));
+        return tui_backend_method(k);
+    }
     tui_state_method_reason(st, k, why, len);
     return cx_method_at(k)->id;
 }
@@ -584,7 +618,7 @@ static const tui_row tui_rows[] = {
 
 int tui_state_nfields(const tui_state *st)
 {
-    return TUI_F_PARAM0 + st->sel_params.n;
+    return TUI_F_PARAM0 + (st->sel_backend ? 0 : st->sel_params.n);
 }
 
 const tui_row *tui_row_at(const tui_state *st, int f, int *i)
@@ -721,6 +755,8 @@ static int act_backend(tui_state *st)
     while (tui_backend_method(n))
         n++;
     st->sel_backend = (st->sel_backend + 1) % (n + 1);
+    if (st->field >= tui_state_nfields(st))   /* the direct method's parameter rows went */
+        st->field = TUI_F_METHOD;
     if (st->sel_backend)
         tui_msg(st, 0, "backend petsc, method %s (1 rank): s or r runs it to the end; b changes",
                 tui_backend_method(st->sel_backend - 1));

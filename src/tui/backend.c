@@ -116,6 +116,21 @@ const char *tui_backend_method(int k)
     return m ? m->id : NULL;
 }
 
+const char *tui_backend_summary(int k)
+{
+    const cx_petsc_method *m = cx_petsc_method_at(k);
+    return m ? m->summary : "";
+}
+
+const char *tui_backend_refusal(int k, cx_friction law)
+{
+    const cx_petsc_method *m = cx_petsc_method_at(k);
+    if (!m || (m->supports & (1u << law)))
+        return "";
+    return law == CX_FRICTION_TRESCA ? "frictionless only (Tresca is not a bound on u)"
+                                     : "frictionless or Tresca only";
+}
+
 int tui_backend_start(tui_state *st, const cx_problem *p, const cx_friction_state *fr, const char *method,
                       const cx_options *opt, cx_diag *d)
 {
@@ -270,6 +285,18 @@ const char *tui_backend_method(int k)
 {
     (void)k;
     return NULL;
+}
+
+const char *tui_backend_summary(int k)
+{
+    (void)k;
+    return "";
+}
+
+const char *tui_backend_refusal(int k, cx_friction law)
+{
+    (void)k, (void)law;
+    return "";
 }
 
 int tui_backend_start(tui_state *st, const cx_problem *p, const cx_friction_state *fr, const char *method,

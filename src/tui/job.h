@@ -90,8 +90,11 @@ typedef struct tui_backend_outcome {
 
 /* 1 if this build has the backend. */
 int tui_backend_available(void);
-/* The backend's method k (NULL past the end). */
+/* The backend's method k (NULL past the end), its one-line summary, and
+ * why it does not take law ("" if it does). */
 const char *tui_backend_method(int k);
+const char *tui_backend_summary(int k);
+const char *tui_backend_refusal(int k, cx_friction law);
 /* Start a run of method on p under fr (the thread started if need be);
  * waits for its end when the state is sync (tests). */
 int tui_backend_start(tui_state *st, const cx_problem *p, const cx_friction_state *fr, const char *method,

@@ -6,7 +6,8 @@ a private socket, the pane polled): 'signorini tui hertz --level 32
 the status line show the iteration count and the kkt error that
 'signorini solve hertz --level 32 --backend petsc --json' gives on the
 same problem; the header names the backend; 'b' goes through PETSc's
-methods to the direct path, whose run then opens a row of its own; an
+methods (the picker then lists the backend's methods, without the direct
+method's parameter rows) to the direct path, whose run then opens a row of its own; an
 Esc-free 'q' ends PETSc on its thread and exits 0."""
 import json
 import os
@@ -106,14 +107,24 @@ try:
     check(m and int(m.group(1)) == iters and abs(float(m.group(2)) - kkt) <= 5e-3 * kkt,
           f"the status line: {m.group(0) if m else text!r} against kkt {kkt:.3e}")
     # the steps panel has every iteration of the run
-    check(re.search(rf"^\S.*?\s{iters}\s+{re.escape(f'{kkt:.1e}')}\s", screen(), re.M) is not None,
-          "the steps panel's last iteration")
+    # (its row, not the runs table's, which has the marker and the outcome)
+    last = [l for l in screen().splitlines() if re.search(rf"\s{iters}\s+{re.escape(f'{kkt:.1e}')}\s", l)
+            and "■" not in l and "converged" not in l]
+    check(len(last) == 1, f"the steps panel's last iteration: {last}")
     # 'b': petsc-vi, petsc-tao, then the direct path; 'r' runs it in a row of its own
     keys("b")
     wait_for(lambda t: "│ petsc petsc-vi none" in t.splitlines()[0], "b: petsc-vi")
     # the setup's method row shows what s and r run: the backend's method
     check(re.search(r"^method\s+◂?petsc-vi\b", screen(), re.M) is not None,
           "the method row shows petsc-vi")
+    # with the cursor on that row, the list is the backend's methods with
+    # its summary, and the direct method's parameter rows (rho) are gone
+    listed = re.findall(r"^(▸ |  )(\S+)\s", screen(), re.M)
+    names = [n for _, n in listed]
+    check(names[:3] == ["ssn-tresca", "petsc-vi", "petsc-tao"] and "ssstar" not in names
+          and ("▸ ", "petsc-vi") in listed, f"the picker lists PETSc's methods: {listed}")
+    check("PETSc, 1 rank:" in screen() and re.search(r"^rho\s", screen(), re.M) is None,
+          "the backend's summary, no parameter rows")
     keys("b")
     wait_for(lambda t: "│ petsc petsc-tao none" in t.splitlines()[0], "b: petsc-tao")
     keys("b")
