@@ -868,9 +868,10 @@ static int act_export(tui_state *st)
 
 /* ==== RENDERING HOOK ========================================================
  * The one place the explorer renders: the session's current iterate, the
- * field von Mises, the mesh view's displacement scale, into the export
- * directory as signorini-SCENE-LLEVEL-METHOD-itN.png. Called on the main
- * thread while no job runs, so the session is not stepping meanwhile. */
+ * field von Mises, the mesh view's displacement scale, the scene's
+ * supports, into the export directory as
+ * signorini-SCENE-LLEVEL-METHOD-itN.png. Called on the main thread while
+ * no job runs, so the session is not stepping meanwhile. */
 int tui_render_png(const tui_state *st, char *file, size_t len, cx_diag *d)
 {
     if (len)
@@ -883,6 +884,7 @@ int tui_render_png(const tui_state *st, char *file, size_t len, cx_diag *d)
     cx_render_opts o;
     cx_render_opts_default(&o);
     o.scale = st->disp_scale;
+    o.scene = &st->scene;   /* its supports, as solve --png draws them */
     snprintf(file, len, "%s/signorini-%s-L%d-%s-it%d.png", st->export_dir, st->scene.id, st->level,
              res->run.method, res->run.iterations);
     int rc = cx_render_png(res, &o, file, NULL, d);

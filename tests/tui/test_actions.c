@@ -9,6 +9,11 @@
 #include "tui/tui_impl.h"
 #include "cx_config.h"
 
+#if CX_HAVE_RENDER
+#include "render/pngread.h"
+#include "render/render.h"
+#endif
+
 #include <sys/stat.h>
 
 #include <math.h>
@@ -426,6 +431,48 @@ static void test_run_during_switch(void)
     tui_state_clear(&st);
 }
 
+#if CX_HAVE_RENDER
+/* 'p' in the explorer draws what solve --png draws: on the running bond
+ * wall (rollers on its sides and the right half of its base) the
+ * explorer's picture equals, pixel for pixel, the renderer's with the
+ * scene's supports, and differs from the one without them. */
+static void test_png_supports(void)
+{
+    static tui_state st;
+    cx_diag d;
+    cx_diag_clear(&d);
+    CX_CHECK_OK(tui_state_init(&st, "runningbond", 0, "graves", -1, 1, &d));
+    tui_key(&st, 'r');
+    while (st.running)
+        tui_state_step(&st);
+    char dir[] = "/tmp/tui_png_XXXXXX", file[512], with[600], without[600];
+    CX_CHECK(mkdtemp(dir) != NULL);
+    snprintf(st.export_dir, sizeof st.export_dir, "%s", dir);
+    CX_CHECK_OK(tui_render_png(&st, file, sizeof file, &d));
+    snprintf(with, sizeof with, "%s/with.png", dir);
+    snprintf(without, sizeof without, "%s/without.png", dir);
+    cx_result *res = NULL;
+    CX_CHECK_OK(cx_result_from_session(&res, st.session, &st.scene, st.level, &d));
+    cx_render_opts o;
+    cx_render_opts_default(&o);
+    o.scale = st.disp_scale;
+    o.scene = &st.scene;
+    CX_CHECK_OK(cx_render_png(res, &o, with, NULL, &d));
+    o.scene = NULL;
+    CX_CHECK_OK(cx_render_png(res, &o, without, NULL, &d));
+    cx_result_destroy(&res);
+    test_png a, b, c;
+    CX_CHECK(test_png_read(&a, file) == 0 && test_png_read(&b, with) == 0 && test_png_read(&c, without) == 0);
+    size_t bytes = (size_t)a.w * a.h * 3;
+    CX_CHECK(a.w == b.w && a.h == b.h && a.rgb && b.rgb && memcmp(a.rgb, b.rgb, bytes) == 0);
+    CX_CHECK(a.w == c.w && a.h == c.h && c.rgb && memcmp(a.rgb, c.rgb, bytes) != 0);
+    free(a.rgb), free(b.rgb), free(c.rgb);
+    remove(file), remove(with), remove(without);
+    rmdir(dir);
+    tui_state_clear(&st);
+}
+#endif
+
 /* A scene that fails to build (the block starts inside the plane): the
  * message says why and the explorer stays on the scene it had. */
 static void test_failed_build(void)
@@ -722,6 +769,9 @@ int main(void)
     test_slider();
     test_cycle();
     test_run_during_switch();
+#if CX_HAVE_RENDER
+    test_png_supports();
+#endif
     test_failed_build();
     test_scenes_open_converging();
     return check_finish("tui_actions");
