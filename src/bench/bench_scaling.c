@@ -60,6 +60,7 @@ typedef struct {
     int no_ref;
     const char *backend_text;  /* --backend as given */
     int direct, petsc;         /* the backends to run */
+    cx_opt_list sets;          /* --set KEY=VALUE: the direct methods' parameters */
 } scaling_args;
 
 /* --backend direct|petsc|direct,petsc (either order). */
@@ -123,8 +124,33 @@ static const cx_opt scaling_opts[] = {
      offsetof(scaling_args, no_ref), NULL},
     {"backend", 0, CX_OPT_STRING, 0, 0, 0, NULL, "direct|petsc|direct,petsc",
      "the backends to run (default direct)", offsetof(scaling_args, backend_text), NULL},
+    {"set", 0, CX_OPT_LIST, 0, 0, 0, NULL, "KEY=VALUE",
+     "a parameter of the direct path's methods (repeatable, with --methods; each\n"
+     "method takes the keys it has, as solve --set: pdas --set start=closed)",
+     offsetof(scaling_args, sets), NULL},
     {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL}
 };
+
+/* Does pv's table have the key of "key=value"? */
+static int scaling_param_has(const cx_param_values *pv, const char *pair)
+{
+    char key[64];
+    size_t n = strcspn(pair, "=");
+    snprintf(key, sizeof key, "%.*s", (int)(n < sizeof key ? n : sizeof key - 1), pair);
+    return cx_param_find(pv, key) >= 0;
+}
+
+/* m's parameters: its defaults with the --set pairs it has (checked when
+ * parsed). */
+static void scaling_params(const scaling_args *a, const cx_method *m, cx_param_values *pv)
+{
+    cx_param_default(pv, m->params);
+    for (int i = 0; i < a->sets.n; i++)
+        if (scaling_param_has(pv, a->sets.v[i]))
+            cx_param_set_pair(pv, a->sets.v[i], m->id, NULL);
+}
+
+static int scaling_check_sets(const scaling_args *a, cx_diag *d);
 
 /* CX_OK, CX_OPT_HELP, CX_EINVAL (a malformed line) or the status of
  * bench_common_finish. */
@@ -149,7 +175,38 @@ static int scaling_parse(int argc, char **argv, scaling_args *a, cx_diag *d)
         return cx_diag_set(d, CX_EINVAL, "missing SCENE");
     if (a->nlevels == 0)
         return cx_diag_set(d, CX_EINVAL, "missing --levels a..b");
+    CX_TRY(scaling_check_sets(a, d));
     return bench_common_finish(&a->c, d);
+}
+
+/* Every --set names a parameter of one of the --methods at least, with a
+ * value it takes. */
+static int scaling_check_sets(const scaling_args *a, cx_diag *d)
+{
+    if (a->sets.n && !a->c.methods)
+        return cx_diag_set(d, CX_EINVAL, "--set '%s': name the methods it is for (--methods)", a->sets.v[0]);
+    for (int i = 0; i < a->sets.n; i++) {
+        int had = 0;
+        char buf[512];
+        snprintf(buf, sizeof buf, "%s", a->c.methods ? a->c.methods : "");
+        for (char *save = NULL, *id = strtok_r(buf, ",", &save); id; id = strtok_r(NULL, ",", &save)) {
+            const cx_method *m = cx_method_find(id);
+            cx_param_values pv;
+            if (!m)
+                continue;
+            cx_param_default(&pv, m->params);
+            char owner[64];
+            snprintf(owner, sizeof owner, "method '%s'", m->id);
+            if (scaling_param_has(&pv, a->sets.v[i])) {
+                CX_TRY(cx_param_set_pair(&pv, a->sets.v[i], owner, d));
+                had = 1;
+            }
+        }
+        if (!had)
+            return cx_diag_set(d, CX_EINVAL, "--set '%s': none of --methods %s has that parameter",
+                               a->sets.v[i], a->c.methods);
+    }
+    return CX_OK;
 }
 
 /* Least-squares slope of log y against log x over the rows of one method. */
@@ -508,6 +565,14 @@ static int bench_scaling_run(scaling_args *a, int rank, int nranks)
     bench_meta(&t, "benchmark", "scaling %s friction %s, tol %g, medians of %d", sc.id,
                cx_friction_name(spec.law), a->tol, a->c.repeat);
     bench_meta(&t, "scene hash", "%016llx (%s)", (unsigned long long)shash, sc.path);
+    if (a->sets.n) {
+        char sets[512];
+        size_t n = 0;
+        sets[0] = '\0';
+        for (int i = 0; i < a->sets.n && n < sizeof sets; i++)
+            n += (size_t)snprintf(sets + n, sizeof sets - n, "%s%s", i ? " " : "", a->sets.v[i]);
+        bench_meta(&t, "parameters", "%s (the direct path's methods that have them; the others' defaults)", sets);
+    }
     if (a->petsc)
         bench_meta(&t, "backends", "%s%s (%d MPI rank%s; the direct path on rank 0)", a->direct ? "direct, " : "",
                    "petsc", nranks, nranks > 1 ? "s" : "");
@@ -561,7 +626,10 @@ static int bench_scaling_run(scaling_args *a, int rank, int nranks)
             opt.tol = a->tol;
             bench_result res;
             bench_paired med;
-            bench_run_paired(&spec, methods[k], NULL, &opt, ref_ok ? &ref : NULL, a->c.repeat, &res, &med);
+            cx_param_values pv;
+            scaling_params(a, methods[k], &pv);
+            bench_run_paired(&spec, methods[k], a->sets.n ? &pv : NULL, &opt, ref_ok ? &ref : NULL, a->c.repeat,
+                             &res, &med);
             if (res.interrupted)
                 break;
             int r = bench_table_row(&t);

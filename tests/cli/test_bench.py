@@ -6,8 +6,9 @@ counters), where that cache lives ($XDG_CACHE_HOME/signorini, --cache, a
 warning when it cannot be written), its key from the parsed scene (two
 scenes through /dev/stdin), a stress case forced to fail gives a row and no
 crash, unit scaling keeps kkt and iteration counts, Ctrl-C keeps what
-finished and exits 130 without temporary files, and one-line errors for bad
-options. No timings are asserted."""
+finished and exits 130 without temporary files, scaling --set runs what
+solve --set runs, and one-line errors for bad options. No timings are
+asserted."""
 import csv
 import io
 import json
@@ -144,6 +145,27 @@ with tempfile.TemporaryDirectory() as tmp:
               f"ordering and fill at level {n}: {r['ordering']!r} {r['fill_camd']!r}")
         check(r["converged"] == "yes" and float(r["err_u"]) <= 1e-8, f"scaling row {r}")
     check("slopes (log time / log dofs)" in meta, "slopes in the header")
+
+    # ---- scaling --set: a method's parameters, as solve --set gives them ----
+    # (PDAS on the running bond wall: the closed start takes 8 iterations
+    # at 1/10, the paper's start 12; the bench runs what solve runs)
+    for sets in ([], ["--set", "start=closed"]):
+        code, out, err = run("solve", "runningbond", "--level", "10", "--method", "pdas", *sets, "--json")
+        want = json.loads(out)["iterations"] if code == 0 else None
+        code, out, err = run("bench", "scaling", "runningbond", "--levels", "10", "--methods", "pdas", *sets,
+                             "--repeat", "1", "--no-reference", "--json")
+        j = json.loads(out) if code == 0 else {"meta": {}, "rows": []}
+        got = [r["iterations"] for r in j["rows"]]
+        check(code == 0 and want is not None and got == [want], f"bench scaling {sets}: {got} against solve's {want}")
+        check(("start=closed" in j["meta"].get("parameters", "")) == bool(sets), f"the parameters line {j['meta']}")
+    code, out, err = run("bench", "scaling", "runningbond", "--levels", "10", "--set", "start=closed")
+    one_line_error(code, err, "--set 'start=closed': name the methods", status=2)
+    code, out, err = run("bench", "scaling", "runningbond", "--levels", "10", "--methods", "pdas,graves",
+                         "--set", "nope=1")
+    one_line_error(code, err, "none of --methods pdas,graves has that parameter", status=2)
+    code, out, err = run("bench", "scaling", "runningbond", "--levels", "10", "--methods", "pdas",
+                         "--set", "start=open")
+    one_line_error(code, err, "'open' is not in paper|closed", status=2)
 
     # ---- stress: a case that cannot converge is a row, not a crash ----
     code, out, err = run("bench", "stress", "hertz", "--level", "16", "--cases", "load-1e-8",
