@@ -363,13 +363,6 @@ int cx_ldlmod_create_super(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_
     return ldlmod_new(F, A, NULL, 1, NULL, cnt, d);
 }
 
-int cx_ldlmod_create_like(cx_ldlmod **F, const cx_ldlmod *like, const cx_csc *A, cx_counters *cnt, cx_diag *d)
-{
-    if (like->n != A->ncol)
-        return cx_diag_set(d, CX_EINVAL, "ldlmod: the matrix is not of the other factor's order");
-    return ldlmod_new(F, A, NULL, like->super, like, cnt, d);
-}
-
 int cx_ldlmod_create_masked(cx_ldlmod **F, const cx_csc *A, const unsigned char *keep, double shift,
                             const cx_ldlmod *like, cx_counters *cnt, cx_diag *d)
 {

@@ -171,10 +171,6 @@ typedef struct cx_ldlmod cx_ldlmod;
 int cx_ldlmod_create(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d);
 /* The same, factorised supernodal and converted (faster on large meshes). */
 int cx_ldlmod_create_super(cx_ldlmod **F, const cx_csc *A, cx_counters *cnt, cx_diag *d);
-/* The same for a matrix of the pattern of like's (not checked beyond the
- * order): like's analysis is copied, not redone. */
-int cx_ldlmod_create_like(cx_ldlmod **F, const cx_ldlmod *like, const cx_csc *A, cx_counters *cnt,
-                          cx_diag *d);
 /* The factor of A masked: rows and columns k with keep[k] = 0 the
  * identity's, shift added to the other diagonal entries (keep NULL: A
  * itself), factorised supernodal and converted (or, with like, from
