@@ -29,7 +29,7 @@ COMMANDS = [
               "backend"},
      ["--frames", "0"], "--frames '0'"),
     (["bench", "wp"], BENCH | {"level", "tols", "sweep"}, ["hertz", "--repeat", "0"], "[1, 1000]"),
-    (["bench", "scaling"], BENCH | {"levels", "tol", "no-reference", "backend"}, ["hertz", "--levels", "4", "--tol", "0"],
+    (["bench", "scaling"], BENCH | {"levels", "tol", "no-reference", "backend", "set"}, ["hertz", "--levels", "4", "--tol", "0"],
      "(0, 1)"),
     (["bench", "stress"], BENCH | {"level", "cases"}, ["--threads", "0"], "[1, 1024]"),
     (["bench", "paper", "000"], {"rows", "all", "first", "slip", "slip-nodal", "abar", "scene", "repeat"}, ["--rows", "22"], "[1, 21]"),
