@@ -372,19 +372,23 @@ int cx_ldlmod_create_masked(cx_ldlmod **F, const cx_csc *A, const unsigned char 
     return ldlmod_new(F, A, keep ? &m : NULL, like ? like->super : 1, like, cnt, d);
 }
 
+/* Pivot k against amax. D(k,k) is the first entry of column k of the
+ * simplicial LDL' factor; the same relative bound as the Cholesky
+ * factorisations' (fact.c). */
+static int ldlmod_pivot(const cx_ldlmod *f, int k, double amax, cx_diag *d)
+{
+    double dk = ((const double *)f->L->x)[((const int *)f->L->p)[k]];
+    if (!(dk > CX_PIVOT_RTOL * amax))   /* also catches NaN */
+        return cx_diag_set(d, CX_ENUMERIC,
+                           "LDL' factor: matrix singular to working precision (pivot %g at column %d)", dk,
+                           cx_cholmod_column(f->L, k));
+    return CX_OK;
+}
+
 int cx_ldlmod_check(cx_ldlmod *f, double amax, cx_diag *d)
 {
-    /* D(k,k) is the first entry of column k of the simplicial LDL' factor;
-     * the same relative bound as the Cholesky factorisations' (fact.c) */
-    const int *lp = f->L->p;
-    const double *lx = f->L->x;
-    for (int k = 0; k < f->n; k++) {
-        double dk = lx[lp[k]];
-        if (!(dk > CX_PIVOT_RTOL * amax))   /* also catches NaN */
-            return cx_diag_set(d, CX_ENUMERIC,
-                               "LDL' factor: matrix singular to working precision (pivot %g at column %d)",
-                               dk, cx_cholmod_column(f->L, k));
-    }
+    for (int k = 0; k < f->n; k++)
+        CX_TRY(ldlmod_pivot(f, k, amax, d));
     return CX_OK;
 }
 
@@ -433,17 +437,12 @@ static void ldlmod_touch(cx_ldlmod *f, int k)
 
 int cx_ldlmod_check_updated(cx_ldlmod *f, double amax, cx_diag *d)
 {
-    const int *lp = f->L->p;
-    const double *lx = f->L->x;
     int st = CX_OK;
     for (int a = 0; a < f->ndirty; a++) {
         int k = f->dirty[a];
         f->isdirty[k] = 0;
-        double dk = lx[lp[k]];
-        if (st == CX_OK && !(dk > CX_PIVOT_RTOL * amax))
-            st = cx_diag_set(d, CX_ENUMERIC,
-                             "LDL' factor: matrix singular to working precision (pivot %g at column %d)",
-                             dk, cx_cholmod_column(f->L, k));
+        if (st == CX_OK)
+            st = ldlmod_pivot(f, k, amax, d);
     }
     f->ndirty = 0;
     return st;
