@@ -77,7 +77,6 @@ static int schur_analyse(cx_schur *s, cholmod_sparse *view, int *perm, cholmod_f
     cc->method[0].ordering = CHOLMOD_GIVEN;
     cc->postorder = 0;
     *L = cholmod_analyze_p(view, perm, NULL, 0, cc);
-    cc->supernodal = CHOLMOD_SUPERNODAL;   /* after a prediction (schur_predict) */
     int st = cx_cholmod_check(cc, *L, "schur: analysis", d);
     if (st == CX_OK && !*L)
         st = cx_diag_set(d, CX_EEXTERNAL, "schur: analysis failed");
@@ -90,15 +89,21 @@ static int schur_analyse(cx_schur *s, cholmod_sparse *view, int *perm, cholmod_f
     return CX_OK;
 }
 
-/* lnz and fl of the ordering perm without the supernodal pattern (column
- * counts only: half the analysis's time on prism 7's CAMD ordering). */
-static int schur_predict(cx_schur *s, cholmod_sparse *view, int *perm, double *lnz, double *fl, cx_diag *d)
+/* CAMD with the c dofs constrained last into perm, and its lnz and fl:
+ * CAMD counts the factor of the ordering it makes (the same figures as
+ * CHOLMOD's column counts on hertz 256, block3d 16 and prism 7, where that
+ * analysis cost as much again as the ordering), so it is predicted
+ * without an analysis; its supernodal analysis runs only if it wins. */
+static int schur_camd(cx_schur *s, cholmod_sparse *view, int *cmember, int *perm, cx_diag *d)
 {
-    cholmod_factor *L = NULL;
-    s->cc.supernodal = CHOLMOD_SIMPLICIAL;
-    int st = schur_analyse(s, view, perm, &L, lnz, fl, d);
-    cholmod_free_factor(&L, &s->cc);
-    return st;
+    cx_schur_ordering *o = &s->ord;
+    int ok = cholmod_camd(view, NULL, 0, cmember, perm, &s->cc);
+    CX_TRY(cx_cholmod_check(&s->cc, NULL, "schur: constrained ordering", d));
+    if (!ok)
+        return cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering failed");
+    o->lnz[CX_ORDER_CAMD] = s->cc.lnz;
+    o->flops[CX_ORDER_CAMD] = s->cc.fl;
+    return CX_OK;
 }
 
 /* The process's CPU clock, for the phase times of cx_schur_ordering. */
@@ -307,7 +312,7 @@ static double schur_metis_cost(int ni) { return CX_SCHUR_METIS_FLOPS_PER_DOF * (
 /* Elasticity in 3D (3 dofs per node), where nested dissection has won by
  * 2.6-3x in flops on every scene measured (README, "The direct path in
  * 3D"): METIS is analysed first, in full, and CAMD only predicted from its
- * column counts; the choice is the same rule as schur_order's (whenever
+ * own counts (schur_camd); the choice is the same rule as schur_order's (whenever
  * that would try METIS at all), and CAMD's supernodal analysis runs only
  * if CAMD wins. */
 #define CX_SCHUR_3D_DOFS_PER_VERTEX 2.5
@@ -320,14 +325,9 @@ static int schur_order_3d(cx_schur *s, const cx_csc *A, cholmod_sparse *view, in
     cholmod_factor *Lm = NULL;
     CX_TRY(schur_try_metis(s, A, view, cmember, &Lm, d));
     double t0 = cx_clock_now(), c0 = schur_cpu_now(), c1;
-    int ok = cholmod_camd(view, NULL, 0, cmember, perm, &s->cc);
-    st = cx_cholmod_check(&s->cc, NULL, "schur: constrained ordering", d);
-    if (st == CX_OK && !ok)
-        st = cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering failed");
+    st = schur_camd(s, view, cmember, perm, d);
     c1 = schur_cpu_now();
     o->cpu_ordering += c1 - c0;
-    if (st == CX_OK)
-        st = schur_predict(s, view, perm, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d);
     if (st == CX_OK && !(o->flops[CX_ORDER_METIS] + schur_metis_cost(n - nc) < o->flops[CX_ORDER_CAMD])) {
         double lnz, fl;   /* the same as predicted */
         cholmod_free_factor(&Lm, &s->cc);
@@ -367,17 +367,12 @@ static int schur_order(cx_schur *s, const cx_csc *A, int *cmember, int *perm, cx
     if (s->force_order == CX_ORDER_AUTO && schur_dofs_per_vertex(A, cmember) >= CX_SCHUR_3D_DOFS_PER_VERTEX)
         return schur_order_3d(s, A, &view, cmember, perm, d);
     double t0 = cx_clock_now(), c0 = schur_cpu_now();
-    int ok = cholmod_camd(&view, NULL, 0, cmember, perm, cc);
-    CX_TRY(cx_cholmod_check(cc, NULL, "schur: constrained ordering", d));
-    if (!ok)
-        return cx_diag_set(d, CX_EEXTERNAL, "schur: constrained ordering failed");
+    CX_TRY(schur_camd(s, &view, cmember, perm, d));
     double c1 = schur_cpu_now();
     o->cpu_ordering += c1 - c0;
-    /* CAMD's analysis in full only if AMD's does not win (predicted first) */
+    /* CAMD's analysis at once unless AMD's may win */
     int amd = (s->force_order == CX_ORDER_AUTO || s->force_order == CX_ORDER_AMD);
-    if (amd)
-        CX_TRY(schur_predict(s, &view, perm, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d));
-    else
+    if (!amd)
         CX_TRY(schur_analyse(s, &view, perm, &s->L, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d));
     o->cpu_symbolic += schur_cpu_now() - c1;
     o->seconds[CX_ORDER_CAMD] = cx_clock_now() - t0;
