@@ -395,7 +395,9 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
     pl.integer_x = !work;
     pl.font_scale = r->font_scale;
     cx_options opt = *cx_session_options(s);
-    int rc = CX_OK;
+    /* the baseline before the runs, as solve --baseline and bench time it */
+    double t_base = 0;
+    int rc = work ? cx_problem_baseline(cx_session_problem(s), &t_base, d) : CX_OK;
     char methods[256] = "";
     for (int k = 0; k < nruns && rc == CX_OK; k++) {
         const cx_method *m = runs[k];
@@ -426,8 +428,7 @@ static int render_plot_convergence(const cli_render_args *r, const cx_scene *sc,
         cx_session_destroy(&fresh);
     }
     cx_plot_add_hline(&pl, opt.tol, "tolerance");
-    double t_base = 0;
-    if (work && rc == CX_OK && (rc = cx_problem_baseline(cx_session_problem(s), &t_base, d)) == CX_OK)
+    if (work && rc == CX_OK)
         cx_plot_add_vline(&pl, t_base, "baseline: factorise + solve K");
     cx_plot_add_text(&pl, "scene", sc->id);
     cx_plot_add_text(&pl, "friction", cx_friction_name(law));

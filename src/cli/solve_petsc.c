@@ -79,7 +79,9 @@ int cli_solve_petsc(const char *cmd, const cx_scene *sc, const cx_problem *p, co
         cx_petsc_result_clear(&r);
         return code;
     }
-    /* rank 0: the summary and the files, from the gathered solution */
+    /* rank 0: the summary and the files, from the gathered solution; the
+     * baseline (serial, rank 0 only) after the run here, not before it as
+     * on the direct path, so that the other ranks do not wait for it */
     double t_base = 0;
     if (a->baseline && cx_problem_baseline(p, &t_base, &d)) {
         cx_petsc_result_clear(&r);
