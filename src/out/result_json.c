@@ -110,7 +110,7 @@ int cx_result_write_json_history(const cx_result *r, const cx_history *h, FILE *
     cx_json_num(&j, "solve", run->time.solve);
     cx_json_num(&j, "total", run->time.total);
     if (run->has_baseline)
-        cx_json_num(&j, "linear_solve", run->time.baseline);
+        cx_json_num(&j, "baseline", run->time.baseline);   /* the name bench uses */
     cx_json_end_object(&j);
     cx_json_object(&j, "counts");
     cx_json_int(&j, "factorizations", run->counters.factorizations);
