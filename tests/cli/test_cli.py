@@ -5,6 +5,7 @@ exit codes, one-line errors for bad options and bad scenes, and the output
 files: a write error on standard output is an error, '-' is standard
 output, links and devices are kept, Ctrl-C leaves no temporary."""
 import json
+import re
 import os
 import signal
 import stat
@@ -36,6 +37,20 @@ check(0 < j["kkt_error"] < 1e-12, f"kkt {j['kkt_error']}")
 check(2 <= j["iterations"] <= 12, f"iterations {j['iterations']}")
 for t in ["assemble", "setup", "solve", "total", "baseline"]:
     check(t in j["time"] and j["time"][t] >= 0, f"time.{t}")
+
+# ---- solve --baseline, text: the baseline, the orderings' fills and where
+# the reduction's CPU time went, one line each ----
+code, out, err = run("solve", "hertz", "--level", "16", "--baseline")
+check(code == 0, f"solve --baseline ({code}, {err})")
+base = re.search(r"^ +baseline \(factorise \+ solve K\) ([0-9.e+-]+) s; \(setup \+ solve\) / baseline = ([0-9.]+)$",
+                 out, re.M)
+check(base is not None and float(base.group(1)) > 0, f"the baseline's line: {out[-600:]!r}")
+check(re.search(r"^ +contact-last ordering: CAMD( \(chosen\))? [0-9.e+]+ nnz\(L\)", out, re.M) is not None,
+      "the orderings' line")
+red = re.search(r"^ +reduction CPU \(all threads\): orderings ([0-9.]+) s, analysis ([0-9.]+) s, "
+                r"factorisation ([0-9.]+) s, S ([0-9.]+) s$", out, re.M)
+check(red is not None, f"the reduction's CPU line: {out[-400:]!r}")
+check(red is not None and all(float(v) >= 0 for v in red.groups()), "CPU seconds, none negative")
 check(j["counts"]["factorizations"] == 1, "one factorisation")
 # ssn-tresca works on the condensed system: f is condensed once and u
 # expanded once, when the run ends; the kkt error of the other iterations
