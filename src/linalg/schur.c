@@ -92,8 +92,10 @@ static int schur_analyse(cx_schur *s, cholmod_sparse *view, int *perm, cholmod_f
 /* CAMD with the c dofs constrained last into perm, and its lnz and fl:
  * CAMD counts the factor of the ordering it makes (the same figures as
  * CHOLMOD's column counts on hertz 256, block3d 16 and prism 7, where that
- * analysis cost as much again as the ordering), so it is predicted
- * without an analysis; its supernodal analysis runs only if it wins. */
+ * analysis cost as much again as the ordering; estimates only where CAMD
+ * sets dense rows aside), so it is predicted without an analysis; its
+ * supernodal analysis runs only if it wins, and its counts then replace
+ * CAMD's. */
 static int schur_camd(cx_schur *s, cholmod_sparse *view, int *cmember, int *perm, cx_diag *d)
 {
     cx_schur_ordering *o = &s->ord;
@@ -329,9 +331,8 @@ static int schur_order_3d(cx_schur *s, const cx_csc *A, cholmod_sparse *view, in
     c1 = schur_cpu_now();
     o->cpu_ordering += c1 - c0;
     if (st == CX_OK && !(o->flops[CX_ORDER_METIS] + schur_metis_cost(n - nc) < o->flops[CX_ORDER_CAMD])) {
-        double lnz, fl;   /* the same as predicted */
-        cholmod_free_factor(&Lm, &s->cc);
-        st = schur_analyse(s, view, perm, &Lm, &lnz, &fl, d);
+        cholmod_free_factor(&Lm, &s->cc);   /* the analysis's counts replace CAMD's (the same without dense rows) */
+        st = schur_analyse(s, view, perm, &Lm, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d);
         o->chosen = CX_ORDER_CAMD;
     } else {
         o->chosen = CX_ORDER_METIS;
@@ -380,8 +381,8 @@ static int schur_order(cx_schur *s, const cx_csc *A, int *cmember, int *perm, cx
     if (amd)
         CX_TRY(schur_try_amd(s, A, &view, cmember, d));
     if (!s->L) {
-        double lnz, fl, c2 = schur_cpu_now();   /* the same as predicted */
-        CX_TRY(schur_analyse(s, &view, perm, &s->L, &lnz, &fl, d));
+        double c2 = schur_cpu_now();   /* the analysis's counts replace CAMD's (the same without dense rows) */
+        CX_TRY(schur_analyse(s, &view, perm, &s->L, &o->lnz[CX_ORDER_CAMD], &o->flops[CX_ORDER_CAMD], d));
         o->cpu_symbolic += schur_cpu_now() - c2;
     }
     double cost = schur_metis_cost(n - nc);

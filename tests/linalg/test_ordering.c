@@ -128,7 +128,8 @@ static void compare_orderings(int m, int neumann)
     const cx_schur_ordering *oa = cx_schur_ordering_of(Sa);
     CX_CHECK(oa->tried_amd);   /* one dof per vertex: the 2D path */
     /* CAMD's fill as CAMD counts it while ordering (all the automatic
-     * choice looks at) is CHOLMOD's analysis of that ordering (Sc's) */
+     * choice looks at, and what it keeps where CAMD loses: most grids
+     * here) is CHOLMOD's analysis of that ordering (Sc's) */
     CX_CHECK(oa->lnz[CX_ORDER_CAMD] == oc->lnz[CX_ORDER_CAMD]);
     CX_CHECK_LE(fabs(oa->flops[CX_ORDER_CAMD] - oc->flops[CX_ORDER_CAMD]), 1e-12 * oc->flops[CX_ORDER_CAMD]);
     if (oa->tried) {
