@@ -127,7 +127,14 @@ static int mm_prescan(FILE *f, const char *name, cx_diag *d)
     int st = CX_OK, lineno = 0;
     ssize_t len;
     char w[5][32] = {"", "", "", "", ""};
+    /* CHOLMOD knows the banner by its exact spelling only, and looks for
+     * it further down when the first line has another one (it then read
+     * "%%matrixmarket ... coordinate" as the array of a later banner and
+     * leaked it on the error that followed: found by libFuzzer) */
+    static const char banner[] = "%%MatrixMarket";
+    int banner_ok = 0;
     if ((len = getline(&line, &cap, f)) > 0) {
+        banner_ok = strncmp(line, banner, sizeof banner - 1) == 0;
         char *p = line;
         lineno = 1;
         for (int k = 0; k < 5; k++)
@@ -135,7 +142,7 @@ static int mm_prescan(FILE *f, const char *name, cx_diag *d)
     }
     int coordinate = !strcmp(w[2], "coordinate"), symmetric = !strcmp(w[4], "symmetric");
     int pattern = coordinate && !strcmp(w[3], "pattern");   /* CHOLMOD writes all-one matrices so */
-    if (strcmp(w[0], "%%matrixmarket") != 0 || strcmp(w[1], "matrix") != 0 ||
+    if (!banner_ok || strcmp(w[0], "%%matrixmarket") != 0 || strcmp(w[1], "matrix") != 0 ||
         (!coordinate && strcmp(w[2], "array") != 0))
         st = cx_diag_set(d, CX_EINVAL, "%s: not a MatrixMarket file: the first line must be '%%%%MatrixMarket "
                          "matrix coordinate|array real|integer|pattern general|symmetric'", name);
@@ -152,6 +159,10 @@ static int mm_prescan(FILE *f, const char *name, cx_diag *d)
         char *p = line, tail[2];
         while (*p == ' ' || *p == '\t')
             p++;
+        if (strncmp(line, banner, sizeof banner - 1) == 0) {
+            st = cx_diag_set(d, CX_EINVAL, "%s: line %d: a second '%s' line", name, lineno, banner);
+            break;
+        }
         /* a comment, or a line of blanks only: a carriage return before
          * more text ("\r3 3") is not one (CHOLMOD took such a line for
          * the size and returned a bad object: found by libFuzzer) */

@@ -172,6 +172,16 @@ one_line_error(code, err, "problem.json", "malformed JSON")
 d = broken("garbage", lambda d: open(os.path.join(d, "T.mtx"), "w").write("not a matrix\n"))
 code, out, err = run("solve", "--problem", d)
 one_line_error(code, err, os.path.join(d, "T.mtx"), "not a MatrixMarket file")
+# the banner in another case: CHOLMOD would look for it further down
+d = broken("banner_case", lambda d: rewrite(d, "g.mtx", lambda ls: [ls[0].replace("MatrixMarket", "matrixmarket")]
+                                               + ls[1:]))
+code, out, err = run("solve", "--problem", d)
+one_line_error(code, err, os.path.join(d, "g.mtx"), "not a MatrixMarket file")
+# a second banner below the first
+d = broken("banner_twice", lambda d: rewrite(d, "g.mtx", lambda ls: ls[:1] + ["%%MatrixMarket matrix array real general"]
+                                                + ls[1:]))
+code, out, err = run("solve", "--problem", d)
+one_line_error(code, err, os.path.join(d, "g.mtx"), "line 2: a second '%%MatrixMarket' line")
 
 shutil.rmtree(tmp)
 finish("problem_cli")
