@@ -5,6 +5,35 @@
 
 #include <string.h>
 
+/* Sort rows[0..n) ascending (a column of a product: short, insertion). */
+static void spgemm_sort(int *rows, size_t n)
+{
+    for (size_t a = 1; a < n; a++) {
+        int v = rows[a];
+        size_t b = a;
+        for (; b > 0 && rows[b - 1] > v; b--)
+            rows[b] = rows[b - 1];
+        rows[b] = v;
+    }
+}
+
+/* acc += x A(:, k) on a sparse accumulator for column j: a row first met
+ * in column j is marked, appended to list[n..) and its sum started; the
+ * new length of list is returned. */
+static size_t spgemm_axpy(const cx_csc *A, int k, double x, int j, int *mark, int *list, size_t n, double *acc)
+{
+    for (int r = A->p[k]; r < A->p[k + 1]; r++) {
+        int i = A->i[r];
+        if (mark[i] != j) {
+            mark[i] = j;
+            list[n++] = i;
+            acc[i] = 0;
+        }
+        acc[i] += A->x[r] * x;
+    }
+    return n;
+}
+
 int cx_csc_multiply(cx_csc *C, const cx_csc *A, const cx_csc *B)
 {
     int m = A->nrow, n = B->ncol;
@@ -26,39 +55,22 @@ int cx_csc_multiply(cx_csc *C, const cx_csc *A, const cx_csc *B)
         p[j] = (int)nnz;
         for (int q = B->p[j]; q < B->p[j + 1]; q++) {
             int k = B->i[q];
-            double bkj = B->x[q];
-            for (int r = A->p[k]; r < A->p[k + 1]; r++) {
-                int i = A->i[r];
-                if (mark[i] != j) {
-                    if (nnz == cap) {
-                        size_t nc = 2 * cap;
-                        int *nr = cx_realloc(rows, sizeof(int) * nc);
-                        if (!nr)
-                            goto nomem;
-                        rows = nr;
-                        double *nv = cx_realloc(vals, sizeof(double) * nc);
-                        if (!nv)
-                            goto nomem;
-                        vals = nv;
-                        cap = nc;
-                    }
-                    mark[i] = j;
-                    rows[nnz++] = i;
-                    acc[i] = 0;
-                }
-                acc[i] += A->x[r] * bkj;
+            size_t len = (size_t)(A->p[k + 1] - A->p[k]);
+            if (nnz + len > cap) {   /* room for all of A(:, k) */
+                size_t nc = 2 * cap > nnz + len ? 2 * cap : nnz + len;
+                int *nr = cx_realloc(rows, sizeof(int) * nc);
+                if (!nr)
+                    goto nomem;
+                rows = nr;
+                double *nv = cx_realloc(vals, sizeof(double) * nc);
+                if (!nv)
+                    goto nomem;
+                vals = nv;
+                cap = nc;
             }
+            nnz = spgemm_axpy(A, k, B->x[q], j, mark, rows, nnz, acc);
         }
-        /* sorted rows, as cx_csc requires (columns are short: insertion sort) */
-        for (size_t a = (size_t)p[j] + 1; a < nnz; a++) {
-            int v = rows[a];
-            size_t b = a;
-            while (b > (size_t)p[j] && rows[b - 1] > v) {
-                rows[b] = rows[b - 1];
-                b--;
-            }
-            rows[b] = v;
-        }
+        spgemm_sort(rows + p[j], nnz - (size_t)p[j]);   /* sorted rows, as cx_csc requires */
         for (size_t a = (size_t)p[j]; a < nnz; a++)
             vals[a] = acc[rows[a]];
     }
@@ -74,18 +86,6 @@ nomem:
     cx_free(rows);
     cx_free(vals);
     return CX_ENOMEM;
-}
-
-/* Sort rows[0..n) ascending (a column of a product: short, insertion). */
-static void spgemm_sort(int *rows, size_t n)
-{
-    for (size_t a = 1; a < n; a++) {
-        int v = rows[a];
-        size_t b = a;
-        for (; b > 0 && rows[b - 1] > v; b--)
-            rows[b] = rows[b - 1];
-        rows[b] = v;
-    }
 }
 
 int cx_csc_congruence(cx_csc *C, const cx_csc *K, const cx_csc *T)
@@ -130,35 +130,13 @@ int cx_csc_congruence(cx_csc *C, const cx_csc *K, const cx_csc *T)
     size_t nnz = 0;
     for (int j = 0; j < n; j++) {
         /* w = K T(:, j) on the rows list1[0..n1) */
-        int n1 = 0;
-        for (int q = T->p[j]; q < T->p[j + 1]; q++) {
-            int k = T->i[q];
-            double t = T->x[q];
-            for (int r = K->p[k]; r < K->p[k + 1]; r++) {
-                int i = K->i[r];
-                if (mark1[i] != j) {
-                    mark1[i] = j;
-                    list1[n1++] = i;
-                    acc1[i] = 0;
-                }
-                acc1[i] += K->x[r] * t;
-            }
-        }
+        size_t n1 = 0;
+        for (int q = T->p[j]; q < T->p[j + 1]; q++)
+            n1 = spgemm_axpy(K, T->i[q], T->x[q], j, mark1, list1, n1, acc1);
         /* C(:, j) = T' w: row i of T spread by w_i */
         p[j] = (int)nnz;
-        for (int a = 0; a < n1; a++) {
-            int i = list1[a];
-            double w = acc1[i];
-            for (int s = Tt.p[i]; s < Tt.p[i + 1]; s++) {
-                int c = Tt.i[s];
-                if (mark2[c] != j) {
-                    mark2[c] = j;
-                    rows[nnz++] = c;
-                    acc2[c] = 0;
-                }
-                acc2[c] += Tt.x[s] * w;
-            }
-        }
+        for (size_t a = 0; a < n1; a++)
+            nnz = spgemm_axpy(&Tt, list1[a], acc1[list1[a]], j, mark2, rows, nnz, acc2);
         spgemm_sort(rows + p[j], nnz - (size_t)p[j]);
         for (size_t a = (size_t)p[j]; a < nnz; a++)
             vals[a] = acc2[rows[a]];
