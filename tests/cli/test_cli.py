@@ -40,7 +40,7 @@ for t in ["assemble", "setup", "solve", "total", "baseline"]:
 
 # ---- solve --baseline, text: the baseline, the orderings' fills and where
 # the reduction's CPU time went, one line each ----
-code, out, err = run("solve", "hertz", "--level", "16", "--baseline")
+code, out, err = run("solve", "hertz", "--level", "64", "--baseline")
 check(code == 0, f"solve --baseline ({code}, {err})")
 base = re.search(r"^ +baseline \(factorise \+ solve K\) ([0-9.e+-]+) s; \(setup \+ solve\) / baseline = ([0-9.]+)$",
                  out, re.M)
@@ -50,7 +50,8 @@ check(re.search(r"^ +contact-last ordering: CAMD( \(chosen\))? [0-9.e+]+ nnz\(L\
 red = re.search(r"^ +reduction CPU \(all threads\): orderings ([0-9.]+) s, analysis ([0-9.]+) s, "
                 r"factorisation ([0-9.]+) s, S ([0-9.]+) s$", out, re.M)
 check(red is not None, f"the reduction's CPU line: {out[-400:]!r}")
-check(red is not None and all(float(v) >= 0 for v in red.groups()), "CPU seconds, none negative")
+# the reduction's phases were timed (hertz 64 takes a few tens of ms), not left at 0
+check(red is not None and sum(float(v) for v in red.groups()) > 0, f"the reduction's CPU time: {red and red.groups()}")
 check(j["counts"]["factorizations"] == 1, "one factorisation")
 # ssn-tresca works on the condensed system: f is condensed once and u
 # expanded once, when the run ends; the kkt error of the other iterations
